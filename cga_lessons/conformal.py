@@ -1,0 +1,38 @@
+"""The conformal model G(4,1): one import for the whole of chapter 2.
+
+``from cga_lessons import conformal as cga`` gives the basis and constants and
+up/down (:mod:`cga_lessons.model`, 2.52-2.67, 2.111-2.114), the entities of
+table 2.1 and their properties (:mod:`cga_lessons.entities`, section 2.4) and
+the versors of table 2.2 (:mod:`cga_lessons.versors`, 2.82-2.110, 2.135-2.145).
+
+Basis vectors ``e1 e2 e3`` (Euclidean), ``ep`` (e+, squares to +1) and ``em``
+(e-, squares to -1), (2.52).  The null basis (2.53), with the thesis's signs::
+
+    eo   = (e- - e+)/2      the origin, e_0
+    einf = e- + e+          the point at infinity, e (the thesis writes plain e)
+
+``E = e+ e- = einf ^ eo`` (2.55, corrected), ``IE = e1 e2 e3``, ``Ic = E IE`` (2.60).
+
+    >>> from cga_lessons import conformal as cga
+    >>> X = cga.up([1.0, 2.0, 3.0])
+    >>> float(X | X), float(X | cga.einf)
+    (0.0, -1.0)
+    >>> cga.down(X)
+    array([1., 2., 3.])
+"""
+
+from .algebra import DegenerateGeometryError, GeometryError, InvalidInputError, Multivector, exp  # noqa: F401
+from .entities import *  # noqa: F403
+from .entities import __all__ as _entities_all
+from .model import *  # noqa: F403
+from .model import __all__ as _model_all
+from .model import point_weight  # noqa: F401
+from .versors import *  # noqa: F403
+from .versors import __all__ as _versors_all
+
+__all__ = (
+    list(_model_all)
+    + ["point_weight", "Multivector", "exp", "GeometryError", "DegenerateGeometryError", "InvalidInputError"]
+    + list(_entities_all)
+    + list(_versors_all)
+)

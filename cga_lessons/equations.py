@@ -1,0 +1,185 @@
+"""The equation registry: every numbered equation of the thesis -> code and test.
+
+Each chapter's entries live in ``cga_lessons/registry/<part>.py`` as a list
+``ENTRIES`` of :class:`Entry` (one file per part, so chapters are registered
+independently).  This module merges them into :data:`REGISTRY`, fills every
+label nobody registered with status ``"todo"``, and reports coverage.
+
+Statuses:
+
+``symbolic``    proved as an identity with SymPy by the named test;
+``numeric``     implemented by the named function and checked numerically;
+``definition``  a definition or notation with nothing to compute, checked
+                where it is used (the test named still exercises it);
+``erratum``     the printed formula is wrong: ``printed`` and ``correct``
+                hold both forms and ``test`` decides between them;
+``todo``        not yet registered.
+"""
+
+from __future__ import annotations
+
+import ast
+import importlib
+import pkgutil
+from dataclasses import dataclass, field
+from pathlib import Path
+
+__all__ = ["Entry", "REGISTRY", "THESIS_LABELS", "coverage_summary", "coverage", "check_registry", "table"]
+
+STATUSES = ("symbolic", "numeric", "definition", "erratum", "todo")
+
+#: The 196 numbered equations of the thesis, in order.
+THESIS_LABELS: tuple[str, ...] = tuple(
+    [f"2.{i}" for i in range(1, 146)]
+    + [f"3.{i}" for i in range(1, 22)]
+    + [f"4.{i}" for i in range(1, 11)]
+    + [f"5.{i}" for i in range(1, 7)]
+    + [f"A.{i}" for i in range(1, 15)]
+)
+
+
+@dataclass(frozen=True)
+class Entry:
+    """One numbered equation: where it is implemented and which test verifies it.
+
+    ``implementation`` is a dotted name (``"cga_lessons.conformal.up"``) and
+    ``test`` a pytest node id (``"tests/test_conformal.py::test_up_down"``).
+    ``document`` is ``"thesis"`` or ``"exploration"`` (the second document,
+    whose equation numbers collide with the thesis's chapter 3).
+    """
+
+    label: str
+    title: str
+    status: str
+    implementation: str | None = None
+    test: str | None = None
+    printed: str | None = None
+    correct: str | None = None
+    note: str | None = None
+    document: str = "thesis"
+    extra: dict = field(default_factory=dict, compare=False, hash=False)
+
+    def __post_init__(self):
+        if self.status not in STATUSES:
+            raise ValueError(f"Entry {self.label}: status {self.status!r} is not one of {STATUSES}")
+        if self.status == "erratum" and not (self.printed and self.correct):
+            raise ValueError(f"Entry {self.label}: an erratum needs both the printed and the correct form")
+        if self.status != "todo" and not self.test:
+            raise ValueError(f"Entry {self.label}: status {self.status!r} needs the test that verifies it")
+
+    @property
+    def key(self) -> str:
+        return self.label if self.document == "thesis" else f"{self.document} ({self.label})"
+
+
+def _load() -> dict[str, Entry]:
+    from . import registry as pkg
+
+    reg: dict[str, Entry] = {}
+    for info in sorted(pkgutil.iter_modules(pkg.__path__), key=lambda m: m.name):
+        mod = importlib.import_module(f"{pkg.__name__}.{info.name}")
+        for entry in getattr(mod, "ENTRIES", []):
+            if entry.key in reg:
+                raise ValueError(f"equation {entry.key} registered twice (in {info.name})")
+            reg[entry.key] = entry
+    for label in THESIS_LABELS:
+        reg.setdefault(label, Entry(label=label, title="", status="todo"))
+    return reg
+
+
+#: label -> :class:`Entry`; thesis labels are ``"2.131"``, ``"A.14"``; the
+#: second document's are ``"exploration (3.1)"``.
+REGISTRY: dict[str, Entry] = _load()
+
+
+def coverage(prefix: str | None = None) -> dict[str, int]:
+    """Counts per status over the thesis's 196 equations (or those starting with ``prefix``)."""
+    counts = dict.fromkeys(STATUSES, 0)
+    for label in THESIS_LABELS:
+        if prefix is None or label.startswith(prefix):
+            counts[REGISTRY[label].status] += 1
+    return counts
+
+
+def coverage_summary() -> str:
+    """One line: how many of the 196 numbered equations are verified, by status."""
+    c = coverage()
+    done = len(THESIS_LABELS) - c["todo"]
+    parts = ", ".join(f"{k} {c[k]}" for k in STATUSES if k != "todo")
+    extra = sum(1 for e in REGISTRY.values() if e.document != "thesis")
+    return (
+        f"{done} of {len(THESIS_LABELS)} thesis equations registered ({parts}; todo {c['todo']}); "
+        f"{extra} from the exploration document"
+    )
+
+
+def _resolve(dotted: str):
+    parts = dotted.split(".")
+    for i in range(len(parts), 0, -1):
+        try:
+            obj = importlib.import_module(".".join(parts[:i]))
+        except ImportError:
+            continue
+        for attr in parts[i:]:
+            obj = getattr(obj, attr)
+        return obj
+    raise ImportError(dotted)
+
+
+def _test_exists(node_id: str, root: Path) -> bool:
+    path, _, rest = node_id.partition("::")
+    file = root / path
+    if not file.is_file():
+        return False
+    if not rest:
+        return True
+    names = rest.split("::")
+    tree = ast.parse(file.read_text())
+    body = tree.body
+    for name in names:
+        name = name.split("[")[0]
+        found = None
+        for node in body:
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)) and node.name == name:
+                found = node
+                break
+        if found is None:
+            return False
+        body = getattr(found, "body", [])
+    return True
+
+
+def check_registry(root: Path | None = None) -> list[str]:
+    """Problems in the registry: implementations that do not import, tests that do not exist."""
+    root = root or Path(__file__).resolve().parents[1]
+    problems = []
+    for key, e in REGISTRY.items():
+        if e.status == "todo":
+            continue
+        if e.implementation:
+            for dotted in e.implementation.split(","):
+                try:
+                    _resolve(dotted.strip())
+                except Exception as exc:  # noqa: BLE001 - report every failure
+                    problems.append(f"{key}: implementation {dotted.strip()!r} does not resolve ({exc})")
+        elif e.status in ("numeric", "symbolic"):
+            problems.append(f"{key}: status {e.status} but no implementation named")
+        for node in e.test.split(","):
+            if not _test_exists(node.strip(), root):
+                problems.append(f"{key}: test {node.strip()!r} does not exist")
+    return problems
+
+
+def table(document: str | None = None) -> str:
+    """The registry as a Markdown table (label, title, status, code, test)."""
+    rows = ["| eq. | what | status | code | test |", "|---|---|---|---|---|"]
+    for key, e in REGISTRY.items():
+        if document and e.document != document:
+            continue
+        impl = f"`{e.implementation}`" if e.implementation else ""
+        test = f"`{e.test}`" if e.test else ""
+        status = e.status
+        if e.status == "erratum":
+            status = f"erratum: printed `{e.printed}`, correct `{e.correct}`"
+        rows.append(f"| {key} | {e.title} | {status} | {impl} | {test} |")
+    return "\n".join(rows)
