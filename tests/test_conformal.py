@@ -1,0 +1,324 @@
+"""The conformal model: entities (table 2.1, section 2.4) and versors (table 2.2), against Euclidean truth."""
+
+import numpy as np
+import pytest
+import sympy as sp
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from cga_lessons import conformal as cga
+from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
+
+RNG = np.random.default_rng(20261121)
+
+
+def rot_matrix(axis, angle):
+    """Rodrigues' formula: right-hand rotation by angle about axis (independent truth)."""
+    n = np.asarray(axis, float) / np.linalg.norm(axis)
+    K = np.array([[0, -n[2], n[1]], [n[2], 0, -n[0]], [-n[1], n[0], 0]])
+    return np.eye(3) + np.sin(angle) * K + (1 - np.cos(angle)) * K @ K
+
+
+def circumcircle(a, b, c):
+    ab, ac = b - a, c - a
+    n = np.cross(ab, ac)
+    center = a + (np.cross(n, ab) * ac.dot(ac) + np.cross(ac, n) * ab.dot(ab)) / (2 * n.dot(n))
+    return center, np.linalg.norm(a - center), n / np.linalg.norm(n)
+
+
+point = st.lists(st.floats(-10, 10, allow_nan=False), min_size=3, max_size=3).map(np.array)
+unit_axis = st.lists(st.floats(-1, 1, allow_nan=False), min_size=3, max_size=3).filter(
+    lambda v: np.linalg.norm(v) > 0.1
+)
+angle = st.floats(-np.pi, np.pi, allow_nan=False)
+
+
+# ---------------------------------------------------------------- points
+def test_constants_and_null_basis_eq_2_53_2_54_2_60():
+    assert float(cga.eo * cga.eo) == 0.0 and float(cga.einf * cga.einf) == 0.0
+    assert float(cga.einf | cga.eo) == -1.0
+    assert cga.E == (cga.einf ^ cga.eo)
+    assert cga.Ic == cga.G41.blade("e+-123")
+    assert float(cga.Ic * cga.Ic) == -1.0
+
+
+@settings(max_examples=50, deadline=None)
+@given(point)
+def test_up_is_null_and_normalised_eq_2_61_2_62(x):
+    X = cga.up(x)
+    scale = 1 + x.dot(x) ** 2
+    assert abs(float(X * X)) <= 1e-12 * scale
+    assert float(X | cga.einf) == pytest.approx(-1.0)
+    assert X["e+"] == pytest.approx(0.5 * (x.dot(x) - 1)) and X["e-"] == pytest.approx(0.5 * (x.dot(x) + 1))  # (2.63)
+    assert np.allclose(cga.down(X * 3.7), x)  # (2.111) scale invariance
+
+
+@settings(max_examples=50, deadline=None)
+@given(point, point)
+def test_inner_product_is_squared_distance_eq_2_66(a, b):
+    assert float(cga.up(a) | cga.up(b)) == pytest.approx(-0.5 * np.sum((a - b) ** 2), abs=1e-9)
+
+
+def test_up_down_batch_and_symbolic():
+    pts = RNG.normal(size=(100, 3))
+    X = cga.up(pts)
+    assert X.shape == (100,)
+    assert np.allclose(cga.down(X), pts, atol=1e-14)
+    x, y, z = sp.symbols("x y z", real=True)
+    Xs = cga.up([x, y, z])
+    assert (Xs * Xs).simplify().coeffs == {}
+    assert sp.simplify(cga.down(Xs * (x**2 + 1)) - sp.Matrix([x, y, z])) == sp.zeros(3, 1)
+
+
+@pytest.mark.parametrize(
+    "bad",
+    [[1.0, 2.0], [[1.0, 2.0, np.nan]], [1.0, np.inf, 0.0], "abc", np.zeros((2, 2, 3))],
+)
+def test_up_rejects_bad_input(bad):
+    with pytest.raises(InvalidInputError, match="up"):
+        cga.up(bad)
+
+
+def test_down_rejects_point_at_infinity_and_non_points():
+    with pytest.raises(DegenerateGeometryError, match="down"):
+        cga.down(cga.einf)
+    with pytest.raises(InvalidInputError, match="down"):
+        cga.down(cga.E)
+
+
+# ----------------------------------------------------------- point pairs
+def test_point_pair_endpoints_round_trip_eq_2_131():
+    a, b = RNG.normal(size=(2, 3))
+    p1, p2 = cga.point_pair_endpoints(cga.point_pair(a, b))
+    assert np.allclose(p1, a, atol=1e-12) and np.allclose(p2, b, atol=1e-12)
+    # standard form and arbitrary scale give the same points
+    q1, q2 = cga.point_pair_endpoints(cga.standard_form(cga.point_pair(a, b)) * 2.5)
+    assert np.allclose(q1, a) and np.allclose(q2, b)
+    r1, r2 = cga.point_pair_endpoints(-cga.point_pair(a, b))  # b ^ a: orientation swaps the order
+    assert np.allclose(r1, b) and np.allclose(r2, a)
+
+
+def test_point_pair_endpoints_batch():
+    a, b = RNG.normal(size=(2, 50, 3))
+    p1, p2 = cga.point_pair_endpoints(cga.point_pair(a, b))
+    assert np.allclose(p1, a, atol=1e-11) and np.allclose(p2, b, atol=1e-11)
+
+
+def test_point_pair_from_three_spheres_is_real_intersection():
+    """PP = s1 ^ s2 ^ s3 (table 2.1): endpoints lie on all three spheres."""
+    c1, c2, c3 = np.array([0.0, 0, 0]), np.array([1.0, 0, 0]), np.array([0.0, 1, 0])
+    PP = cga.sphere(c1, 1.0) ^ cga.sphere(c2, 1.0) ^ cga.sphere(c3, 1.0)
+    for p in cga.point_pair_endpoints(PP):
+        for c in (c1, c2, c3):
+            assert np.linalg.norm(p - c) == pytest.approx(1.0)
+
+
+def test_point_pair_guards():
+    with pytest.raises(DegenerateGeometryError, match="point_pair"):
+        cga.point_pair([1.0, 2, 3], [1.0, 2, 3])
+    # three spheres with no common point: an imaginary point pair
+    PP = cga.sphere([0.0, 0, 0], 1.0) ^ cga.sphere([5.0, 0, 0], 1.0) ^ cga.sphere([0.0, 5, 0], 1.0)
+    with pytest.raises(DegenerateGeometryError, match="imaginary"):
+        cga.point_pair_endpoints(PP)
+    a = np.array([4.0, 0.0, 0.0])
+    with pytest.raises(DegenerateGeometryError, match="accuracy guard"):
+        cga.point_pair_endpoints(cga.point_pair(a, a + [0, 5e-5, 0]))
+    p1, _ = cga.point_pair_endpoints(cga.point_pair(a, a + [0, 1e-3, 0]))  # above the guard: accurate
+    assert np.allclose(p1, a, atol=1e-7)
+
+
+def test_point_pair_sphere_eq_2_134():
+    a, b = RNG.normal(size=(2, 3))
+    c, r = cga.sphere_center_radius(cga.point_pair_sphere(cga.point_pair(a, b)))
+    assert np.allclose(c, (a + b) / 2) and r == pytest.approx(np.linalg.norm(a - b) / 2)
+
+
+# ---------------------------------------------------------------- spheres
+def test_sphere_forms_agree_eq_2_72_2_75():
+    center, radius = RNG.normal(size=3), 1.7
+    dirs = RNG.normal(size=(4, 3))
+    pts = center + radius * dirs / np.linalg.norm(dirs, axis=1)[:, None]
+    for S in (cga.sphere(center, radius), cga.sphere_from_points(*pts)):
+        c, r = cga.sphere_center_radius(S)
+        assert np.allclose(c, center) and r == pytest.approx(radius)
+    s = cga.sphere(center, radius)
+    assert float(s * s) == pytest.approx(radius**2)  # (2.73)
+    assert float(cga.einf | s) == pytest.approx(-1.0)  # (2.74)
+    for p in pts:  # (2.71) and (2.76)
+        assert abs(float(cga.up(p) | s)) < 1e-10
+        assert (cga.up(p) ^ cga.sphere_from_points(*pts)).iszero(atol=1e-9)
+
+
+def test_sphere_batch_and_side_eq_2_118():
+    centers, radii = RNG.normal(size=(10, 3)), RNG.uniform(0.5, 2, size=10)
+    c, r = cga.sphere_center_radius(cga.sphere(centers, radii))
+    assert np.allclose(c, centers) and np.allclose(r, radii)
+    s = cga.sphere([0.0, 0, 0], 1.0)
+    assert cga.point_sphere_side([0.1, 0.2, 0.3], s) == 1
+    assert cga.point_sphere_side([1.0, 0, 0], s) == 0
+    assert cga.point_sphere_side([2.0, 0, 0], s) == -1
+    assert list(cga.point_sphere_side(np.array([[0, 0, 0.5], [0, 3, 0]]), s)) == [1, -1]
+
+
+def test_sphere_degenerate():
+    with pytest.raises(DegenerateGeometryError, match="coplanar"):
+        cga.sphere_from_points([0.0, 0, 0], [1.0, 0, 0], [0.0, 1, 0], [1.0, 1, 0])
+    with pytest.raises(DegenerateGeometryError, match="coplanar"):
+        cga.sphere_from_points([0.0, 0, 0], [0.0, 0, 0], [0.0, 1, 0], [1.0, 1, 2])
+    with pytest.raises(InvalidInputError, match="radius"):
+        cga.sphere([0.0, 0, 0], -1.0)
+    with pytest.raises(DegenerateGeometryError, match="imaginary"):
+        cga.sphere_center_radius(cga.up([0.0, 0, 0]) + 0.5 * cga.einf)
+    with pytest.raises(DegenerateGeometryError):
+        cga.sphere_center_radius(cga.plane([0.0, 0, 1], 1.0))
+
+
+# ----------------------------------------------------------------- planes
+def test_plane_from_points_eq_2_77_and_2_89():
+    a, b, c = RNG.normal(size=(3, 3))
+    n_true = np.cross(b - a, c - a)
+    n_true /= np.linalg.norm(n_true)
+    n, d = cga.plane_normal_distance(cga.plane_from_points(a, b, c))
+    assert np.allclose(n, n_true) and d == pytest.approx(n_true @ a)
+    n2, d2 = cga.plane_normal_distance(cga.plane(3 * n_true, n_true @ a))
+    assert np.allclose(n2, n_true) and d2 == pytest.approx(n_true @ a)
+    with pytest.raises(DegenerateGeometryError, match="collinear"):
+        cga.plane_from_points([0.0, 0, 0], [1.0, 1, 1], [2.0, 2, 2])
+    with pytest.raises(DegenerateGeometryError, match="zero"):
+        cga.plane([0.0, 0, 0], 1.0)
+
+
+# ------------------------------------------------------------------ lines
+def test_line_properties_eq_2_125_to_2_130():
+    a, b, x = RNG.normal(size=(3, 3))
+    L = cga.line_from_points(a, b)
+    r = (b - a) / np.linalg.norm(b - a)
+    assert float(L * L) == pytest.approx(np.sum((a - b) ** 2))  # (2.125)
+    assert float(cga.normalize_line(L) * cga.normalize_line(L)) == pytest.approx(1.0)  # (2.126)
+    assert np.allclose(cga.line_direction(L), r)  # (2.127)
+    assert np.allclose(cga.line_moment(L), np.cross(a, r))  # (2.128), corrected
+    assert np.allclose(cga.line_closest_point(L), a - r * (a @ r))  # (2.129)
+    assert cga.point_line_distance(x, L) == pytest.approx(np.linalg.norm(np.cross(x - a, r)))  # (2.130)
+    assert cga.point_line_distance(a + 2 * r, L) == pytest.approx(0.0, abs=1e-7)
+    xs = RNG.normal(size=(20, 3))
+    assert np.allclose(cga.point_line_distance(xs, L), np.linalg.norm(np.cross(xs - a, r), axis=1))
+    with pytest.raises(DegenerateGeometryError, match="coincide"):
+        cga.line_from_points(a, a)
+
+
+# ---------------------------------------------------------------- circles
+def test_circle_center_radius_eq_2_80_2_119_to_2_124():
+    a, b, c = RNG.normal(size=(3, 3))
+    center, radius, normal = circumcircle(a, b, c)
+    Z = cga.circle_from_points(a, b, c)
+    cc, rr, nn = cga.circle_center_radius(Z)
+    assert np.allclose(cc, center) and rr == pytest.approx(radius) and np.allclose(nn, normal)
+    z = cga.standard_form(Z)
+    # (2.122) corrected: rho^2 = -z^2 / (e ^ z)^2
+    rho2 = -float((z * z).grade(0)) / float(((cga.einf ^ z) * (cga.einf ^ z)).grade(0))
+    assert rho2 == pytest.approx(radius**2)
+    n, d = cga.plane_normal_distance(cga.circle_plane(Z))
+    assert abs(abs(n @ normal) - 1) < 1e-12 and abs(d) == pytest.approx(abs(normal @ a))
+    with pytest.raises(DegenerateGeometryError, match="collinear"):
+        cga.circle_from_points([0.0, 0, 0], [1.0, 0, 0], [3.0, 0, 0])
+
+
+# ---------------------------------------------------------------- versors
+@settings(max_examples=40, deadline=None)
+@given(unit_axis, angle, point, point)
+def test_motor_matches_matrix_eq_2_102_2_103(axis, ang, t, x):
+    M = cga.motor(axis, ang, t)
+    expected = rot_matrix(axis, ang) @ x + t
+    assert np.allclose(cga.down(cga.apply(M, cga.up(x))), expected, atol=1e-9)
+    assert float(M * ~M) == pytest.approx(1.0)  # (2.145)
+    # versors preserve the null cone (2.82)
+    Y = cga.apply(M, cga.up(x))
+    assert abs(float(Y * Y)) < 1e-8 * (1 + x @ x + t @ t) ** 2
+
+
+@settings(max_examples=40, deadline=None)
+@given(unit_axis, angle, point)
+def test_motor_decomposition_round_trip_eq_2_140_2_145(axis, ang, t):
+    M = cga.motor(axis, ang, t)
+    R, tt = cga.decompose_motor(M)
+    assert np.allclose(tt, t, atol=1e-9)
+    assert (cga.translator(tt) * R).isclose(M, atol=1e-9)
+    assert R.isclose(cga.rotor(axis, ang), atol=1e-12)
+
+
+def test_motors_compose():
+    a1, a2 = RNG.normal(size=(2, 3))
+    M1, M2 = cga.motor(a1, 0.4, [1.0, 0, 0]), cga.motor(a2, -1.1, [0, 2.0, 0.5])
+    H = cga.motor_to_matrix(M2) @ cga.motor_to_matrix(M1)
+    assert np.allclose(cga.motor_to_matrix(M2 * M1), H)  # (2.99)
+    assert cga.matrix_to_motor(H).isclose(M2 * M1, atol=1e-9) or cga.matrix_to_motor(H).isclose(-(M2 * M1), atol=1e-9)
+
+
+def test_translator_and_rotor_conventions_eq_2_94_2_100():
+    x, t = np.array([1.0, 2.0, 3.0]), np.array([0.5, -1.0, 2.0])
+    assert np.allclose(cga.down(cga.apply(cga.translator(t), cga.up(x))), x + t)
+    assert cga.translator(t).isclose(cga.exp(cga.einf * cga.vector(t) * 0.5))  # (2.100)
+    R = cga.rotor([0, 0, 1.0], np.pi / 2)
+    assert np.allclose(cga.down(cga.apply(R, cga.up([1.0, 0, 0]))), [0, 1.0, 0])
+    assert R.isclose(cga.exp(cga.vector([0, 0, 1.0]) * cga.IE * (-np.pi / 4)))  # (2.94)
+    with pytest.raises(DegenerateGeometryError, match="zero"):
+        cga.rotor([0, 0, 0], 1.0)
+
+
+def test_rotor_about_line_and_screw_eq_2_104_2_110():
+    a, b, x = RNG.normal(size=(3, 3))
+    r = (b - a) / np.linalg.norm(b - a)
+    RL = cga.rotor_about_line(cga.line_from_points(a, b), 0.9)
+    expected = rot_matrix(r, 0.9) @ (x - a) + a
+    assert np.allclose(cga.down(cga.apply(RL, cga.up(x))), expected)
+    T = cga.translator(a)
+    assert RL.isclose(T * cga.rotor(r, 0.9) * ~T, atol=1e-12)  # (2.104)
+    S = cga.screw(r, a, 0.9, 0.35)
+    assert np.allclose(cga.down(cga.apply(S, cga.up(x))), expected + 0.35 * r)
+    assert S.isclose(cga.translator(0.35 * r) * RL, atol=1e-12)  # (2.110) = T_dr R_L
+    angle, axis = cga.rotor_angle_axis(RL)  # (2.135)-(2.138)
+    assert angle == pytest.approx(0.9) and np.allclose(axis, r)
+
+
+def test_rotor_angle_axis_eq_2_135_2_136():
+    for ang in (1e-9, 0.3, 2.0, np.pi - 1e-9):
+        axis = RNG.normal(size=3)
+        got_angle, got_axis = cga.rotor_angle_axis(cga.rotor(axis, ang))
+        assert got_angle == pytest.approx(ang, abs=1e-12)
+        assert np.allclose(got_axis, axis / np.linalg.norm(axis), atol=1e-6)
+
+
+def test_reflection_and_inversion_eq_2_84_to_2_91():
+    x = RNG.normal(size=3)
+    n, delta = np.array([0.0, 0.6, 0.8]), 0.7
+    y = cga.down(cga.reflect_in_plane(cga.plane(n, delta), cga.up(x)))
+    assert np.allclose(y, x - 2 * (n @ x - delta) * n)  # (2.90)
+    p, rho = RNG.normal(size=3), 1.3
+    y = cga.down(cga.invert_in_sphere(cga.sphere(p, rho), cga.up(x)))
+    assert np.allclose(y, rho**2 * (x - p) / np.sum((x - p) ** 2) + p)  # (2.88)
+    # translation as two reflections in parallel planes (2.92, figure 2.7)
+    P1, P2 = cga.plane(n, delta), cga.plane(n, 0.0)
+    assert (P1 * P2).isclose(cga.translator(2 * delta * n))
+    with pytest.raises(InvalidInputError, match="sphere"):
+        cga.reflect_in_plane(cga.sphere(p, rho), cga.up(x))
+
+
+def test_apply_batch_fast_path_matches_sandwich():
+    M = cga.motor(RNG.normal(size=3), 0.8, RNG.normal(size=3))
+    pts = RNG.normal(size=(200, 3))
+    X = cga.up(pts)
+    fast = cga.apply(M, X)
+    for i in (0, 17, 199):
+        assert fast.batch_item(i).isclose(M * X.batch_item(i) * ~M, atol=1e-12)
+    assert np.allclose(cga.apply_to_points(M, pts), cga.down(fast), atol=1e-12)
+    lines = cga.line_from_points(pts[:100], pts[100:])  # grade-3 batch
+    moved = cga.apply(M, lines)
+    assert moved.batch_item(5).isclose(M * lines.batch_item(5) * ~M, atol=1e-12)
+
+
+def test_symbolic_motor_decomposition():
+    th, t1, t2, t3 = sp.symbols("theta t1 t2 t3", real=True)
+    M = cga.motor([0, 0, 1], th, [t1, t2, t3])
+    R, t = cga.decompose_motor(M)
+    assert sp.simplify(t - sp.Matrix([t1, t2, t3])) == sp.zeros(3, 1)
+    assert (R - cga.rotor([0, 0, 1], th)).simplify().coeffs == {}
