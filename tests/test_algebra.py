@@ -268,3 +268,27 @@ def test_random_products_agree_with_kingdon():
 
 def test_math_is_used_consistently():
     assert math.isclose(float(exp(G41.blade("e12", math.pi / 2)).scalar()), 0.0, abs_tol=1e-15)
+
+
+def test_outer_with_scalar_eq_2_20():
+    A = G41.blade("e13", 2.0) + G41.blade("e2", 1.0)
+    assert (A ^ 3.0) == A * 3.0 and (3.0 ^ A) == A * 3.0
+
+
+def test_inner_product_expansions_eq_2_21_to_2_27():
+    """(2.22)/(2.23)/(2.25) expansion of a vector with a blade, (2.26)-(2.27) nesting."""
+    rng = np.random.default_rng(8)
+    x, b1, b2, b3, a1, a2 = (G41.vector(rng.normal(size=5)) for _ in range(6))
+    B = b1 ^ b2 ^ b3
+    expansion = (b2 ^ b3) * (x | b1).scalar() - (b1 ^ b3) * (x | b2).scalar() + (b1 ^ b2) * (x | b3).scalar()
+    assert (x | B).isclose(expansion, atol=1e-10)  # (2.23), (2.25)
+    assert (B | x).isclose(expansion * ((-1) ** (3 - 1)), atol=1e-10)  # (2.22): B . x = (-1)^(r-1) x . B
+    assert ((a1 ^ a2) | B).isclose(a1 | (a2 | B), atol=1e-10)  # (2.26)
+    B4 = B ^ G41.vector(rng.normal(size=5))
+    assert ((a1 ^ a2 ^ x) | B4).isclose(a1 | (a2 | (x | B4)), atol=1e-9)  # (2.27)
+
+
+def test_reverse_of_blade_eq_2_32():
+    rng = np.random.default_rng(9)
+    a1, a2, a3 = (G41.vector(rng.normal(size=5)) for _ in range(3))
+    assert (~(a1 ^ a2 ^ a3)).isclose(a3 ^ a2 ^ a1)

@@ -322,3 +322,65 @@ def test_symbolic_motor_decomposition():
     R, t = cga.decompose_motor(M)
     assert sp.simplify(t - sp.Matrix([t1, t2, t3])) == sp.zeros(3, 1)
     assert (R - cga.rotor([0, 0, 1], th)).simplify().coeffs == {}
+
+
+def test_circle_as_sphere_intersection_eq_2_78_2_79():
+    s1, s2 = cga.sphere([0.0, 0, 0], 2.0), cga.sphere([1.0, 0, 0], 2.0)
+    z = s1 ^ s2
+    th = RNG.uniform(0, 2 * np.pi, size=5)
+    rad = np.sqrt(4 - 0.25)
+    pts = np.stack([np.full(5, 0.5), rad * np.cos(th), rad * np.sin(th)], axis=1)
+    assert np.allclose((cga.up(pts) | z).to_array(), 0, atol=1e-12)  # (2.79) on the circle
+    assert not (cga.up([0.5, 0.0, 0.0]) | z).iszero()  # the centre is not on it
+    c, r, n = cga.circle_center_radius(z)
+    assert np.allclose(c, [0.5, 0, 0]) and r == pytest.approx(rad) and abs(n[0]) == pytest.approx(1.0)
+
+
+def test_line_pluecker_form_eq_2_81_2_107_2_108():
+    a, b = RNG.normal(size=(2, 3))
+    L = cga.line_from_points(a, b)
+    M = cga.vector(a) ^ cga.vector(b)
+    assert L.isclose(cga.einf * M + cga.vector(b - a) * cga.E)  # (2.81) e M + r E
+    r = (b - a) / np.linalg.norm(b - a)
+    t = a - r * (a @ r)  # from the origin to the line
+    Ln = cga.normalize_line(L)
+    assert Ln.isclose(cga.einf * (cga.vector(t) ^ cga.vector(r)) + cga.vector(r) * cga.E)  # (2.107)
+    l = cga.vector(r) * cga.IE
+    assert cga.standard_form(Ln).isclose(cga.einf * (cga.vector(t) | l) + l)  # (2.108)
+
+
+def test_rotor_reverse_eq_2_97():
+    R = cga.rotor([1.0, 2.0, 2.0], 0.8)
+    s = np.sin(0.4) * np.array([1.0, 2.0, 2.0]) / 3
+    blades = cga.G41.blade("e23", s[0]) + cga.G41.blade("e31", s[1]) + cga.G41.blade("e12", s[2])
+    assert (~R).isclose(np.cos(0.4) + blades)
+
+
+def test_affine_representation_eq_2_112_2_113():
+    x = RNG.normal(size=3)
+    X = cga.up(x) * 2.5
+    eX = (cga.einf ^ X) * (1.0 / -float(cga.einf | X))
+    assert eX.isclose(cga.einf * cga.vector(x) + (cga.einf ^ cga.eo))  # (2.112)
+    assert (eX * cga.E).isclose(1 + cga.einf * cga.vector(x))  # (2.113)
+
+
+def test_sphere_centre_point_eq_2_117():
+    c, r = RNG.normal(size=3), 0.9
+    s = cga.sphere(c, r)
+    assert (s + cga.einf * (0.5 * float(s * s))).isclose(cga.up(c))
+
+
+def test_circle_axis_and_sphere_eq_2_120_2_124():
+    a, b, c = RNG.normal(size=(3, 3))
+    center, radius, normal = circumcircle(a, b, c)
+    Zd = cga.circle_from_points(a, b, c)
+    Lz = cga.standard_form(Zd) ^ cga.einf  # (2.120): the axis through the centre
+    assert np.allclose(np.abs(cga.line_direction(Lz) @ normal), 1.0)
+    assert cga.point_line_distance(center, Lz) == pytest.approx(0.0, abs=1e-6)  # sqrt(rho^2): sqrt(eps) resolution
+    # (2.124) corrected: the dual circle over its dual plane; its vector part is the sphere s_z
+    s = (Zd * cga.circle_plane(Zd).inv()).grade(1)
+    cc, rr = cga.sphere_center_radius(s)
+    assert np.allclose(cc, center) and rr == pytest.approx(radius)
+    # as printed, z / P_z* with the standard z has no vector part that is that sphere
+    printed = cga.standard_form(Zd) * cga.circle_plane(Zd).inv()
+    assert printed.grade(1).iszero(atol=1e-9)
