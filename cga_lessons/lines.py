@@ -59,8 +59,8 @@ def line_through(p, q) -> np.ndarray:
     ndarray, shape (3,)
         ``(a, b, c)`` with ``(a, b)`` normal to ``q - p`` (not normalised).
 
-    >>> line_through([0.0, 1.0], [2.0, 1.0])  # y = 1
-    array([-0.,  2., -2.])
+    >>> line_through([0.0, 1.0], [2.0, 1.0]).tolist() == [0.0, 2.0, -2.0]  # y = 1 (signs of zero aside)
+    True
     """
     p = np.asarray(p, float)
     q = np.asarray(q, float)
