@@ -133,8 +133,9 @@ def line_circle_intersections_conformal(start, goal, center, radius):
 class Detour:
     """A path from start to goal around a circle.
 
-    ``path``: polyline (M, 2).  ``crossings``: entry/exit of the straight path
-    (2, 2), or None when it does not cross.  ``tangent_points``: where the path
+    ``path``: polyline (M, 2).  ``crossings``: where the straight line (3.2)
+    enters and leaves the circle (2, 2), or None when it misses it (the crossings
+    may lie behind the robot or beyond the goal; then the path stays straight).  ``tangent_points``: where the path
     joins and leaves the circle (2, 2), or None for a straight path.
     ``direction``: +1 counter-clockwise, -1 clockwise around the centre, 0 straight.
     ``length``: exact length of the path (lines plus arc).
@@ -190,9 +191,9 @@ def detour(start, goal, center, radius, clearance: float = 0.0, direction: int |
     Raises :class:`DegenerateGeometryError` when start or goal lies inside the circle.
     """
     s, g, c, r = _check(start, goal, center, radius, "detour")
-    R = r + float(clearance)
     if not (np.isfinite(clearance) and clearance >= 0):
         raise InvalidInputError(f"detour: clearance must be finite and >= 0, got {clearance!r}")
+    R = r + float(clearance)
     for name, p in (("start", s), ("goal", g)):
         if np.linalg.norm(p - c) <= R:
             raise DegenerateGeometryError(f"detour: the {name} lies inside the obstacle's circle (radius {R:.6g})")

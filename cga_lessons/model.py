@@ -174,6 +174,7 @@ def up(x) -> Multivector:
         return v + c["einf"] * (x2 / 2) + c["eo"]
     x2 = np.sum(arr * arr, axis=-1)
     if arr.ndim == 1:
+        x2 = float(x2)
         coeffs = {1: float(arr[0]), 2: float(arr[1]), 4: float(arr[2]), 8: 0.5 * (x2 - 1.0), 16: 0.5 * (x2 + 1.0)}
         return Multivector(G41, {k: v for k, v in coeffs.items() if v != 0})
     return Multivector(
