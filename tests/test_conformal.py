@@ -384,3 +384,18 @@ def test_circle_axis_and_sphere_eq_2_120_2_124():
     # as printed, z / P_z* with the standard z has no vector part that is that sphere
     printed = cga.standard_form(Zd) * cga.circle_plane(Zd).inv()
     assert printed.grade(1).iszero(atol=1e-9)
+
+
+def test_circle_centre_sphere_eq_2_121():
+    """(2.121): axis . plane = e ^ s_e0, the sphere centred on the circle's centre through the origin."""
+    a, b, c = RNG.normal(size=(3, 3))
+    center, _, _ = circumcircle(a, b, c)
+    Zd = cga.circle_from_points(a, b, c)
+    Lz = cga.standard_form(Zd) ^ cga.einf  # (2.120)
+    printed = Lz | cga.circle_plane(Zd)  # with the dual plane P_z* of (2.119), as printed
+    assert printed.iszero(atol=1e-12)
+    q = Lz | cga.standard_form(cga.circle_plane(Zd))  # with the plane in standard form
+    es = cga.einf ^ cga.sphere(center, np.linalg.norm(center))
+    k, m = q.to_array(), es.to_array()
+    i = int(np.argmax(np.abs(m)))
+    assert not q.iszero() and np.allclose(k, m * (k[i] / m[i]), atol=1e-10)

@@ -78,10 +78,10 @@ ENTRIES = [
     _e("2.118", "inside / on / outside a sphere", "numeric", f"{EN}.point_sphere_side", f"{TC}::test_sphere_batch_and_side_eq_2_118"),
     _e("2.119", "plane of a circle z* ^ e", "numeric", f"{EN}.circle_plane", f"{TC}::test_circle_center_radius_eq_2_80_2_119_to_2_124"),
     _e("2.120", "axis of a circle z ^ e", "numeric", f"{EN}.circle_center_radius", f"{TC}::test_circle_axis_and_sphere_eq_2_120_2_124"),
-    Entry(label="2.121", title="axis . plane = e ^ s_e0", status="todo",
-          note="As printed, L_z* . P_z* (thesis inner product) vanishes for the circle forms of 2.119-2.120, and the "
-               "geometric product's parts are not e ^ s for a sphere centred on the circle; the intended operands are "
-               "not yet identified. The centre is obtained by (2.123) instead."),
+    _e("2.121", "axis . plane = e ^ s_e0", "erratum", f"{EN}.circle_plane", f"{TC}::test_circle_centre_sphere_eq_2_121",
+       printed="L_z* . P_z* = e ^ s_e0", correct="L_z* . P_z = e ^ s_e0 (P_z = P_z* Ic, the plane in standard form)",
+       note="With the dual plane of (2.119) the contraction is zero; with the standard-form plane it is e ^ s for the "
+            "sphere centred on the circle's centre through the origin. Found while building the stereo chapter."),
     _e("2.122", "circle radius", "erratum", f"{EN}.circle_center_radius", f"{TC}::test_circle_center_radius_eq_2_80_2_119_to_2_124",
        printed="rho_z = z^2 / (e ^ z)^2", correct="rho_z^2 = -z^2 / (e ^ z)^2",
        note="The printed quotient is minus the squared radius (z standard or dual form alike)."),
