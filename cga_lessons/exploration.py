@@ -192,12 +192,11 @@ class SphereObstacle:
 def fit_sphere(points):
     """Least-squares sphere through points in the conformal model.
 
-    A point X lies on the sphere s when X . s = 0 (thesis 2.118).  With
-    s = sum_j s_j b_j over the basis b = (e1, e2, e3, e, e0), X . s = D s where
-    D_ij = X_i . b_j.  Minimising |D s|^2 under s . s = s^T G s = 1 (G_jk = b_j . b_k,
-    the conformal metric) is the generalised eigenproblem D^T D s = lambda G s; the
-    sphere is the eigenvector of the smallest non-negative lambda (0 for exact data).
-    Points are centred and scaled first (a conformal similarity), then mapped back.
+    A point X lies on the sphere s when X . s = 0 (thesis 2.118); the sphere
+    minimising sum (X_i . s)^2 under s^2 = 1 is an eigenvector problem in the
+    conformal metric.  The solve is :func:`cga_lessons.stereo_fit.fit_sphere`
+    (the same fit serves the stereo chapter); this wrapper adds the checks the
+    exploration needs and returns plain centre and radius.
 
     Parameters
     ----------
@@ -208,26 +207,16 @@ def fit_sphere(points):
     center : array, shape (3,)
     radius : float
     """
+    from .stereo_fit import fit_sphere as _conformal_sphere_fit
+
     P = _points(points, "fit_sphere", "points")
     if len(P) < 4:
         raise DegenerateGeometryError(f"fit_sphere: need at least 4 points, got {len(P)}")
-    mean = P.mean(axis=0)
-    sv = np.linalg.svd(P - mean, compute_uv=False)
+    sv = np.linalg.svd(P - P.mean(axis=0), compute_uv=False)
     if sv[0] == 0 or sv[-1] <= 1e-9 * sv[0]:
         raise DegenerateGeometryError("fit_sphere: the points are coplanar (or coincide): no unique sphere")
-    scale = float(np.sqrt(np.mean(np.sum((P - mean) ** 2, axis=1))))
-    X = cga.up((P - mean) / scale)
-    basis = [cga.e1, cga.e2, cga.e3, cga.einf, cga.eo]
-    D = np.column_stack([np.asarray((X | b).scalar(), dtype=float) for b in basis])
-    G = np.array([[float((bi | bj).scalar()) for bj in basis] for bi in basis])
-    lam, vecs = np.linalg.eig(np.linalg.solve(G, D.T @ D))
-    lam, vecs = lam.real, vecs.real
-    norms = np.einsum("ij,jk,ki->i", vecs.T, G, vecs)
-    ok = np.flatnonzero(norms > 0)
-    s = vecs[:, ok[np.argmin(lam[ok])]]
-    S = sum((float(c) * b for c, b in zip(s, basis)), cga.G41.scalar(0.0)).grade(1)
-    center, radius = cga.sphere_center_radius(S)
-    return center * scale + mean, float(radius) * scale
+    fit = _conformal_sphere_fit(P)
+    return fit["center"], float(fit["radius"])
 
 
 def enclosing_sphere(points):
