@@ -341,6 +341,13 @@ class Multivector:
             c = {k: v for k, v in c.items() if not _is_zero(v)}
         self._c = c
 
+    def _sympy_(self):
+        # Tell SymPy a multivector is not one of its expressions, so that
+        # ``sympy_expr * X`` falls back to Multivector.__rmul__.
+        import sympy
+
+        raise sympy.SympifyError(self)
+
     # -------------------------------------------------------------- access
     def __getitem__(self, name):
         if isinstance(name, str):
@@ -628,6 +635,8 @@ class Multivector:
             raise DegenerateGeometryError("inv: the zero multivector has no inverse")
         rev = ~self
         mm = self * rev
+        if any(_is_sympy(v) for v in mm._c.values()):
+            mm = mm.expand()  # cancel before testing for a scalar, or a blade falls into the 32x32 solve
         if set(mm._c) <= {0}:
             d = mm._c.get(0, 0)
             if _is_sympy(d):

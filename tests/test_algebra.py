@@ -292,3 +292,10 @@ def test_reverse_of_blade_eq_2_32():
     rng = np.random.default_rng(9)
     a1, a2, a3 = (G41.vector(rng.normal(size=5)) for _ in range(3))
     assert (~(a1 ^ a2 ^ a3)).isclose(a3 ^ a2 ^ a1)
+
+
+def test_sympy_expression_times_multivector():
+    """A SymPy value on the left of a multivector scales it (SymPy must not try to float() it)."""
+    x = sp.Symbol("x")
+    e1 = G41.blade("e1", sp.Integer(1))
+    assert (x * e1)["e1"] == x and (x + e1).scalar() == x
