@@ -589,8 +589,11 @@ class Multivector:
         return self * self.algebra.pseudoscalar()
 
     def scalar(self):
-        """The scalar part <M>_0 as a coefficient."""
-        return self._c.get(0, 0.0)
+        """The scalar part <M>_0 as a coefficient (an array of zeros for a batch without one)."""
+        if 0 in self._c:
+            return self._c[0]
+        shape = self.shape
+        return np.zeros(shape) if shape else 0.0
 
     def __float__(self):
         scale = max((float(np.max(np.abs(v))) for v in self._c.values() if not _is_sympy(v)), default=0.0)

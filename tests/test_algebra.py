@@ -299,3 +299,8 @@ def test_sympy_expression_times_multivector():
     x = sp.Symbol("x")
     e1 = G41.blade("e1", sp.Integer(1))
     assert (x * e1)["e1"] == x and (x + e1).scalar() == x
+
+
+def test_batch_scalar_part_keeps_its_shape():
+    X = G41.vector(np.ones((4, 5)))
+    assert np.array_equal((X | G41.blade("e12")).scalar(), np.zeros(4))

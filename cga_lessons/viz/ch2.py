@@ -15,6 +15,8 @@ Besides drawing, two small helpers prepare what a figure or a table shows:
 
 from __future__ import annotations
 
+import io
+
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.patches import FancyArrowPatch, Polygon
@@ -24,6 +26,7 @@ from ..algebra import Algebra, GeometryError
 
 __all__ = [
     "DPI",
+    "show",
     "product_table",
     "fig_bivectors",
     "fig_stereographic_1d",
@@ -49,6 +52,32 @@ _COLORS = {
     "line": "tab:orange",
     "circle": "tab:purple",
 }
+
+
+def show(fig, colors=256):
+    """Display a figure in a notebook as a 256-colour PNG, then close it.
+
+    Line drawings lose nothing visible in the palette, and the stored
+    notebook gets two to three times smaller than with the default RGBA PNG.
+    Outside IPython this is ``plt.show()``.
+    """
+    try:
+        from IPython import get_ipython
+        from IPython.display import Image, display
+    except ImportError:  # pragma: no cover - IPython ships with the notebook extras
+        get_ipython = None
+    if get_ipython is None or get_ipython() is None:
+        plt.show()
+        return
+    from PIL import Image as PILImage
+
+    raw = io.BytesIO()
+    fig.savefig(raw, format="png", bbox_inches="tight")
+    plt.close(fig)
+    raw.seek(0)
+    out = io.BytesIO()
+    PILImage.open(raw).convert("RGB").quantize(colors).save(out, format="PNG", optimize=True)
+    display(Image(data=out.getvalue()))
 
 
 # ------------------------------------------------------------------ tables
