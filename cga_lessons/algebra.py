@@ -640,6 +640,12 @@ class Multivector:
         mm = self * rev
         if any(_is_sympy(v) for v in mm._c.values()):
             mm = mm.expand()  # cancel before testing for a scalar, or a blade falls into the 32x32 solve
+        elif 0 in mm._c and len(mm._c) > 1:
+            # a versor's M ~M is a scalar up to round-off in the other blades
+            s0 = np.abs(np.asarray(mm._c[0], dtype=float))
+            rest = max(float(np.max(np.abs(v) / np.maximum(s0, 1e-300))) for b, v in mm._c.items() if b != 0)
+            if rest <= 1e-12:
+                mm = Multivector(self.algebra, {0: mm._c[0]})
         if set(mm._c) <= {0}:
             d = mm._c.get(0, 0)
             if _is_sympy(d):

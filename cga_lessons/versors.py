@@ -61,18 +61,25 @@ def versor_matrix(V: Multivector, grade: int) -> np.ndarray:
     10 for lines and circles).
     """
     blades = [b for b in G41.blade_order if G41.grades[b] == grade]
+    Vinv = _versor_inverse(V)
     cols = []
     for b in blades:
-        img = _apply_sandwich(V, Multivector(G41, {b: 1.0}))
+        img = _apply_sandwich(V, Multivector(G41, {b: 1.0}), Vinv)
         cols.append([float(img._c.get(r, 0.0)) for r in blades])
     return np.array(cols).T
 
 
-def _apply_sandwich(V: Multivector, X: Multivector) -> Multivector:
+def _versor_inverse(V: Multivector) -> Multivector:
+    """V^-1 = ~V / (V ~V) for a versor (a scalar norm); the general inverse otherwise."""
+    return V.inv()
+
+
+def _apply_sandwich(V: Multivector, X: Multivector, Vinv: Multivector | None = None) -> Multivector:
     odd = _parity(V)
     Xi = X.involute() if odd else X
+    Vinv = _versor_inverse(V) if Vinv is None else Vinv
     # A versor preserves grades (2.82); projecting drops round-off in others.
-    return (V * Xi * V.inv()).grade(*X.grades_present())
+    return (V * Xi * Vinv).grade(*X.grades_present())
 
 
 def apply(V: Multivector, X: Multivector) -> Multivector:
