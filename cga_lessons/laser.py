@@ -34,6 +34,7 @@ __all__ = [
     "simulate_scan",
     "simulate_scans",
     "scan_points",
+    "scans_to_world",
     "compose",
     "invert",
     "relative",
@@ -282,6 +283,35 @@ def scan_points(ranges, angles):
     ok = np.isfinite(r) & (r > 0)
     idx = np.flatnonzero(ok)
     return np.stack([r[ok] * np.cos(a[ok]), r[ok] * np.sin(a[ok])], axis=1), idx
+
+
+def scans_to_world(scans, poses, max_range: float = np.inf, mount=(0.0, 0.0, 0.0), step: int = 1) -> np.ndarray:
+    """All the points of a sequence of scans placed in the world with the given robot poses.
+
+    Parameters
+    ----------
+    scans : sequence of (ranges, angles)
+    poses : array_like, shape (T, 3)
+    max_range : float
+        Readings at or beyond this (m) are left out.
+    mount : array_like, shape (3,)
+        The laser's pose on the robot.
+    step : int
+        Use every ``step``-th scan.
+
+    Returns
+    -------
+    ndarray, shape (k, 2)
+    """
+    poses = np.asarray(poses, float).reshape(-1, 3)
+    out = []
+    for (r, a), pose in list(zip(scans, poses))[::step]:
+        r = np.asarray(r, float)
+        pts, _ = scan_points(np.where(r < max_range, r, np.inf), a)
+        lp = compose(pose, mount)
+        c, s = np.cos(lp[2]), np.sin(lp[2])
+        out.append(pts @ np.array([[c, s], [-s, c]]) + lp[:2])
+    return np.concatenate(out) if out else np.zeros((0, 2))
 
 
 # --------------------------------------------------------------------------- odometry

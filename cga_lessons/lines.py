@@ -9,7 +9,8 @@ The pipeline of :func:`extract_segments`:
    last point is a line ``a x + b y + c = 0``; if the farthest point is at
    least ``xi`` from it the run is split there, otherwise it is a line;
 3. neighbouring pieces whose inclinations differ by less than ``phi_xi`` are
-   merged (when their union still passes the line test);
+   merged (when the points of both still fit one line: RMS distance below
+   ``xi / 2``; a split caused by noise at the chord's ends is undone);
 4. every piece is refitted by orthogonal least squares (total least squares:
    it minimises distances *perpendicular* to the line, unlike a fit of y on x)
    and becomes a :class:`Segment`, the thesis's line structure (3.3).
@@ -446,8 +447,8 @@ def _runs(points, index, ranges, dphi, max_gap, jump_ratio):
     return list(zip(starts.tolist(), ends.tolist()))
 
 
-def _is_edge(c, d, end, beam, step, ranges, angles, max_range, tol, look=4):
-    """Is the end of a segment a real edge of the object?
+def _edge_end(c, d, end, beam, step, ranges, angles, max_range, tol, look=4):
+    """Is the end of a segment a real edge of the object, and where is that edge?
 
     Walks outward from the end over up to ``look`` beams (``beam``, ``beam +
     step``, ...).  Beams landing within ``tol`` of the segment's line (a door
@@ -456,34 +457,47 @@ def _is_edge(c, d, end, beam, step, ranges, angles, max_range, tol, look=4):
     ``max_range`` along it, or a return from well behind the line, means the
     object ends there (an edge); a return in front of the line means it is
     hidden by something nearer (not an edge); leaving the field of view or the
-    sensor's range gives no evidence (not an edge).  The edge must also be
-    located: the deciding beam must meet the line within ``tol`` of ``end``.
+    sensor's range gives no evidence (not an edge).
+
+    The object ends somewhere between the last point and the place where the
+    next beam meets the line; that gap must be below ``tol``, and the edge is
+    put in its middle (the last point alone would always fall short).
+
+    Returns
+    -------
+    (bool, ndarray (2,))
+        Whether it is an edge, and the end point (moved to the gap's middle if so).
     """
     n = np.array([-d[1], d[0]])
     nc = n @ c
+    first = None
     for _ in range(look):
         if beam < 0 or beam >= len(ranges):
-            return False  # end of the field of view
+            return False, end  # end of the field of view
         u = np.array([np.cos(angles[beam]), np.sin(angles[beam])])
         den = n @ u
         t_line = nc / den if abs(den) > 1e-12 else np.inf
         if not (t_line > 0 and t_line + tol < max_range):
-            return False  # the line would leave the sensor's range: no evidence
+            return False, end  # the line would leave the sensor's range: no evidence
+        if first is None:
+            first = t_line * u
         r = ranges[beam]
         if not np.isfinite(r) or r > t_line + tol:
-            # the object ends between the end point and where this beam meets the line
-            return bool(np.hypot(*(t_line * u - end)) < tol)
+            gap = np.hypot(*(first - end))
+            if gap < tol:
+                return True, 0.5 * (end + first)
+            return False, end
         if r < t_line - tol:
-            return False
+            return False, end
         beam += step
-    return False
+    return False, end
 
 
 def extract_segments(
     ranges,
     angles,
     *,
-    xi: float = 0.05,
+    xi: float = 0.03,
     phi_xi: float = np.radians(5.0),
     min_points: int = 6,
     min_length: float = 0.15,
@@ -550,7 +564,7 @@ def extract_segments(
     groups = []
     for i0, i1 in _runs(pts, index, r, dphi, max_gap, jump_ratio):
         pieces = [(i0 + p, i0 + q) for p, q in split_points(pts[i0 : i1 + 1], xi)]
-        groups.append(_merge(pts, pieces, xi, phi_xi))
+        groups.append(_merge(pts, pieces, xi, phi_xi, min_points))
 
     out = []
     for run in groups:
@@ -563,34 +577,37 @@ def extract_segments(
             end = c + d * ((seg_pts[-1] - c) @ d)
             if np.hypot(*(end - start)) < min_length:
                 continue
-            s_edge = _is_edge(c, d, start, index[i] - 1, -1, r, a, max_range, edge_tolerance)
-            e_edge = _is_edge(c, d, end, index[j] + 1, 1, r, a, max_range, edge_tolerance)
+            s_edge, start = _edge_end(c, d, start, index[i] - 1, -1, r, a, max_range, edge_tolerance)
+            e_edge, end = _edge_end(c, d, end, index[j] + 1, 1, r, a, max_range, edge_tolerance)
             out.append(Segment(start, end, len(seg_pts), _sums(seg_pts), s_edge, e_edge))
     return out
 
 
-def _merge(pts, pieces, xi, phi_xi):
-    """Merge neighbouring pieces of one run whose inclinations differ by less than phi_xi."""
+def _merge(pts, pieces, xi, phi_xi, min_points):
+    """Merge neighbouring pieces of one run whose inclinations differ by less than phi_xi (and fit one line).
+
+    A piece too small to be a segment has no reliable inclination: it joins a
+    neighbour whenever the points of both fit one line.
+    """
     if len(pieces) < 2:
         return pieces
 
     def inclination(i, j):
-        if j - i < 1:
-            return None
         _, d, _ = fit_line(pts[i : j + 1])
         return np.arctan2(d[1], d[0]) % np.pi
 
     merged = [pieces[0]]
     for p in pieces[1:]:
         q = merged[-1]
-        ia, ib = inclination(*q), inclination(*p)
-        if ia is not None and ib is not None:
-            diff = abs(ia - ib)
-            diff = min(diff, np.pi - diff)
-            if diff < phi_xi:
-                _, _, res = fit_line(pts[q[0] : p[1] + 1])
-                if np.max(np.abs(res)) < xi:
-                    merged[-1] = (q[0], p[1])
-                    continue
+        small = min(q[1] - q[0], p[1] - p[0]) + 1 < min_points
+        ok = small
+        if not small:
+            diff = abs(inclination(*q) - inclination(*p))
+            ok = min(diff, np.pi - diff) < phi_xi
+        if ok:
+            _, _, res = fit_line(pts[q[0] : p[1] + 1])
+            if np.sqrt(np.mean(res**2)) < xi / 2:
+                merged[-1] = (q[0], p[1])
+                continue
         merged.append(p)
     return merged

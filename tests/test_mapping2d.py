@@ -1,0 +1,326 @@
+"""Tests of the line map builder (cga_lessons.mapping2d, thesis 3.4-3.21)."""
+
+import numpy as np
+import pytest
+
+from cga_lessons.algebra import InvalidInputError
+from cga_lessons.laser import load_scene, simulate_odometry, simulate_scans
+from cga_lessons.lines import Segment, diff_theta
+from cga_lessons.mapping2d import (
+    MapParams,
+    PlainGeometry,
+    SegmentSet,
+    build_map,
+    correspondences,
+    map_errors,
+    pose_errors,
+    proximity_matrix,
+    theta_correction,
+    translation_correction,
+)
+
+
+def _set(*pairs):
+    return SegmentSet.from_segments([Segment(a, b, 50) for a, b in pairs])
+
+
+# ---------------------------------------------------------------- building blocks
+
+
+def test_transform_is_the_rigid_motion_3_4():
+    S = _set(([1.0, 0.0], [1.0, 2.0]))
+    T = PlainGeometry().transform(S, (1.0, 2.0, np.pi / 2))
+    assert np.allclose(T.start, [[1.0, 3.0]]) and np.allclose(T.end, [[-1.0, 3.0]])
+    # the point sums move with the points
+    pts = np.linspace([1.0, 0.0], [1.0, 2.0], 50) @ np.array([[0, 1], [-1, 0]]) + [1.0, 2.0]
+    x, y = pts[:, 0], pts[:, 1]
+    assert np.allclose(T.sums[0], [50, x.sum(), y.sum(), x @ x, x @ y, y @ y])
+
+
+def test_proximity_matrix_is_the_thesis_formula():
+    G = _set(([2.0, -1.0], [2.0, 1.0]), ([-1.0, 3.0], [1.0, 3.0]))
+    L = _set(([2.1, -1.0], [2.0, 1.0]))
+    M, dth, drho = proximity_matrix(G, L, (0.0, 0.0))
+    geo = PlainGeometry()
+    rg, tg = geo.hough(G, (0, 0))
+    rl, tl = geo.hough(L, (0, 0))
+    expect = np.sqrt(diff_theta(tg[:, None], tl[None, :], 0.3) ** 2 + (rg[:, None] - rl[None, :]) ** 2)
+    assert M.shape == (2, 1) and np.allclose(M, expect)
+    assert np.allclose(rg, [2.0, -3.0]) and np.allclose(tg, [0.0, 3 * np.pi / 2])  # oriented: normal to the right
+
+
+def test_correspondence_conflict_rule_keeps_the_closer_angle():
+    # two global lines compete for one local line: the one with the smaller angle difference keeps it
+    G = _set(([2.0, -1.0], [2.0, 1.0]), ([2.05, -1.0], [1.97, 1.0]))
+    L = _set(([2.02, -1.0], [2.02, 1.0]))
+    C, M, dth = correspondences(G, L, (0.0, 0.0), MapParams())
+    assert C.tolist() == [0, -1]
+    # the other way round when the second is better aligned
+    G2 = _set(([2.1, -1.0], [1.95, 1.0]), ([2.03, -1.0], [2.03, 1.0]))
+    assert correspondences(G2, L, (0.0, 0.0), MapParams())[0].tolist() == [-1, 0]
+
+
+def test_correspondence_guards_keep_thin_objects_and_faces_apart():
+    L = _set(([2.0, -1.0], [2.0, 1.0]))
+    other_face = _set(([2.0, 1.0], [2.0, -1.0]))  # the same wall run the other way: its back face
+    far_along = _set(([2.0, 3.0], [2.0, 5.0]))  # collinear but 2 m away: spheres do not meet (case 5)
+    offset = _set(([2.4, -1.0], [2.4, 1.0]))  # parallel, 40 cm behind: beyond xi_d
+    for G in (other_face, far_along, offset):
+        assert correspondences(G, L, (0.0, 0.0), MapParams())[0].tolist() == [-1]
+
+
+def test_theta_correction_3_8_is_the_mean():
+    assert np.isclose(theta_correction([0.01, 0.02, 0.06]), 0.03)
+    assert np.isclose(theta_correction([0.01, 0.04], [3.0, 1.0]), 0.0175)
+    with pytest.raises(InvalidInputError, match="theta_correction"):
+        theta_correction([])
+
+
+def test_translation_correction_3_9_to_3_12():
+    rng = np.random.default_rng(0)
+    t_true = np.array([0.07, -0.04])
+    theta = rng.uniform(0, 2 * np.pi, 6)
+    n = np.column_stack([np.cos(theta), np.sin(theta)])
+    rho_l = rng.uniform(1, 4, 6)
+    rho_g = rho_l + n @ t_true  # (3.11) exactly
+    assert np.allclose(translation_correction(rho_g, rho_l, theta), t_true)
+    # one line (3.9): only the normal component, the closest points' displacement
+    t1 = translation_correction(rho_g[:1], rho_l[:1], theta[:1])
+    assert np.allclose(t1, n[0] * (n[0] @ t_true))
+    # parallel lines: the direction along them comes from matching edges, or stays zero
+    th = np.array([0.0, np.pi])
+    rl = np.array([1.0, 1.0])
+    rg = rl + np.array([[1, 0], [-1, 0]]) @ t_true
+    assert np.allclose(translation_correction(rg, rl, th, weak_ratio=0.02), [t_true[0], 0.0])
+    along = (np.array([[0.0, -0.04], [0.01, -0.04]]), np.ones(2))
+    assert np.allclose(translation_correction(rg, rl, th, weak_ratio=0.02, along=along), t_true)
+
+
+def test_pose_and_map_errors_closed_form():
+    truth = np.zeros((4, 3))
+    est = truth + [[0.3, 0.4, 0.1]]
+    pos, head = pose_errors(est, truth)
+    assert np.isclose(pos, 0.5) and np.isclose(head, 0.1)
+    walls = np.array([[[0.0, 0.0], [4.0, 0.0]]])
+    d = map_errors([Segment([1.0, 0.03], [2.0, -0.05]), Segment([5.0, 0.0], [6.0, 0.0])], walls)
+    assert np.allclose(d, [0.03, 0.05, 1.0, 2.0])
+    with pytest.raises(InvalidInputError, match="pose_errors"):
+        pose_errors(est[:3], truth)
+
+
+# ---------------------------------------------------------------- the whole map
+
+
+def test_build_map_noise_free_recovers_truth_and_walls():
+    room = load_scene("room")
+    truth = room.trajectory[:90]
+    scans = simulate_scans(room, truth)  # no range noise
+    res = build_map(scans, truth)  # perfect odometry
+    assert res.poses.shape == (90, 3) and np.all(res.corrected[1:])
+    assert pose_errors(res.poses, truth)[0] < 1e-3
+    assert np.max(map_errors(res.segments, room.walls)) < 0.01
+    assert 3 <= len(res.segments) <= 6  # the four walls (a corner may cut one)
+
+
+def test_build_map_office_meets_the_targets():
+    office = load_scene("office")
+    rng = np.random.default_rng(7)
+    truth = office.trajectory
+    scans = simulate_scans(office, truth, rng)
+    odo = simulate_odometry(truth, rng)
+    res = build_map(scans, odo)
+    odo_pos, _ = pose_errors(odo, truth)
+    pos, head = pose_errors(res.poses, truth)
+    assert odo_pos / pos >= 5.0  # the issue's target: at least 5x below odometry
+    assert head < np.radians(1.0)
+    assert np.median(map_errors(res.segments, office.walls)) < 0.05
+    assert res.corrected[1:].mean() > 0.6  # the rest: rejected by the whole-scan check, or nothing matched
+
+
+def test_build_map_with_a_mounted_laser():
+    room = load_scene("room")
+    truth = room.trajectory[:60]
+    mount = (0.25, 0.05, 0.1)
+    rng = np.random.default_rng(1)
+    scans = simulate_scans(room, truth, rng, mount=mount)
+    odo = simulate_odometry(truth, rng)
+    res = build_map(scans, odo, mount=mount)
+    assert pose_errors(res.poses, truth)[0] < 0.25 * pose_errors(odo, truth)[0]
+    assert np.median(map_errors(res.segments, room.walls)) < 0.03
+
+
+def test_build_map_degenerate_scans_give_no_correction_never_nan():
+    room = load_scene("room")
+    truth = room.trajectory[:30]
+    rng = np.random.default_rng(2)
+    scans = simulate_scans(room, truth, rng)
+    odo = simulate_odometry(truth, rng)
+    a = scans[0][1]
+    scans[0] = (np.full(361, np.inf), a)  # nothing seen at the start: the map starts later
+    scans[10] = (np.full(361, np.inf), a)  # no returns
+    scans[11] = (np.full(361, np.nan), a)  # all beams NaN
+    r = np.full(361, np.inf)
+    r[150:210] = 2.0 / np.cos(a[150:210])  # one wall segment in view
+    scans[12] = (r, a)
+    res = build_map(scans, odo)
+    assert np.all(np.isfinite(res.poses))
+    assert not res.corrected[0] and not res.corrected[10] and not res.corrected[11]
+    assert np.allclose(res.poses[10], res.predicted[10]) and np.allclose(res.poses[11], res.predicted[11])
+    assert all(np.all(np.isfinite(s.start)) and np.all(np.isfinite(s.end)) for s in res.segments)
+    # nothing at all: an empty map, the odometry increments as poses
+    empty = build_map([(np.full(361, np.inf), a)] * 5, odo[:5])
+    assert empty.segments == [] and np.allclose(empty.poses, odo[:5]) and not empty.corrected.any()
+
+
+def test_build_map_rejects_bad_input():
+    room = load_scene("room")
+    scans = simulate_scans(room, room.trajectory[:3])
+    with pytest.raises(InvalidInputError, match="build_map: 3 scans but 2"):
+        build_map(scans, room.trajectory[:2])
+    with pytest.raises(InvalidInputError, match="method"):
+        build_map(scans, room.trajectory[:3], method="icp")
+    with pytest.raises(InvalidInputError, match="unknown parameter"):
+        build_map(scans, room.trajectory[:3], dleta=0.2)
+    with pytest.raises(InvalidInputError, match="odometry"):
+        build_map(scans, np.zeros((3, 2)))
+
+
+# ---------------------------------------------------------------- the conformal version (3.13-3.21)
+
+from cga_lessons import conformal as cga  # noqa: E402
+from cga_lessons.laser import compose  # noqa: E402
+from cga_lessons.mapping2d_conformal import (  # noqa: E402
+    ConformalGeometry,
+    c2e,
+    e2c,
+    laser_motor,
+    point_pair_structure,
+    robot_motor,
+    segment_point_pair,
+    sphere_case,
+)
+
+
+def test_e2c_3_13():
+    xy = np.array([[3.0, 4.0], [-1.5, 0.25]])
+    X = e2c(xy)
+    assert np.allclose(X["e1"], xy[:, 0]) and np.allclose(X["e2"], xy[:, 1])
+    assert np.allclose((X | cga.einf).scalar(), -1.0)  # normalised: X . e = -1
+    assert np.allclose((X | X).scalar(), 0.0)  # a null vector
+    assert np.allclose(0.5 * (X["e-"] + X["e+"]), 0.5 * (xy**2).sum(1))  # the (x^2 + y^2)/2 e part
+    assert np.allclose(c2e(X), xy)
+    with pytest.raises(InvalidInputError, match="e2c"):
+        e2c([1.0, 2.0, 3.0])
+
+
+def test_point_pair_structure_3_14_3_15():
+    rng = np.random.default_rng(4)
+    for _ in range(20):
+        a, b = rng.uniform(-6, 6, (2, 2))
+        seg = Segment(a, b)
+        d = point_pair_structure(segment_point_pair(seg))
+        assert np.allclose(d["start"], a) and np.allclose(d["end"], b)  # (2.131)
+        assert np.isclose(d["rho"], seg.rho)  # (3.14)
+        assert np.allclose(d["closest_point"], seg.closest_point)  # (3.15)
+        assert abs(diff_theta(d["theta"], seg.theta, np.pi)) < 1e-9
+        assert np.allclose(d["abc"], seg.abc)
+
+
+def test_eq_3_15_erratum_printed_sign_gives_the_antipode():
+    a, b = np.array([1.0, -1.0, 0.0]), np.array([1.0, 2.0, 0.0])
+    L = cga.normalize_line(cga.point_pair(a, b) ^ cga.einf)  # L* = PP* ^ e, normalised (2.126)
+    Ls = cga.standard_form(L)
+    printed = cga.euclidean(-((L | cga.E) | ((cga.ep | Ls) * cga.IE)))  # (3.15) as printed
+    correct = cga.euclidean((L | cga.E) | ((cga.ep | Ls) * cga.IE))
+    assert np.allclose(correct, [1.0, 0.0, 0.0]) and np.allclose(printed, [-1.0, 0.0, 0.0])
+    assert np.allclose(cga.line_closest_point(L), correct)
+
+
+def test_laser_motor_3_16_3_18():
+    pose, mount = np.array([2.0, -1.0, 0.7]), np.array([0.3, 0.1, 0.0])
+    M = laser_motor(pose, mount)
+    x = np.array([[1.0, 0.5], [-2.0, 3.0]])
+    moved = c2e(M * e2c(x) * ~M)  # (3.18) on points
+    lp = compose(pose, mount)
+    R = np.array([[np.cos(lp[2]), -np.sin(lp[2])], [np.sin(lp[2]), np.cos(lp[2])]])
+    assert np.allclose(moved, x @ R.T + lp[:2])
+    # on point pairs, as the map builder uses it: the same as the plain rigid motion (3.4)
+    S = SegmentSet.from_segments([Segment(x[0], x[1], 10)])
+    a, b = ConformalGeometry().to_global(S, pose, mount), PlainGeometry().to_global(S, pose, mount)
+    assert np.allclose(a.start, b.start) and np.allclose(a.end, b.end) and np.allclose(a.sums, b.sums)
+    assert np.allclose((robot_motor(pose) * ~robot_motor(pose)).scalar(), 1.0)
+
+
+def test_laser_motor_erratum_3_17():
+    pose, x = np.array([2.0, -1.0, 0.7]), np.array([[1.0, 0.5]])
+    turned = np.array([0.3, 0.1, 0.4])  # a laser turned on the robot
+    lp = compose(pose, turned)
+    R = np.array([[np.cos(lp[2]), -np.sin(lp[2])], [np.sin(lp[2]), np.cos(lp[2])]])
+    truth = x @ R.T + lp[:2]
+    M_printed, M_correct = laser_motor(pose, turned, printed=True), laser_motor(pose, turned)
+    assert np.allclose(c2e(M_correct * e2c(x) * ~M_correct), truth)
+    assert not np.allclose(c2e(M_printed * e2c(x) * ~M_printed), truth, atol=1e-3)
+    # with a laser facing forward the printed form is right
+    straight = np.array([0.3, 0.1, 0.0])
+    Mp, Mc = laser_motor(pose, straight, printed=True), laser_motor(pose, straight)
+    assert np.allclose(c2e(Mp * e2c(x) * ~Mp), c2e(Mc * e2c(x) * ~Mc))
+
+
+def test_sphere_cases_3_19():
+    g = ([0.0, 0.0], [2.0, 0.0])
+    assert sphere_case(*g, [1.5, 0.0], [3.0, 0.0]) == 1  # intersect, continuation of the segment
+    assert sphere_case(*g, [0.8, 0.01], [1.2, 0.01]) == 2  # inside, the same segment
+    assert sphere_case(*g, [1.0, -0.2], [1.0, 1.6]) == 3  # intersect, another line
+    assert sphere_case(*g, [0.9, 0.2], [1.2, 0.3]) == 4  # inside, another line
+    assert sphere_case(*g, [3.0, 0.0], [4.0, 0.0]) == 5  # apart
+    assert sphere_case(*g, [2.2, 0.0], [3.0, 0.0], margin=0.3) == 1  # the margin joins a small gap
+
+
+def test_conformal_geometry_equals_plain_geometry():
+    rng = np.random.default_rng(5)
+    segs = []
+    for _ in range(7):
+        a = rng.uniform(-5, 5, 2)
+        d = rng.uniform(-np.pi, np.pi)
+        segs.append(Segment(a, a + rng.uniform(0.3, 3) * np.array([np.cos(d), np.sin(d)]), 20))
+    G, L = SegmentSet.from_segments(segs[:4]), SegmentSet.from_segments(segs[4:] + segs[:1])
+    P, C = PlainGeometry(), ConformalGeometry()
+    c = np.array([0.4, -0.3])
+    for f in ("hough",):
+        for X in (G, L):
+            assert np.allclose(getattr(P, f)(X, c), getattr(C, f)(X, c))
+    assert np.array_equal(P.overlap(G, L, 0.3), C.overlap(G, L, 0.3))
+    assert np.allclose(P.centre_line_distance(G, L), C.centre_line_distance(G, L))
+    assert np.allclose(P.moment_difference(G, L, c), C.moment_difference(G, L, c))
+    assert np.isclose(P.distance([1.0, 2.0], [4.0, 6.0]), C.distance([1.0, 2.0], [4.0, 6.0]))
+
+
+def test_fuse_ends_3_20_3_21():
+    P, C = PlainGeometry(), ConformalGeometry()
+    cases = [
+        (([0.0, 0.0], [3.0, 0.0]), ([2.0, 0.0], [4.0, 0.0])),  # extends the end
+        (([0.0, 0.0], [3.0, 0.0]), ([4.0, 0.0], [2.0, 0.0])),  # opposite sense: ends swapped (3.20-3.21)
+        (([0.0, 0.0], [3.0, 0.0]), ([1.0, 0.0], [2.0, 0.0])),  # inside: nothing changes
+        (([1.0, 0.0], [2.0, 0.0]), ([-1.0, 0.0], [3.0, 0.0])),  # the local one is longer
+    ]
+    expect = [([0, 0], [4, 0]), ([4, 0], [0, 0]), ([0, 0], [3, 0]), ([-1, 0], [3, 0])]
+    for (g, l), (s, e) in zip(cases, expect):
+        a = P.fuse_ends(np.array(g[0]), np.array(g[1]), np.array(l[0]), np.array(l[1]))
+        b = C.fuse_ends(np.array(g[0]), np.array(g[1]), np.array(l[0]), np.array(l[1]))
+        assert np.allclose(a[0], s) and np.allclose(a[1], e)
+        assert np.allclose(a[0], b[0]) and np.allclose(a[1], b[1]) and a[2:] == b[2:]
+
+
+def test_plain_and_conformal_build_the_same_map():
+    office = load_scene("office")
+    rng = np.random.default_rng(3)
+    truth = office.trajectory[:30]
+    scans = simulate_scans(office, truth, rng)
+    odo = simulate_odometry(truth, rng)
+    a = build_map(scans, odo, method="plain")
+    b = build_map(scans, odo, method="conformal")
+    assert b.method == "conformal" and np.allclose(a.poses, b.poses, atol=1e-9)
+    assert len(a.segments) == len(b.segments) > 3
+    for s, t in zip(a.segments, b.segments):
+        assert np.allclose(s.start, t.start, atol=1e-8) and np.allclose(s.end, t.end, atol=1e-8)
+    assert np.array_equal(a.n_matches, b.n_matches) and np.array_equal(a.corrected, b.corrected)
