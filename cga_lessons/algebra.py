@@ -806,7 +806,7 @@ class Multivector:
 
 def commutator(A: Multivector, B: Multivector) -> Multivector:
     """Commutator product A x B = (AB - BA)/2 (2.36)."""
-    return (A * B - B * A) * 0.5 if not _any_sympy(A, B) else (A * B - B * A) / 2
+    return (A * B - B * A) / 2
 
 
 def _any_sympy(*mvs) -> bool:

@@ -42,28 +42,13 @@ __all__ = [
     "triangulate",
 ]
 
-#: Two-view geometry, defined in :mod:`cga_lessons.epipolar` (A.6-A.13) and
-#: reachable from here as ``camera.fundamental_8point`` etc.
-_EPIPOLAR = frozenset(
-    {
-        "skew",
-        "eight_point_matrix",
-        "hartley_normalization",
-        "fundamental_8point",
-        "fundamental_from_cameras",
-        "epipoles",
-        "epipolar_lines",
-        "epipolar_distance",
-        "cameras_from_fundamental",
-    }
-)
-
-
+# Two-view geometry is defined in :mod:`cga_lessons.epipolar` (A.6-A.13) and
+# reachable from here as ``camera.fundamental_8point`` etc.
 def __getattr__(name):
     """Lazy re-export of :mod:`cga_lessons.epipolar` (which imports this module)."""
-    if name in _EPIPOLAR:
-        from . import epipolar
+    from . import epipolar
 
+    if name in epipolar.__all__:
         return getattr(epipolar, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 

@@ -21,7 +21,7 @@ import numpy as np
 
 from .algebra import DegenerateGeometryError, InvalidInputError, Multivector, _is_sympy
 from .algebra import exp as _exp
-from .model import G41, IE, E, _any_sym, _check_points, einf, euclidean, exact_constants, up, vector
+from .model import G41, IE, E, _any_sym, _check_points, down, einf, euclidean, exact_constants, up, vector
 
 __all__ = [
     "apply",
@@ -61,7 +61,7 @@ def versor_matrix(V: Multivector, grade: int) -> np.ndarray:
     10 for lines and circles).
     """
     blades = [b for b in G41.blade_order if G41.grades[b] == grade]
-    Vinv = _versor_inverse(V)
+    Vinv = V.inv()
     cols = []
     for b in blades:
         img = _apply_sandwich(V, Multivector(G41, {b: 1.0}), Vinv)
@@ -69,15 +69,10 @@ def versor_matrix(V: Multivector, grade: int) -> np.ndarray:
     return np.array(cols).T
 
 
-def _versor_inverse(V: Multivector) -> Multivector:
-    """V^-1 = ~V / (V ~V) for a versor (a scalar norm); the general inverse otherwise."""
-    return V.inv()
-
-
 def _apply_sandwich(V: Multivector, X: Multivector, Vinv: Multivector | None = None) -> Multivector:
     odd = _parity(V)
     Xi = X.involute() if odd else X
-    Vinv = _versor_inverse(V) if Vinv is None else Vinv
+    Vinv = V.inv() if Vinv is None else Vinv
     # A versor preserves grades (2.82); projecting drops round-off in others.
     return (V * Xi * Vinv).grade(*X.grades_present())
 
@@ -126,29 +121,16 @@ def apply_to_points(V: Multivector, x) -> np.ndarray:
     """
     arr, sym = _check_points(x, "apply_to_points")
     if sym or _any_sym(V):
-        from .model import down
-
         return down(apply(V, up(arr)))
     A = versor_matrix(V, 1)  # 5x5 on e1 e2 e3 e+ e-
-    # Exact affine shortcut when V preserves e and e0's weight (rigid motions)
-    e_img = A @ np.array([0, 0, 0, 1.0, 1.0])
-    if np.allclose(e_img, [0, 0, 0, 1.0, 1.0], atol=1e-12):
-        X = up(arr) if arr.ndim == 1 else None
-        if X is not None:
-            from .model import down
-
-            return down(apply(V, X))
-        Xa = np.empty((arr.shape[0], 5))
-        Xa[:, :3] = arr
-        x2 = np.einsum("ij,ij->i", arr, arr)
-        Xa[:, 3] = 0.5 * (x2 - 1.0)
-        Xa[:, 4] = 0.5 * (x2 + 1.0)
-        Y = Xa @ A.T
-        w = Y[:, 4] - Y[:, 3]
-        return Y[:, :3] / w[:, None]
-    from .model import down
-
-    return down(apply(V, up(arr)))
+    # The Euclidean part of V up(x) is A[:3,:3] x + A[:3,3] (x^2-1)/2 + A[:3,4] (x^2+1)/2 with weight
+    # A[4]-A[3] applied to up(x).  For a rigid motion the x^2 terms cancel and the weight stays 1, so the map is
+    # the affine y = R x + t with R = A[:3,:3], t = (A[:3,4] - A[:3,3]) / 2.
+    w = A[4] - A[3]
+    rigid = np.allclose(A[:3, 3] + A[:3, 4], 0, atol=1e-12) and np.allclose(w, [0, 0, 0, -1.0, 1.0], atol=1e-12)
+    if not rigid:
+        return down(apply(V, up(arr)))
+    return arr @ A[:3, :3].T + 0.5 * (A[:3, 4] - A[:3, 3])
 
 
 # ------------------------------------------------------------- constructors
@@ -252,7 +234,7 @@ def reflect_in_plane(P: Multivector, X: Multivector) -> Multivector:
 
     g = _grade_of(P, "reflect_in_plane", (1, 4))
     Pv = P if g == 1 else standard_form(P)
-    if abs(float(np.max(np.abs(np.asarray((Pv | einf).scalar(), dtype=float))))) > 1e-12 if not _any_sym(Pv) else False:
+    if not _any_sym(Pv) and np.max(np.abs(np.asarray((Pv | einf).scalar(), dtype=float))) > 1e-12:
         raise InvalidInputError("reflect_in_plane: P . e != 0, P is a sphere (use invert_in_sphere)")
     return apply(Pv, X)
 
