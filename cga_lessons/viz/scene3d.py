@@ -1,0 +1,440 @@
+"""A small, backend-free description of a 3D scene, and its matplotlib drawing.
+
+The scene is a flat list of *primitives* (frozen dataclasses) in metres, in one
+world frame.  The same list feeds :func:`draw_matplotlib` (a static figure that
+nbval can store) and :mod:`cga_lessons.viz.meshcat_scene` (the live browser
+viewer and the offline HTML export), so both views show the same geometry at
+1:1 scale.
+
+Every primitive has a ``name``: a slash path such as ``"robot/base"`` or
+``"walls/3"`` (the meshcat scene-tree path; objects under a common prefix can
+be hidden together there).  Colours are ``(r, g, b)`` floats in ``[0, 1]``.
+Constructors copy and validate their arrays (shapes, finiteness, degenerate
+sizes) and raise :class:`~cga_lessons.algebra.InvalidInputError` or
+:class:`~cga_lessons.algebra.DegenerateGeometryError` with a message naming
+the primitive and the field.
+
+>>> b = Box("robot/base", center=(0, 0, 0.1), size=(0.4, 0.3, 0.2), color=(0.2, 0.4, 0.8))
+>>> b.center.tolist(), b.rotation.shape
+([0.0, 0.0, 0.1], (3, 3))
+>>> lo, hi = scene_bounds([b, Sphere("ball", (1, 0, 0.5), 0.1, (1, 0, 0))])
+>>> lo.tolist(), hi.tolist()
+([-0.2, -0.15, 0.0], [1.1, 0.15, 0.6])
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
+
+__all__ = [
+    "Box",
+    "Sphere",
+    "Quad",
+    "Cylinder",
+    "Polyline",
+    "PointCloud",
+    "Frame",
+    "PRIMITIVE_TYPES",
+    "check_scene",
+    "scene_bounds",
+    "draw_matplotlib",
+    "set_equal_3d",
+]
+
+_NAME_RE = re.compile(r"^[A-Za-z0-9_.\-]+(/[A-Za-z0-9_.\-]+)*$")
+_ORTHO_TOL = 1e-6
+
+
+# ---------------------------------------------------------------- validation helpers
+def _where(obj, fld):
+    return f"{type(obj).__name__}({getattr(obj, 'name', '?')!r}).{fld}"
+
+
+def _check_name(obj):
+    name = obj.name
+    if not isinstance(name, str) or not _NAME_RE.match(name):
+        raise InvalidInputError(
+            f"{type(obj).__name__}: name must be a slash path of letters, digits, '_', '.', '-' "
+            f"such as 'robot/base' (no empty parts, no leading/trailing '/'), got {name!r}"
+        )
+
+
+def _array(obj, fld, shape):
+    """Copy ``obj.fld`` to a read-only float array of ``shape`` (``None`` = any length), finite."""
+    value = getattr(obj, fld)
+    try:
+        arr = np.array(value, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise InvalidInputError(f"{_where(obj, fld)}: not numeric ({exc})") from None
+    if arr.ndim != len(shape) or any(s is not None and a != s for a, s in zip(arr.shape, shape)):
+        want = "(" + ", ".join("N" if s is None else str(s) for s in shape) + ("," if len(shape) == 1 else "") + ")"
+        raise InvalidInputError(f"{_where(obj, fld)}: expected shape {want}, got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise InvalidInputError(f"{_where(obj, fld)}: contains NaN or inf")
+    arr.setflags(write=False)
+    object.__setattr__(obj, fld, arr)
+    return arr
+
+
+def _scalar(obj, fld, *, positive=False, lo=None, hi=None):
+    value = getattr(obj, fld)
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise InvalidInputError(f"{_where(obj, fld)}: expected a number, got {value!r}") from None
+    if not np.isfinite(x):
+        raise InvalidInputError(f"{_where(obj, fld)}: must be finite, got {value!r}")
+    if positive and x <= 0:
+        raise DegenerateGeometryError(f"{_where(obj, fld)}: must be > 0, got {x}")
+    if (lo is not None and x < lo) or (hi is not None and x > hi):
+        raise InvalidInputError(f"{_where(obj, fld)}: must lie in [{lo}, {hi}], got {x}")
+    object.__setattr__(obj, fld, x)
+    return x
+
+
+def _color(obj, fld="color"):
+    arr = _array(obj, fld, (3,))
+    if np.any(arr < 0) or np.any(arr > 1):
+        raise InvalidInputError(f"{_where(obj, fld)}: colour components must be floats in [0, 1], got {arr.tolist()}")
+    object.__setattr__(obj, fld, tuple(float(c) for c in arr))
+
+
+def _rotation(obj, fld, R):
+    if np.abs(R.T @ R - np.eye(3)).max() > _ORTHO_TOL or np.linalg.det(R) < 0:
+        raise InvalidInputError(f"{_where(obj, fld)}: not a proper rotation (R^T R != I or det R < 0)")
+
+
+# ---------------------------------------------------------------- primitives
+@dataclass(frozen=True, eq=False)
+class Box:
+    """A box with edge lengths ``size`` (3,) along the columns of ``rotation`` (3, 3), centred at ``center``."""
+
+    name: str
+    center: np.ndarray
+    size: np.ndarray
+    rotation: np.ndarray = field(default_factory=lambda: np.eye(3))
+    color: tuple = (0.6, 0.6, 0.6)
+    opacity: float = 1.0
+
+    def __post_init__(self):
+        _check_name(self)
+        _array(self, "center", (3,))
+        size = _array(self, "size", (3,))
+        if np.any(size <= 0):
+            raise DegenerateGeometryError(f"{_where(self, 'size')}: edge lengths must be > 0, got {size.tolist()}")
+        _rotation(self, "rotation", _array(self, "rotation", (3, 3)))
+        _color(self)
+        _scalar(self, "opacity", lo=0.0, hi=1.0)
+
+    def corners(self) -> np.ndarray:
+        """The 8 corners (8, 3); index bits (x, y, z) = (i & 1, i & 2, i & 4) pick the + side."""
+        signs = np.array([[(i >> k & 1) * 2 - 1 for k in range(3)] for i in range(8)], float)
+        return self.center + (signs * (self.size / 2)) @ self.rotation.T
+
+    def extent(self) -> np.ndarray:
+        return self.corners()
+
+
+@dataclass(frozen=True, eq=False)
+class Sphere:
+    """A sphere of ``radius`` about ``center`` (3,)."""
+
+    name: str
+    center: np.ndarray
+    radius: float
+    color: tuple = (0.8, 0.2, 0.2)
+    opacity: float = 1.0
+
+    def __post_init__(self):
+        _check_name(self)
+        _array(self, "center", (3,))
+        _scalar(self, "radius", positive=True)
+        _color(self)
+        _scalar(self, "opacity", lo=0.0, hi=1.0)
+
+    def extent(self) -> np.ndarray:
+        return np.array([self.center - self.radius, self.center + self.radius])
+
+
+@dataclass(frozen=True, eq=False)
+class Quad:
+    """A flat quadrilateral with ``corners`` (4, 3) in order around its boundary (e.g. a wall patch)."""
+
+    name: str
+    corners: np.ndarray
+    color: tuple = (0.7, 0.7, 0.7)
+    opacity: float = 1.0
+
+    def __post_init__(self):
+        _check_name(self)
+        c = _array(self, "corners", (4, 3))
+        area2 = np.linalg.norm(np.cross(c[2] - c[0], c[3] - c[1]))  # twice the (vector) area
+        scale = max(np.ptp(c, axis=0).max(), 1e-300)
+        if area2 <= 1e-12 * scale * scale:
+            raise DegenerateGeometryError(f"{_where(self, 'corners')}: the four corners enclose no area")
+        _color(self)
+        _scalar(self, "opacity", lo=0.0, hi=1.0)
+
+    def normal(self) -> np.ndarray:
+        """Unit normal (3,) from the diagonals, right-handed with the corner order."""
+        c = self.corners
+        n = np.cross(c[2] - c[0], c[3] - c[1])
+        return n / np.linalg.norm(n)
+
+    def extent(self) -> np.ndarray:
+        return self.corners
+
+
+@dataclass(frozen=True, eq=False)
+class Cylinder:
+    """A solid cylinder of ``radius`` whose axis runs from ``start`` (3,) to ``end`` (3,)."""
+
+    name: str
+    start: np.ndarray
+    end: np.ndarray
+    radius: float
+    color: tuple = (0.5, 0.5, 0.5)
+    opacity: float = 1.0
+
+    def __post_init__(self):
+        _check_name(self)
+        a, b = _array(self, "start", (3,)), _array(self, "end", (3,))
+        if np.linalg.norm(b - a) <= 1e-12 * max(1.0, np.abs(a).max(), np.abs(b).max()):
+            raise DegenerateGeometryError(f"{_where(self, 'end')}: start and end coincide, the axis has no direction")
+        _scalar(self, "radius", positive=True)
+        _color(self)
+        _scalar(self, "opacity", lo=0.0, hi=1.0)
+
+    @property
+    def length(self) -> float:
+        return float(np.linalg.norm(self.end - self.start))
+
+    def axis_rotation(self) -> np.ndarray:
+        """A rotation (3, 3) whose third column is the unit axis start -> end."""
+        return _frame_from_axis((self.end - self.start) / self.length)
+
+    def extent(self) -> np.ndarray:
+        # the end discs reach r * sqrt(1 - a_k^2) along world axis k (a = unit axis): a tight box
+        a = (self.end - self.start) / self.length
+        r = self.radius * np.sqrt(np.clip(1.0 - a * a, 0.0, 1.0))
+        return np.array([self.start - r, self.start + r, self.end - r, self.end + r])
+
+
+@dataclass(frozen=True, eq=False)
+class Polyline:
+    """An open polyline through ``points`` (N, 3), N >= 2, drawn ``width`` pixels wide."""
+
+    name: str
+    points: np.ndarray
+    color: tuple = (0.1, 0.1, 0.1)
+    width: float = 2.0
+
+    def __post_init__(self):
+        _check_name(self)
+        p = _array(self, "points", (None, 3))
+        if len(p) < 2:
+            raise InvalidInputError(f"{_where(self, 'points')}: a polyline needs at least 2 points, got {len(p)}")
+        _color(self)
+        _scalar(self, "width", positive=True)
+
+    def extent(self) -> np.ndarray:
+        return self.points
+
+
+@dataclass(frozen=True, eq=False)
+class PointCloud:
+    """Points (N, 3), N >= 1, drawn as dots of ``size`` metres."""
+
+    name: str
+    points: np.ndarray
+    color: tuple = (0.1, 0.3, 0.9)
+    size: float = 0.02
+
+    def __post_init__(self):
+        _check_name(self)
+        p = _array(self, "points", (None, 3))
+        if len(p) < 1:
+            raise InvalidInputError(f"{_where(self, 'points')}: a point cloud needs at least one point")
+        _color(self)
+        _scalar(self, "size", positive=True)
+
+    def extent(self) -> np.ndarray:
+        return self.points
+
+
+@dataclass(frozen=True, eq=False)
+class Frame:
+    """A coordinate triad for the rigid ``pose`` (4, 4): x red, y green, z blue, axes ``scale`` metres long."""
+
+    name: str
+    pose: np.ndarray
+    scale: float = 0.2
+
+    def __post_init__(self):
+        _check_name(self)
+        T = _array(self, "pose", (4, 4))
+        if np.abs(T[3] - [0, 0, 0, 1]).max() > _ORTHO_TOL:
+            raise InvalidInputError(f"{_where(self, 'pose')}: last row must be [0, 0, 0, 1], got {T[3].tolist()}")
+        _rotation(self, "pose", T[:3, :3])
+        _scalar(self, "scale", positive=True)
+
+    def axes(self) -> np.ndarray:
+        """Segments (3, 2, 3): origin to the tip of the x, y and z axes."""
+        o = self.pose[:3, 3]
+        return np.array([[o, o + self.scale * self.pose[:3, k]] for k in range(3)])
+
+    def extent(self) -> np.ndarray:
+        return self.axes().reshape(-1, 3)
+
+
+PRIMITIVE_TYPES = (Box, Sphere, Quad, Cylinder, Polyline, PointCloud, Frame)
+FRAME_COLORS = ((0.9, 0.1, 0.1), (0.1, 0.75, 0.1), (0.1, 0.2, 0.95))
+
+
+def _frame_from_axis(z: np.ndarray) -> np.ndarray:
+    """A right-handed rotation whose third column is the unit vector ``z``."""
+    helper = np.array([1.0, 0.0, 0.0]) if abs(z[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    x = np.cross(helper, z)
+    x /= np.linalg.norm(x)
+    y = np.cross(z, x)
+    return np.column_stack([x, y, z])
+
+
+# ---------------------------------------------------------------- scene-level helpers
+def check_scene(primitives, func: str = "check_scene") -> list:
+    """Flatten nested lists of primitives into one list; reject unknown objects and duplicate names.
+
+    Names must also not be a prefix path of one another (``"robot"`` and ``"robot/base"``), since in a
+    scene tree the first would own the second.
+    """
+    out = []
+
+    def walk(item):
+        if isinstance(item, PRIMITIVE_TYPES):
+            out.append(item)
+        elif isinstance(item, Iterable) and not isinstance(item, (str, bytes, np.ndarray)):
+            for sub in item:
+                walk(sub)
+        else:
+            raise InvalidInputError(
+                f"{func}: expected primitives from cga_lessons.viz.scene3d "
+                f"({', '.join(t.__name__ for t in PRIMITIVE_TYPES)}), got {type(item).__name__}"
+            )
+
+    walk(primitives)
+    names = sorted(p.name for p in out)
+    for a, b in zip(names, names[1:]):
+        if a == b:
+            raise InvalidInputError(f"{func}: two primitives are named {a!r}; names must be unique")
+        if b.startswith(a + "/"):
+            raise InvalidInputError(f"{func}: name {a!r} is a parent path of {b!r}; give {a!r} a leaf name")
+    return out
+
+
+def scene_bounds(primitives) -> tuple[np.ndarray, np.ndarray]:
+    """Axis-aligned bounds ``(lo (3,), hi (3,))`` of all primitives (a bounding box of each shape)."""
+    prims = check_scene(primitives, "scene_bounds")
+    if not prims:
+        raise InvalidInputError("scene_bounds: the scene is empty")
+    pts = np.vstack([np.atleast_2d(p.extent()) for p in prims])
+    return pts.min(axis=0), pts.max(axis=0)
+
+
+def set_equal_3d(ax, lo, hi, pad=0.05):
+    """Make a matplotlib 3D axis show the box ``lo..hi`` at 1:1:1 scale (a cube around its centre)."""
+    lo, hi = np.asarray(lo, float), np.asarray(hi, float)
+    centre = (lo + hi) / 2
+    half = max(float(np.max(hi - lo)) / 2 * (1 + pad), 1e-3)
+    ax.set_xlim(centre[0] - half, centre[0] + half)
+    ax.set_ylim(centre[1] - half, centre[1] + half)
+    ax.set_zlim(centre[2] - half, centre[2] + half)
+    ax.set_box_aspect((1, 1, 1))
+    return ax
+
+
+# ---------------------------------------------------------------- matplotlib drawing
+def _box_faces(corners):
+    idx = [(0, 1, 3, 2), (4, 5, 7, 6), (0, 1, 5, 4), (2, 3, 7, 6), (0, 2, 6, 4), (1, 3, 7, 5)]
+    return [corners[list(f)] for f in idx]
+
+
+def _sphere_grid(center, radius, n=14):
+    u = np.linspace(0, 2 * np.pi, n + 1)
+    v = np.linspace(0, np.pi, n // 2 + 1)
+    x = center[0] + radius * np.outer(np.cos(u), np.sin(v))
+    y = center[1] + radius * np.outer(np.sin(u), np.sin(v))
+    z = center[2] + radius * np.outer(np.ones_like(u), np.cos(v))
+    return x, y, z
+
+
+def _cylinder_grid(cyl, n=16):
+    R = cyl.axis_rotation()
+    t = np.linspace(0, 2 * np.pi, n + 1)
+    ring = cyl.radius * (np.outer(np.cos(t), R[:, 0]) + np.outer(np.sin(t), R[:, 1]))  # (n+1, 3)
+    grid = np.stack([cyl.start + ring, cyl.end + ring])  # (2, n+1, 3)
+    return grid[..., 0], grid[..., 1], grid[..., 2]
+
+
+def draw_matplotlib(ax, primitives, *, limits=None, labels=True, pad=0.05):
+    """Draw primitives on a matplotlib 3D axis at equal aspect (1 m is the same length on x, y and z).
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.Axes3D or None
+        Target axis; ``None`` makes a new 6x5 inch figure with one 3D axis.
+    primitives : iterable of scene3d primitives (nested lists allowed)
+    limits : ((3,), (3,)) or None
+        Bounds to frame; by default :func:`scene_bounds` of the primitives.
+    labels : bool
+        Axis labels in metres.
+
+    Returns
+    -------
+    ax
+    """
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    prims = check_scene(primitives, "draw_matplotlib")
+    if ax is None:
+        import matplotlib.pyplot as plt
+
+        fig = plt.figure(figsize=(6, 5), dpi=80)
+        ax = fig.add_subplot(projection="3d")
+    if getattr(ax, "name", None) != "3d":
+        raise InvalidInputError("draw_matplotlib: ax must be a 3D axis (fig.add_subplot(projection='3d'))")
+    for p in prims:
+        if isinstance(p, Box):
+            ax.add_collection3d(
+                Poly3DCollection(
+                    _box_faces(p.corners()), facecolors=p.color, alpha=p.opacity, edgecolors="0.25", linewidths=0.3
+                )
+            )
+        elif isinstance(p, Quad):
+            ax.add_collection3d(
+                Poly3DCollection([p.corners], facecolors=p.color, alpha=p.opacity, edgecolors="0.35", linewidths=0.3)
+            )
+        elif isinstance(p, Sphere):
+            ax.plot_surface(*_sphere_grid(p.center, p.radius), color=p.color, alpha=p.opacity, linewidth=0, shade=True)
+        elif isinstance(p, Cylinder):
+            ax.plot_surface(*_cylinder_grid(p), color=p.color, alpha=p.opacity, linewidth=0, shade=True)
+        elif isinstance(p, Polyline):
+            ax.plot(*p.points.T, color=p.color, lw=p.width * 0.6)
+        elif isinstance(p, PointCloud):
+            ax.scatter(*p.points.T, color=p.color, s=max(1.0, (p.size * 400) ** 2 / 16), depthshade=False)
+        elif isinstance(p, Frame):
+            for seg, col in zip(p.axes(), FRAME_COLORS):
+                ax.plot(*seg.T, color=col, lw=1.5)
+    if limits is None:
+        limits = scene_bounds(prims) if prims else (np.zeros(3) - 1, np.zeros(3) + 1)
+    set_equal_3d(ax, *limits, pad=pad)
+    if labels:
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel("y (m)")
+        ax.set_zlabel("z (m)")
+    return ax
