@@ -9,9 +9,26 @@ square (+1, -1 or 0).
 A :class:`Multivector` is a sparse map ``blade bitmap -> coefficient``.  The
 coefficient may be a Python/NumPy float, a NumPy array (a *batch*: one
 multivector per element, e.g. one conformal point per row of a point cloud) or
-a SymPy expression.  Every product loops over the non-zero blades only, with
-the list of (blade, blade, result, sign) terms cached per pair of blade sets,
-so one code path serves the numeric chapters and the symbolic proofs.
+a SymPy expression.  Every product runs over the non-zero blades only, with
+the (blade, blade, result, sign) terms found once per pair of blade sets and
+cached, so one code path serves the numeric chapters and the symbolic proofs.
+
+How a product runs (see :meth:`Algebra._product`; the routes agree to the bit
+except the float table, which agrees to round-off):
+
+* the first time a pair of blade sets meets, an interpreted loop over its terms;
+* from the second time on, compiled straight-line code, one Python expression
+  per result blade (the same code for floats, arrays and SymPy);
+* two single float multivectors with many terms (a motor times a point), one
+  small matrix product ``outer(a, b).ravel() @ table`` with a cached table of
+  signs, which costs a few NumPy calls instead of a Python operation per term.
+
+A versor acts linearly on each grade (2.82).  For a single numeric versor,
+:meth:`Algebra.versor_matrices` builds that action as one matrix per grade in
+closed form, from one cached bilinear table per blade set (no sandwich
+products), and :meth:`Algebra.apply_matrices` applies it to one entity or to a
+whole batch with one matrix product; ``V >> X`` and
+:func:`cga_lessons.versors.apply` take this route by themselves.
 
 Operators (the thesis's notation on the left)::
 
@@ -33,6 +50,7 @@ Operators (the thesis's notation on the left)::
 
 from __future__ import annotations
 
+import math
 import numbers
 from functools import cache
 from itertools import combinations
@@ -80,12 +98,24 @@ def _reorder_sign(a: int, b: int) -> int:
     return -1 if swaps & 1 else 1
 
 
+_PLAIN_TYPES = frozenset((float, int, np.float64, np.ndarray))
+
+
 def _is_sympy(x) -> bool:
+    if type(x) in _PLAIN_TYPES:
+        return False
     return hasattr(x, "free_symbols") and not isinstance(x, np.ndarray)
 
 
 def _is_zero(c) -> bool:
     """True when a coefficient is exactly zero (float, array or SymPy)."""
+    t = type(c)
+    if t is float or t is int or t is np.float64:
+        return c == 0
+    if t is np.ndarray:
+        if c.dtype.kind in "fiub":
+            return not np.count_nonzero(c)  # NaN counts as non-zero, as in any()
+        return not c.any()
     if isinstance(c, np.ndarray):
         return not np.any(c)
     if isinstance(c, numbers.Number):
@@ -93,6 +123,178 @@ def _is_zero(c) -> bool:
     if _is_sympy(c):
         return c == 0 or c.is_zero is True
     return c == 0
+
+
+#: Coefficient types of a single numeric multivector (the versor fast paths take only these).
+_REAL_TYPES = frozenset((float, np.float64, int))
+#: ... and of the operands of a product sent through a float table (ints stay exact in the other routes).
+_FLOAT_TYPES = frozenset((float, np.float64))
+
+
+def _is_real_single(M) -> bool:
+    """True when every coefficient of ``M`` is one real number (no batch, no SymPy)."""
+    real = _REAL_TYPES
+    for v in M._c.values():
+        if type(v) not in real:
+            return False
+    return True
+
+
+def _is_float_single(M) -> bool:
+    """True when every coefficient of ``M`` is one float."""
+    flt = _FLOAT_TYPES
+    for v in M._c.values():
+        if type(v) not in flt:
+            return False
+    return True
+
+
+def _absmax(v) -> float:
+    """max |v| of a real coefficient, a number or an array, as a float (NaN stays NaN)."""
+    t = type(v)
+    if t is float or t is np.float64 or t is int:
+        return float(abs(v))
+    return float(np.max(np.abs(v)))
+
+
+def _all_finite(arr: np.ndarray) -> bool:
+    """``np.isfinite(arr).all()`` for a float array, screened cheaply first.
+
+    For a large contiguous float64 array the dot product ``a . a`` is finite
+    exactly when no element is NaN or inf, unless the squares overflow (only
+    for |a| > 1e154), in which case the full test decides.
+    """
+    if arr.size <= 8:
+        return all(map(math.isfinite, arr.ravel().tolist()))
+    if arr.dtype == np.float64 and arr.size > 512 and arr.flags.c_contiguous:
+        flat = arr.reshape(-1)
+        with np.errstate(over="ignore", invalid="ignore"):
+            if np.isfinite(flat @ flat):
+                return True
+    return bool(np.isfinite(arr).all())
+
+
+def _mv(algebra, coeffs: dict):
+    """A Multivector from a dict that is already pruned (no checks, no copy)."""
+    m = object.__new__(Multivector)
+    m.algebra = algebra
+    m._c = coeffs
+    return m
+
+
+def _mv_pruned(algebra, keys, values):
+    """A Multivector from parallel keys and values, dropping exact zeros."""
+    out = {}
+    for k, v in zip(keys, values):
+        t = type(v)
+        if t is float or t is np.float64 or t is int:
+            if v != 0:
+                out[k] = v
+        elif not _is_zero(v):
+            out[k] = v
+    m = object.__new__(Multivector)
+    m.algebra = algebra
+    m._c = out
+    return m
+
+
+def _is_real_batch(M) -> bool:
+    """True when ``M`` is a numeric batch: real arrays (at least one) and real numbers, no SymPy."""
+    real = _REAL_TYPES
+    seen = False
+    for v in M._c.values():
+        if type(v) is np.ndarray:
+            if v.dtype.kind not in "fiu" or not v.ndim:
+                return False
+            seen = True
+        elif type(v) not in real:
+            return False
+    return seen
+
+
+def _stack_rows(vals, shape: tuple) -> np.ndarray:
+    """Stack batch coefficients into a ``(k,) + shape`` array.
+
+    No copy when they already are the consecutive rows of one C-contiguous
+    float block (the layout :func:`~cga_lessons.model.up` and
+    :meth:`Algebra.apply_matrices` produce).
+    """
+    base = getattr(vals[0], "base", None)
+    if (
+        type(base) is np.ndarray
+        and base.dtype == np.float64
+        and base.shape == (len(vals),) + shape
+        and base.flags.c_contiguous
+    ):
+        step = base.strides[0]
+        p0 = base.__array_interface__["data"][0]
+        rest = base.strides[1:]
+        for i, v in enumerate(vals):
+            if (
+                type(v) is not np.ndarray
+                or v.base is not base
+                or v.shape != shape
+                or v.strides != rest
+                or v.__array_interface__["data"][0] != p0 + i * step
+            ):
+                break
+        else:
+            return base
+    rows = [v if type(v) is np.ndarray and v.shape == shape else np.broadcast_to(np.asarray(v, float), shape)
+            for v in vals]
+    return np.stack(rows)
+
+
+_CHUNK = 48  # terms per Python expression in a compiled product (keeps the parser's nesting shallow)
+
+
+def _compile_product(groups, n_a: int, n_b: int):
+    """Compile straight-line code for one product of two blade sets.
+
+    ``groups`` lists, per result blade, its ``(i, j, sign)`` terms (positions
+    in the two coefficient sequences).  Each result is summed left to right in
+    the order of the terms, exactly as the interpreted loop does, so the two
+    routes give identical numbers (and identical SymPy expressions).
+    """
+    lines = ["def _product(A, B):"]
+    if n_a:
+        lines.append("    " + "".join(f"a{i}, " for i in range(n_a)) + "= A")
+    if n_b:
+        lines.append("    " + "".join(f"b{j}, " for j in range(n_b)) + "= B")
+    names = []
+    for k, terms in enumerate(groups):
+        name = f"r{k}"
+        names.append(name)
+        for start in range(0, len(terms), _CHUNK):
+            parts = []
+            for n, (i, j, sg) in enumerate(terms[start:start + _CHUNK]):
+                if start == 0 and n == 0:
+                    parts.append(f"-(a{i} * b{j})" if sg < 0 else f"a{i} * b{j}")
+                else:
+                    parts.append(f"{'-' if sg < 0 else '+'} a{i} * b{j}")
+            head = "" if start == 0 else f"{name} "
+            lines.append(f"    {name} = {head}{' '.join(parts)}")
+    lines.append("    return (" + "".join(f"{nm}, " for nm in names) + ")")
+    namespace: dict = {}
+    exec(compile("\n".join(lines), "<cga_lessons product>", "exec"), namespace)  # noqa: S102
+    return namespace["_product"]
+
+
+def _run_product(groups, va, vb):
+    """The interpreted form of :func:`_compile_product` (same order of operations)."""
+    out = []
+    for terms in groups:
+        i, j, sg = terms[0]
+        acc = va[i] * vb[j]
+        if sg < 0:
+            acc = -acc
+        for i, j, sg in terms[1:]:
+            if sg < 0:
+                acc = acc - va[i] * vb[j]
+            else:
+                acc = acc + va[i] * vb[j]
+        out.append(acc)
+    return out
 
 
 class Algebra:
@@ -160,7 +362,13 @@ class Algebra:
         for b, nm in self.blade_names.items():
             self._name_to_blade[nm] = (b, 1)
         self.pseudoscalar_blade = self.dim - 1
-        self._term_cache: dict = {}
+        self._product_cache: dict = {}
+        self._table_cache: dict = {}
+        self._versor_cache: dict = {}
+        #: True where the reverse (2.32) flips the sign of a blade
+        self._rev_flip = [bool((g * (g - 1) // 2) & 1) for g in self.grades]
+        #: blades of each grade in the order of (2.9)
+        self.grade_blades = [[b for b in order if self.grades[b] == k] for k in range(n + 1)]
 
     # ------------------------------------------------------------------ names
     def _make_name(self, blade: int) -> str:
@@ -256,16 +464,12 @@ class Algebra:
 
     # ---------------------------------------------------------- product terms
     def _terms(self, keys_a: tuple, keys_b: tuple, kind: str):
-        """Cached list of (blade_a, blade_b, result_blade, sign) for a product.
+        """List of (blade_a, blade_b, result_blade, sign) for a product (cached by :meth:`_product_entry`).
 
         ``kind`` is one of ``"gp"`` (geometric), ``"op"`` (outer),
         ``"ip"`` (the thesis's inner product), ``"lc"`` (left contraction),
         ``"sp"`` (scalar product).
         """
-        key = (keys_a, keys_b, kind)
-        terms = self._term_cache.get(key)
-        if terms is not None:
-            return terms
         grades = self.grades
         sign = self._sign_list
         terms = []
@@ -287,23 +491,206 @@ class Algebra:
                 if kind == "sp" and gr != 0:
                     continue
                 terms.append((a, b, r, s))
-        if len(self._term_cache) > 20000:
-            self._term_cache.clear()
-        self._term_cache[key] = terms
         return terms
 
+    #: uses of one pair of blade sets before its product is compiled to straight-line code
+    _COMPILE_AFTER = 2
+    _CACHE_LIMIT = 1024  # entries per cache; a full cache is emptied and refilled
+
+    #: products with at least this many terms run as one small matrix product for float coefficients
+    _TABLE_TERMS = 40
+
+    def _product_entry(self, key):
+        """Cache entry ``[compiled or None, result blades, uses, grouped terms, table or None]``."""
+        keys_a, keys_b, kind = key
+        terms = self._terms(keys_a, keys_b, kind)
+        pos_a = {b: i for i, b in enumerate(keys_a)}
+        pos_b = {b: j for j, b in enumerate(keys_b)}
+        grouped: dict = {}
+        for a, b, r, s in terms:
+            grouped.setdefault(r, []).append((pos_a[a], pos_b[b], s))
+        table = None
+        if len(terms) >= self._TABLE_TERMS and len(keys_a) * len(keys_b) <= 256:  # tables stay <= 64 kB
+            nb = len(keys_b)
+            table = np.zeros((len(keys_a) * nb, len(grouped)))
+            for col, group in enumerate(grouped.values()):
+                for i, j, s in group:
+                    table[i * nb + j, col] = s
+        if len(self._product_cache) >= self._CACHE_LIMIT:
+            self._product_cache.clear()
+        entry = [None, tuple(grouped), 0, list(grouped.values()), table]
+        self._product_cache[key] = entry
+        return entry
+
     def _product(self, A: Multivector, B: Multivector, kind: str) -> Multivector:
+        """Product of two multivectors over their non-zero blades only.
+
+        The terms of one pair of blade sets are found once and cached.  From
+        the second use on they run as compiled straight-line code (one Python
+        expression per result blade), the same code for floats, arrays and
+        SymPy coefficients.  Two single float multivectors with many terms
+        (a motor times a point) instead take one small matrix product:
+        ``outer(a, b).ravel() @ table`` with a cached table of signs.
+        """
         ca, cb = A._c, B._c
-        out: dict = {}
-        for a, b, r, s in self._terms(tuple(ca), tuple(cb), kind):
-            term = ca[a] * cb[b]
-            if s < 0:
-                term = -term
-            if r in out:
-                out[r] = out[r] + term
-            else:
-                out[r] = term
-        return Multivector(self, out, _prune=True)
+        key = (tuple(ca), tuple(cb), kind)
+        entry = self._product_cache.get(key)
+        if entry is None:
+            entry = self._product_entry(key)
+        table = entry[4]
+        if table is not None and _is_float_single(A) and _is_float_single(B):
+            va = np.fromiter(ca.values(), dtype=float, count=len(ca))
+            vb = np.fromiter(cb.values(), dtype=float, count=len(cb))
+            return _mv_pruned(self, entry[1], (np.outer(va, vb).ravel() @ table).tolist())
+        fn = entry[0]
+        if fn is None:
+            entry[2] += 1
+            if entry[2] < self._COMPILE_AFTER:
+                return _mv_pruned(self, entry[1], _run_product(entry[3], list(ca.values()), list(cb.values())))
+            fn = entry[0] = _compile_product(entry[3], len(ca), len(cb))
+        return _mv_pruned(self, entry[1], fn(ca.values(), cb.values()))
+
+    # ------------------------------------------------------ versor matrices
+    def _sandwich_table(self, keys: tuple, grades: tuple):
+        """Bilinear table of the sandwich ``V X ~V`` for versors with blades ``keys``.
+
+        Returns ``(parity, T, slices)``: ``parity`` is 0 (all blades even), 1
+        (all odd) or None (mixed).  ``T`` has shape ``(m*m, dim + sum k_g^2)``
+        for the m blades in ``keys`` and the k_g blades of each grade g in
+        ``grades``, such that with ``v`` the coefficients of V in the order of
+        ``keys``, ``w = outer(v, v).ravel() @ T`` holds the coefficients of
+        ``V ~V`` (all ``dim`` blades) and then, for each grade, the k_g x k_g
+        matrix of ``X -> V X ~V`` (row-major) at ``w[slices[g]]``.
+        """
+        ck = (keys, grades)
+        hit = self._table_cache.get(ck)
+        if hit is not None:
+            return hit
+        sign, flip, dim, m = self._sign_list, self._rev_flip, self.dim, len(keys)
+        slices, width = {}, dim
+        for g in grades:
+            k = len(self.grade_blades[g])
+            slices[g] = slice(width, width + k * k)
+            width += k * k
+        T = np.zeros((m, m, width))
+        for ia, a in enumerate(keys):
+            for ib, b in enumerate(keys):
+                s = sign[a][b] * (-1 if flip[b] else 1)
+                if s:
+                    T[ia, ib, a ^ b] += s
+            for g in grades:
+                blades = self.grade_blades[g]
+                k, off = len(blades), slices[g].start
+                pos = {bl: i for i, bl in enumerate(blades)}
+                for j, x in enumerate(blades):
+                    s1 = sign[a][x]
+                    if not s1:
+                        continue
+                    r1 = a ^ x
+                    for ib, b in enumerate(keys):
+                        s2 = sign[r1][b]
+                        r = r1 ^ b
+                        if s2 and r in pos:
+                            T[ia, ib, off + pos[r] * k + j] += s1 * s2 * (-1 if flip[b] else 1)
+        parities = {self.grades[b] & 1 for b in keys}
+        parity = parities.pop() if len(parities) == 1 else None
+        hit = (parity, T.reshape(m * m, width), slices)
+        if len(self._table_cache) >= 128:  # up to ~270 kB each (16 blades, grade 2)
+            self._table_cache.clear()
+        self._table_cache[ck] = hit
+        return hit
+
+    def _versor_info(self, V: Multivector, grades: tuple):
+        """``(d, parity, raw, unit)`` for a single numeric versor V, else None (cached by value).
+
+        ``d = <V ~V>_0``; ``raw[g]`` is the matrix of ``X -> V X ~V`` and
+        ``unit[g]`` that of ``X -> V X^ V^-1`` (2.82) on grade g.  V is a
+        versor here when its blades have one parity and ``V ~V`` is a non-zero
+        scalar up to round-off (1e-12 relative); in G(p, q) with p + q <= 5
+        that makes V an element of the Clifford group, so it keeps grades.
+        """
+        c = V._c
+        if not c or not _is_real_single(V) or self.n > 5:
+            return None
+        ck = (tuple(c), tuple(c.values()), grades)
+        hit = self._versor_cache.get(ck)
+        if hit is not None:
+            return hit
+        parity, T, slices = self._sandwich_table(ck[0], grades)
+        if parity is None:
+            return None
+        v = np.array(ck[1])
+        w = (v[:, None] * v).ravel() @ T
+        dim = self.dim
+        head = w[:dim].tolist()
+        d = head[0]
+        if not (math.isfinite(d) and d != 0 and max(map(abs, head[1:]), default=0.0) <= 1e-12 * abs(d)):
+            return None
+        raw, unit = {}, {}
+        for g, sl in slices.items():
+            k = len(self.grade_blades[g])
+            raw[g] = mat = w[sl].reshape(k, k)
+            unit[g] = u = mat * ((-1.0 if parity and g & 1 else 1.0) / d)
+            u.flags.writeable = False  # shared through the cache
+        w.flags.writeable = False
+        hit = (d, parity, raw, unit)
+        if len(self._versor_cache) >= 256:
+            self._versor_cache.clear()
+        self._versor_cache[ck] = hit
+        return hit
+
+    def versor_matrices(self, V: Multivector, grades) -> dict | None:
+        """Matrices of ``X -> V X^ V^-1`` (2.82) on the given grades, or None.
+
+        For a single numeric versor V (real coefficients, ``V ~V`` a non-zero
+        scalar up to round-off) returns ``{grade: k x k matrix}`` over the
+        blades of that grade in the order of (2.9) (``self.grade_blades``):
+        the outermorphism of the versor, built in closed form from one cached
+        bilinear table per blade set (:meth:`_sandwich_table`), with no
+        multivector products.  X^ is the grade involution, applied when V is
+        odd.  Returns None for anything else (SymPy or batched coefficients,
+        mixed parity, not a versor); the caller then uses the plain sandwich.
+        """
+        info = self._versor_info(V, tuple(grades))
+        return None if info is None else info[3]
+
+    def apply_matrices(self, mats: dict, X: Multivector) -> Multivector:
+        """Apply per-grade matrices (from :meth:`versor_matrices`) to X, single or batched.
+
+        A batch costs, per grade, one ``(k, k) x (k, N)`` matrix product; when
+        X's coefficient arrays of that grade are consecutive rows of one
+        C-contiguous block (as :func:`~cga_lessons.model.up` and this method
+        return them) no copy is made.  Results come back as the rows of one
+        block.  Output blades whose matrix row is zero on X's blades are left
+        out; the others are kept even if their values happen to vanish.
+        """
+        c = X._c
+        batch = X.shape
+        if not batch:
+            keys, vals = [], []
+            for g, mat in mats.items():
+                blades = self.grade_blades[g]
+                x = np.array([c.get(b, 0.0) for b in blades], dtype=float)
+                keys += blades
+                vals += (mat @ x).tolist()
+            return _mv_pruned(self, keys, vals)
+        out = {}
+        for g, mat in mats.items():
+            blades = self.grade_blades[g]
+            idx = [j for j, b in enumerate(blades) if b in c]
+            if not idx:
+                continue
+            sub = mat if len(idx) == len(blades) else mat[:, idx]
+            block = _stack_rows([c[blades[j]] for j in idx], batch)
+            if len(batch) == 1:
+                res = sub @ block
+            else:  # a batch of any shape: one (k, k) x (k, prod(shape)) product
+                res = (sub @ block.reshape(len(idx), -1)).reshape((len(blades),) + batch)
+            nz = np.any(sub != 0, axis=1)
+            for i, b in enumerate(blades):
+                if nz[i]:
+                    out[b] = res[i]
+        return _mv(self, out)
 
     # ------------------------------------------------ linear maps as matrices
     def left_matrix(self, A: Multivector, blades_in=None, blades_out=None) -> np.ndarray:
@@ -513,10 +900,23 @@ class Multivector:
         return self.algebra._product(self, other, "lc")
 
     def __rshift__(self, other):
-        """Sandwich ``V >> X = V X ~V`` (2.98, 2.101, 2.103)."""
+        """Sandwich ``V >> X = V X ~V`` (2.98, 2.101, 2.103).
+
+        A single numeric versor V (``V ~V`` a non-zero scalar, one parity, in
+        an algebra of dimension at most 5) on a numeric X, one entity or a
+        batch, takes the fast path: the matrix of ``X -> V X ~V`` on each grade
+        of X, built once in closed form (:meth:`Algebra.versor_matrices`),
+        times X's coefficients.  A versor keeps grades (2.82), so the result
+        has X's grades only, where the plain product adds round-off in the
+        others.  Anything else is the plain product ``V * X * ~V``.
+        """
         other = self._coerce(other)
         if other is NotImplemented:
             return NotImplemented
+        if other.algebra is self.algebra and other._c and (_is_real_single(other) or _is_real_batch(other)):
+            info = self.algebra._versor_info(self, tuple(other.grades_present()))
+            if info is not None:
+                return self.algebra.apply_matrices(info[2], other)
         return self * other * ~self
 
     def inner(self, other):
@@ -548,8 +948,8 @@ class Multivector:
     # ----------------------------------------------------------- involutions
     def __invert__(self):
         """Reverse (2.32-2.33): grade k gets the sign (-1)^(k(k-1)/2)."""
-        g = self.algebra.grades
-        return Multivector(self.algebra, {b: (-v if (g[b] * (g[b] - 1) // 2) & 1 else v) for b, v in self._c.items()})
+        flip = self.algebra._rev_flip
+        return _mv(self.algebra, {b: (-v if flip[b] else v) for b, v in self._c.items()})
 
     def reverse(self):
         return ~self
@@ -596,11 +996,11 @@ class Multivector:
         return np.zeros(shape) if shape else 0.0
 
     def __float__(self):
-        scale = max((float(np.max(np.abs(v))) for v in self._c.values() if not _is_sympy(v)), default=0.0)
+        scale = max((_absmax(v) for v in self._c.values() if not _is_sympy(v)), default=0.0)
         extra = [
             self.algebra.blade_names[b]
             for b, v in self._c.items()
-            if b != 0 and (_is_sympy(v) or float(np.max(np.abs(v))) > 1e-10 * max(scale, 1e-300))
+            if b != 0 and (_is_sympy(v) or _absmax(v) > 1e-10 * max(scale, 1e-300))
         ]
         if extra:
             raise InvalidInputError(f"float(): multivector is not a scalar (has blades {extra})")
@@ -642,13 +1042,19 @@ class Multivector:
             mm = mm.expand()  # cancel before testing for a scalar, or a blade falls into the 32x32 solve
         elif 0 in mm._c and len(mm._c) > 1:
             # a versor's M ~M is a scalar up to round-off in the other blades
-            s0 = np.abs(np.asarray(mm._c[0], dtype=float))
-            rest = max(float(np.max(np.abs(v) / np.maximum(s0, 1e-300))) for b, v in mm._c.items() if b != 0)
+            if _is_real_single(mm):
+                rest = max(abs(v) for b, v in mm._c.items() if b != 0) / max(abs(mm._c[0]), 1e-300)
+            else:
+                s0 = np.abs(np.asarray(mm._c[0], dtype=float))
+                rest = max(float(np.max(np.abs(v) / np.maximum(s0, 1e-300))) for b, v in mm._c.items() if b != 0)
             if rest <= 1e-12:
                 mm = Multivector(self.algebra, {0: mm._c[0]})
         if set(mm._c) <= {0}:
             d = mm._c.get(0, 0)
             if _is_sympy(d):
+                if d == 0:
+                    raise DegenerateGeometryError("inv: M ~M = 0, the multivector is null and has no inverse")
+            elif type(d) in _REAL_TYPES:
                 if d == 0:
                     raise DegenerateGeometryError("inv: M ~M = 0, the multivector is null and has no inverse")
             elif np.any(np.asarray(d) == 0):

@@ -28,11 +28,22 @@ cga`` gives everything::
 
 from __future__ import annotations
 
+import math
 import numbers
 
 import numpy as np
 
-from .algebra import Algebra, DegenerateGeometryError, InvalidInputError, Multivector, _is_sympy
+from .algebra import (
+    _REAL_TYPES,
+    Algebra,
+    DegenerateGeometryError,
+    InvalidInputError,
+    Multivector,
+    _absmax,
+    _all_finite,
+    _is_real_single,
+    _is_sympy,
+)
 
 __all__ = [
     "G41",
@@ -122,7 +133,7 @@ def _check_points(x, func: str, name: str = "x"):
         raise InvalidInputError(f"{func}: {name} must be numbers of shape (3,) or (N, 3), got {x!r}") from exc
     if arr.ndim not in (1, 2) or arr.shape[-1] != 3:
         raise InvalidInputError(f"{func}: {name} must have shape (3,) or (N, 3), got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
+    if not _all_finite(arr):
         raise InvalidInputError(f"{func}: {name} contains NaN or inf")
     return arr, False
 
@@ -172,15 +183,21 @@ def up(x) -> Multivector:
         v = vector(arr, "up")
         x2 = sum(ci**2 for ci in arr)
         return v + c["einf"] * (x2 / 2) + c["eo"]
-    x2 = np.sum(arr * arr, axis=-1)
     if arr.ndim == 1:
-        x2 = float(x2)
-        coeffs = {1: float(arr[0]), 2: float(arr[1]), 4: float(arr[2]), 8: 0.5 * (x2 - 1.0), 16: 0.5 * (x2 + 1.0)}
+        a0, a1, a2 = arr.tolist()
+        x2 = a0 * a0 + a1 * a1 + a2 * a2  # the order of np.sum: the same bits
+        coeffs = {1: a0, 2: a1, 4: a2, 8: 0.5 * (x2 - 1.0), 16: 0.5 * (x2 + 1.0)}
         return Multivector(G41, {k: v for k, v in coeffs.items() if v != 0})
-    return Multivector(
-        G41,
-        {1: arr[:, 0].copy(), 2: arr[:, 1].copy(), 4: arr[:, 2].copy(), 8: 0.5 * (x2 - 1.0), 16: 0.5 * (x2 + 1.0)},
-    )
+    x2 = np.sum(arr * arr, axis=-1)
+    # The five coefficient arrays are the rows of one (5, N) block, so that a versor applied to the batch
+    # (versors.apply) multiplies the block without copying it.
+    block = np.empty((5, arr.shape[0]))
+    block[:3] = arr.T
+    np.subtract(x2, 1.0, out=block[3])
+    block[3] *= 0.5
+    np.add(x2, 1.0, out=block[4])
+    block[4] *= 0.5
+    return Multivector(G41, {1: block[0], 2: block[1], 4: block[2], 8: block[3], 16: block[4]})
 
 
 def point_weight(X: Multivector):
@@ -201,6 +218,13 @@ def normalize_point(X: Multivector, func: str = "normalize_point") -> Multivecto
     w = point_weight(X)
     if _is_sympy(w):
         return (X / w).simplify()
+    if type(w) in _REAL_TYPES and _is_real_single(X):  # one point: plain floats, no NumPy calls
+        scale = math.sqrt(sum(float(v) ** 2 for v in X._c.values()))
+        if abs(w) <= 1e-14 * max(scale, 1e-300):
+            raise DegenerateGeometryError(
+                f"{func}: X . e = 0, the input is at infinity (or a plane), not a finite point"
+            )
+        return X / float(w)
     w = np.asarray(w, dtype=float)
     scale = np.sqrt(sum(np.asarray(v, dtype=float) ** 2 for v in X._c.values())) if X._c else 0.0
     if np.any(np.abs(w) <= 1e-14 * np.maximum(scale, 1e-300)):
@@ -239,11 +263,11 @@ def down(X: Multivector):
     if not isinstance(X, Multivector):
         raise InvalidInputError(f"down: expected a conformal point (Multivector), got {type(X).__name__}")
     if not _any_sym(X):
-        scale = max((float(np.max(np.abs(v))) for v in X._c.values()), default=0.0)
+        scale = max((_absmax(v) for v in X._c.values()), default=0.0)
         bad = [
             G41.blade_names[b]
             for b, v in X._c.items()
-            if G41.grades[b] != 1 and float(np.max(np.abs(v))) > 1e-9 * max(scale, 1e-300)
+            if G41.grades[b] != 1 and _absmax(v) > 1e-9 * max(scale, 1e-300)
         ]
         X = X.grade(1)
     else:

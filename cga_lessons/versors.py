@@ -19,7 +19,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from .algebra import DegenerateGeometryError, InvalidInputError, Multivector, _is_sympy
+from .algebra import (
+    DegenerateGeometryError,
+    InvalidInputError,
+    Multivector,
+    _is_real_batch,
+    _is_real_single,
+    _is_sympy,
+)
 from .algebra import exp as _exp
 from .model import G41, IE, E, _any_sym, _check_points, down, einf, euclidean, exact_constants, up, vector
 
@@ -56,11 +63,19 @@ def _parity(V: Multivector) -> int:
 def versor_matrix(V: Multivector, grade: int) -> np.ndarray:
     """Matrix of ``X -> apply(V, X)`` on the grade-``grade`` blades (order of 2.9).
 
-    A versor acts linearly on each grade, so a batch of N entities costs one
-    (N, k) x (k, k) product with this matrix (k = 5 for points and spheres,
-    10 for lines and circles).
+    A versor acts linearly on each grade (its outermorphism), so a batch of N
+    entities costs one (k, k) x (k, N) product with this matrix (k = 5 for
+    points and spheres, 10 for lines and circles).  For a numeric versor it is
+    built in closed form from one cached bilinear table
+    (:meth:`~cga_lessons.algebra.Algebra.versor_matrices`); other numeric
+    multivectors (V ~V not a scalar) use one sandwich per basis blade.
     """
-    blades = [b for b in G41.blade_order if G41.grades[b] == grade]
+    if not isinstance(grade, (int, np.integer)) or not 0 <= grade <= G41.n:
+        raise InvalidInputError(f"versor_matrix: grade must be an integer in 0..{G41.n}, got {grade!r}")
+    mats = G41.versor_matrices(V, (int(grade),))
+    if mats is not None:
+        return mats[int(grade)].copy()
+    blades = G41.grade_blades[int(grade)]
     Vinv = V.inv()
     cols = []
     for b in blades:
@@ -80,24 +95,22 @@ def _apply_sandwich(V: Multivector, X: Multivector, Vinv: Multivector | None = N
 def apply(V: Multivector, X: Multivector) -> Multivector:
     """Apply a versor: ``V X^ V^-1`` (2.82); the sandwich ``V X ~V`` for motors (2.103).
 
-    A single versor acting on a batch (array coefficients) takes the fast
-    path: the versor's matrix on each grade of X is built once
-    (:func:`versor_matrix`) and applied to all entities with one product.
+    A single numeric versor takes the fast path by itself: its matrix on each
+    grade present in X (:func:`versor_matrix`, built once and cached by
+    value) times X's coefficients, one matrix product for a whole batch
+    (array coefficients: N points, spheres, lines, ...).  The result has X's
+    grades only, as the sandwich has up to round-off.  SymPy coefficients,
+    batches of versors and general (non-versor) multivectors use the plain
+    sandwich.
     """
     if not isinstance(V, Multivector) or not isinstance(X, Multivector):
         raise InvalidInputError("apply: V and X must be Multivectors")
     if not V._c:
         raise DegenerateGeometryError("apply: the zero multivector is not a versor")
-    if X.shape and not V.shape and not _any_sym(V) and not _any_sym(X):
-        out: dict = {}
-        for g in X.grades_present():
-            blades = [b for b in G41.blade_order if G41.grades[b] == g]
-            M = versor_matrix(V, g)
-            arr = X.grade(g).to_array(blades)
-            res = arr @ M.T
-            for i, b in enumerate(blades):
-                out[b] = res[..., i]
-        return Multivector(G41, out, _prune=True)
+    if X._c and V.algebra is X.algebra and (_is_real_single(X) or _is_real_batch(X)):
+        mats = V.algebra.versor_matrices(V, X.grades_present())
+        if mats is not None:
+            return V.algebra.apply_matrices(mats, X)
     return _apply_sandwich(V, X)
 
 
@@ -114,23 +127,62 @@ def motor_to_matrix(M: Multivector) -> np.ndarray:
 def apply_to_points(V: Multivector, x) -> np.ndarray:
     """Euclidean points moved by a motor (or any versor mapping points to points).
 
-    ``x`` has shape (3,) or (N, 3).  For a motor this is exactly the 3x4
-    affine product of :func:`motor_to_matrix` (a motor keeps X . e = -1), the
-    cost of a plain homogeneous matrix.  Other versors (inversions) go through
-    the conformal point and :func:`~cga_lessons.model.down`.
+    ``x`` has shape (3,) or (N, 3).  For a rigid motion this is the 3x4 affine
+    product ``y = R x + t`` read off the versor's 5x5 matrix (a motor keeps
+    X . e = -1), the cost of a plain homogeneous matrix.  Other versors
+    (inversions, dilations) and SymPy input go through the conformal point and
+    :func:`~cga_lessons.model.down`.
     """
     arr, sym = _check_points(x, "apply_to_points")
     if sym or _any_sym(V):
         return down(apply(V, up(arr)))
-    A = versor_matrix(V, 1)  # 5x5 on e1 e2 e3 e+ e-
-    # The Euclidean part of V up(x) is A[:3,:3] x + A[:3,3] (x^2-1)/2 + A[:3,4] (x^2+1)/2 with weight
-    # A[4]-A[3] applied to up(x).  For a rigid motion the x^2 terms cancel and the weight stays 1, so the map is
-    # the affine y = R x + t with R = A[:3,:3], t = (A[:3,4] - A[:3,3]) / 2.
-    w = A[4] - A[3]
-    rigid = np.allclose(A[:3, 3] + A[:3, 4], 0, atol=1e-12) and np.allclose(w, [0, 0, 0, -1.0, 1.0], atol=1e-12)
-    if not rigid:
+    affine = _rigid_affine(V)
+    if affine is None:
         return down(apply(V, up(arr)))
-    return arr @ A[:3, :3].T + 0.5 * (A[:3, 4] - A[:3, 3])
+    R, t = affine
+    if arr.ndim == 1:
+        return R @ arr + t
+    # (R x^T + t)^T: the sum runs along the long axis (adding t row by row to an (N, 3) array is several
+    # times slower than the product itself); the result is the transposed view of a (3, N) block.
+    out = R @ arr.T
+    out += t[:, None]
+    return out.T
+
+
+_AFFINE_CACHE: dict = {}
+
+
+def _rigid_affine(V: Multivector):
+    """``(R, t)`` of a numeric versor acting on points as a rigid motion, else None.
+
+    With A the 5x5 matrix on e1 e2 e3 e+ e-, the Euclidean part of V up(x) is
+    A[:3,:3] x + A[:3,3] (x^2-1)/2 + A[:3,4] (x^2+1)/2 with weight row
+    A[4]-A[3].  For a rigid motion the x^2 terms cancel and the weight stays
+    that of up(x), so the map is y = R x + t with R = A[:3,:3] and
+    t = (A[:3,4] - A[:3,3]) / 2.  Cached by the versor's coefficients.
+    """
+    if not _is_real_single(V):
+        return None
+    key = (tuple(V._c), tuple(V._c.values()))
+    hit = _AFFINE_CACHE.get(key, False)
+    if hit is not False:
+        return hit
+    mats = G41.versor_matrices(V, (1,))
+    hit = None
+    if mats is not None:
+        A = mats[1]
+        scale = max(1.0, float(np.abs(A).max()))
+        w = A[4] - A[3]
+        w[3] += 1.0
+        w[4] -= 1.0
+        if max(float(np.abs(A[:3, 3] + A[:3, 4]).max()), float(np.abs(w).max())) <= 1e-12 * scale:
+            R, t = np.ascontiguousarray(A[:3, :3]), 0.5 * (A[:3, 4] - A[:3, 3])
+            R.flags.writeable = t.flags.writeable = False
+            hit = (R, t)
+    if len(_AFFINE_CACHE) >= 256:
+        _AFFINE_CACHE.clear()
+    _AFFINE_CACHE[key] = hit
+    return hit
 
 
 # ------------------------------------------------------------- constructors
