@@ -1,0 +1,13 @@
+"""pytest configuration shared by the unit tests, the doctests and the notebooks.
+
+The notebooks run in Jupyter kernels (nbval), which are separate processes: put
+this checkout first on their ``PYTHONPATH`` so a kernel imports the package next
+to the notebook under test, whatever copy of ``cga_lessons`` is installed.
+"""
+
+import os
+from pathlib import Path
+
+_ROOT = str(Path(__file__).resolve().parent)
+_paths = [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p and p != _ROOT]
+os.environ["PYTHONPATH"] = os.pathsep.join([_ROOT, *_paths])
