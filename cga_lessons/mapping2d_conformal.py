@@ -37,7 +37,7 @@ import numpy as np
 from . import conformal as cga
 from .algebra import InvalidInputError, Multivector
 from .lines import TWO_PI, Segment
-from .mapping2d import PlainGeometry, SegmentSet, _transform_sums
+from .mapping2d_geometry import PlainGeometry, SegmentSet, _transform_sums
 
 __all__ = [
     "e2c",
@@ -270,6 +270,23 @@ class ConformalGeometry(PlainGeometry):
     def transform(self, segs: SegmentSet, pose) -> SegmentSet:
         return self.to_global(segs, pose, (0.0, 0.0, 0.0))
 
+    def to_global_rows(self, segs: SegmentSet, poses, mount) -> SegmentSet:
+        """Each segment moved by its own laser motor (3.17), all in one batch of sandwiches (3.18).
+
+        The point sums follow the rigid motion read off the motor's action on
+        the points E2C(0, 0) and E2C(1, 0) (3.13).
+        """
+        if len(segs) == 0:
+            return segs
+        poses = np.asarray(poses, float).reshape(-1, 3)
+        n = len(poses)
+        M = cga.translator(_xyz(poses[:, :2])) * cga.rotor(_Z, poses[:, 2]) * robot_motor(mount)  # (3.16)-(3.17)
+        p1, p2 = _ends_2d(_sandwich(M, _pp_from_set(segs)))  # (3.18), (2.131)
+        o = c2e(M * e2c(np.zeros((n, 2))) * ~M)
+        ex = c2e(M * e2c(np.tile([1.0, 0.0], (n, 1))) * ~M) - o
+        R = np.stack([np.stack([ex[:, 0], -ex[:, 1]], -1), np.stack([ex[:, 1], ex[:, 0]], -1)], -2)
+        return SegmentSet(p1, p2, _transform_sums(segs.sums, R, o), segs.edge)
+
     def _lines_about(self, segs: SegmentSet, centre):
         """Lines ``L* = PP* ^ e`` of the segments, moved so that ``centre`` is the origin (a translator)."""
         c = tuple(np.asarray(centre, float).tolist())
@@ -318,6 +335,23 @@ class ConformalGeometry(PlainGeometry):
         for k in range(len(L)):
             out[:, k] = np.atleast_1d(cga.point_line_distance(cg, lines.batch_item(k)))
         return out
+
+    def overlap_rows(self, A: SegmentSet, B: SegmentSet, margin):
+        """Cases 1-4 of (3.19) for the pairs ``A[i]``, ``B[i]``: theorem 2.4.1 and (2.118), shape (n,)."""
+        if len(A) == 0:
+            return np.zeros(0, bool)
+        ca, _, Sa = _spheres(_pp_from_set(A), margin)
+        cb, _, Sb = _spheres(_pp_from_set(B), margin)
+        w = np.atleast_1d(((Sa ^ Sb) * (Sa ^ Sb)).scalar())
+        inside = (np.atleast_1d(cga.point_sphere_side(cb, Sa)) > 0) | (np.atleast_1d(cga.point_sphere_side(ca, Sb)) > 0)
+        return (w <= 0.0) | inside
+
+    def centre_line_distance_rows(self, A: SegmentSet, B: SegmentSet):
+        """Distance from the centre of the sphere of ``A[i]`` to the line of ``B[i]`` (2.130), shape (n,)."""
+        if len(A) == 0:
+            return np.zeros(0)
+        ca, _, _ = _spheres(_pp_from_set(A), 0.0)
+        return np.atleast_1d(cga.point_line_distance(ca, _pp_from_set(B) ^ cga.einf))
 
     def moment_difference(self, G: SegmentSet, L: SegmentSet, centre):
         """``|m_G - m_L|`` of the line moments (2.128) about ``centre``, shape (|G|, |L|)."""

@@ -1,23 +1,37 @@
-"""Tests of the line map builder (cga_lessons.mapping2d, thesis 3.4-3.21)."""
+"""Tests of the line map builder (cga_lessons.mapping2d*, thesis 3.4-3.21) and its loop closure."""
 
 import numpy as np
 import pytest
 
+from cga_lessons import data_path
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.laser import load_scene, simulate_odometry, simulate_scans
-from cga_lessons.lines import Segment, diff_theta
+from cga_lessons.laser import (
+    compose,
+    load_scene,
+    read_carmen_log,
+    relative,
+    scans_to_world,
+    simulate_odometry,
+    simulate_scans,
+)
+from cga_lessons.lines import Segment, diff_theta, extract_segments
 from cga_lessons.mapping2d import (
+    MapBuilder,
     MapParams,
     PlainGeometry,
+    PoseGraph,
     SegmentSet,
     build_map,
     correspondences,
     map_errors,
+    map_point_errors,
+    pose_correction,
     pose_errors,
     proximity_matrix,
     theta_correction,
     translation_correction,
 )
+from cga_lessons.mapping2d_loops import loop_hypotheses
 
 
 def _set(*pairs):
@@ -94,6 +108,174 @@ def test_translation_correction_3_9_to_3_12():
     assert np.allclose(translation_correction(rg, rl, th, weak_ratio=0.02), [t_true[0], 0.0])
     along = (np.array([[0.0, -0.04], [0.01, -0.04]]), np.ones(2))
     assert np.allclose(translation_correction(rg, rl, th, weak_ratio=0.02, along=along), t_true)
+
+
+def test_pose_correction_is_3_8_and_3_12_solved_together():
+    rng = np.random.default_rng(11)
+    m = 6
+    theta = rng.uniform(0, 2 * np.pi, m)
+    n = np.column_stack([np.cos(theta), np.sin(theta)])
+    lever = rng.uniform(-4, 4, (m, 2))
+    t_true, phi = np.array([0.06, -0.03]), 0.015
+    J_lever = n[:, 1] * lever[:, 0] - n[:, 0] * lever[:, 1]  # n . (quarter turn of the lever)
+    offset = n @ t_true + phi * J_lever  # (3.11) at the centroids, linear in the correction
+    vt, vo = rng.uniform(1e-5, 1e-4, m), rng.uniform(1e-5, 1e-4, m)
+    d, cov = pose_correction(np.full(m, phi), vt, offset, vo, n, lever)
+    assert np.allclose(d, [*t_true, phi]) and np.all(np.linalg.eigvalsh(cov) > 0)
+    # the angles alone give the inverse-variance mean of (3.8)
+    dth = rng.normal(0.01, 0.003, m)
+    d, _ = pose_correction(dth, vt, offset, np.full(m, np.inf), n, lever, prior_cov=np.eye(3) * 1e6)
+    assert np.isclose(d[2], theta_correction(dth, 1.0 / vt), atol=1e-9)
+    # the heading held by the prior, the offsets give the weighted least squares of (3.12)
+    rho_l = rng.uniform(1, 4, m)
+    rho_g = rho_l + n @ t_true + rng.normal(0, 0.002, m)
+    prior = np.diag([1e12, 1e12, 1e-14])
+    d, _ = pose_correction(np.zeros(m), vt, rho_g - rho_l, vo, n, lever, prior_cov=prior)
+    assert np.allclose(d[:2], translation_correction(rho_g, rho_l, theta, 1.0 / vo), atol=1e-9)
+    # parallel lines without a prior leave a direction open
+    with pytest.raises(InvalidInputError, match="pose_correction"):
+        pose_correction([0.0, 0.0], [1e-4] * 2, [0.1, 0.1], [1e-4] * 2, [[1, 0], [1, 0]], [[0, 0], [0, 0]])
+
+
+def test_correct_recovers_a_known_pose_and_gates_a_wrong_pair():
+    room = load_scene("room")
+    truth = room.trajectory
+    res = build_map(simulate_scans(room, truth), truth, loop_closure=False)  # noise-free: the four walls
+    b = MapBuilder(PlainGeometry(), MapParams(), max_range=5.0)
+    b.path = [0.0]
+    b.add_lines(SegmentSet.from_segments(res.segments), 0)
+    ranges, angles = simulate_scans(room, truth[20][None], np.random.default_rng(5))[0]
+    L = SegmentSet.from_segments(extract_segments(ranges, angles, max_range=5.0))
+    C, _, _ = correspondences(b.G, b.geo.to_global(L, truth[20], b.mount), truth[20][:2], b.p)
+    assert sorted(C[C >= 0]) == [0, 2, 3]  # three walls seen: two parallel, one across
+    # a wrong local line: segment 0 turned by 5 degrees about its centre (clutter against its wall)
+    c = 0.5 * (L.start[0] + L.end[0])
+    R = np.array([[np.cos(0.09), -np.sin(0.09)], [np.sin(0.09), np.cos(0.09)]])
+    L.start[0], L.end[0] = c + (L.start[0] - c) @ R.T, c + (L.end[0] - c) @ R.T
+    predicted = compose(truth[20], [0.04, -0.03, 0.015])
+    prior = np.diag([0.05**2, 0.05**2, 0.02**2])
+    idx = np.arange(len(b.G))
+    pose, cov, pairs = b.correct(L, predicted, prior, idx)
+    err = relative(truth[20], pose)
+    assert np.hypot(err[0], err[1]) < 0.01 and abs(err[2]) < np.radians(0.1)
+    assert 0 not in pairs[1] and len(pairs[1]) == 2  # the wrong pair fell out at the gate
+    assert np.all(np.linalg.eigvalsh(cov) < np.linalg.eigvalsh(prior).max())
+    b.p = MapParams(gate=1e6)  # without the gate the wrong pair drags the pose off
+    pose_ungated, _, _ = b.correct(L, predicted, prior, idx)
+    assert abs(relative(truth[20], pose_ungated)[2]) > np.radians(1.0)
+
+
+def test_refit_moves_the_map_with_the_poses():
+    room = load_scene("room")
+    truth = room.trajectory[:50]
+    scans = simulate_scans(room, truth, np.random.default_rng(6))
+    b = MapBuilder(PlainGeometry(), MapParams(), max_range=5.0)
+    for k, (r, a) in enumerate(scans):
+        b.path.append(0.2 * k)
+        b.fuse(SegmentSet.from_segments(extract_segments(r, a, max_range=5.0)), truth[k], k)
+    sums = b.G.sums.copy()
+    b.refit(truth)
+    assert np.allclose(b.G.sums, sums)  # all the points each line gathered, no more, no less
+    assert np.median(map_errors(b.G.to_segments(), room.walls)) < 0.01
+    before = b.G
+    T = np.array([0.3, -0.2, 0.1])  # move every pose rigidly: the map moves with it (3.4)
+    b.refit(compose(T, truth))
+    moved = PlainGeometry().transform(before, T)
+    assert np.allclose(b.G.start, moved.start, atol=1e-9) and np.allclose(b.G.end, moved.end, atol=1e-9)
+
+
+# ---------------------------------------------------------------- loop closure
+
+
+def _loop_poses(n=40, radius=3.0):
+    a = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    return np.column_stack([radius * np.cos(a), radius * np.sin(a), np.mod(a + np.pi / 2 + np.pi, 2 * np.pi) - np.pi])
+
+
+def test_pose_graph_recovers_consistent_poses():
+    truth = _loop_poses()
+    g = PoseGraph()
+    cov = np.diag([0.01**2, 0.01**2, 0.005**2])
+    for k in range(1, len(truth)):
+        g.add(k - 1, k, relative(truth[k - 1], truth[k]), cov)
+    for i, j in ((0, 39), (5, 25), (12, 33)):
+        g.add(i, j, relative(truth[i], truth[j]), cov, loop=True)
+    rng = np.random.default_rng(7)
+    start = truth + np.vstack([np.zeros(3), np.cumsum(rng.normal(0, [0.05, 0.05, 0.02], (39, 3)), axis=0)])
+    out = g.optimize(start, iterations=20, tol=1e-12)
+    assert np.allclose(out, truth, atol=1e-8)
+    assert g.loops == [(0, 39), (5, 25), (12, 33)]
+    assert np.allclose(g.errors(out), 0.0, atol=1e-8)
+    with pytest.raises(InvalidInputError, match="PoseGraph.add"):
+        g.add(0, 1, [0.1, np.nan, 0.0], cov)
+
+
+def test_pose_graph_spreads_a_loop_error_and_resists_a_wrong_loop():
+    truth = _loop_poses()
+    drift = np.array([0.0, 0.0, 0.01])  # each step turns 0.01 rad too much, as odometry with a bias
+    chain = [truth[0]]
+    for k in range(1, len(truth)):
+        chain.append(compose(chain[-1], relative(truth[k - 1], truth[k]) + drift))
+    chain = np.array(chain)
+    g = PoseGraph()
+    step = np.diag([0.02**2, 0.02**2, 0.01**2])
+    for k in range(1, len(truth)):
+        g.add(k - 1, k, relative(chain[k - 1], chain[k]), step)
+    tight = np.diag([0.01**2, 0.01**2, 0.002**2])
+    for j in (39, 30, 20):
+        g.add(0, j, relative(truth[0], truth[j]), tight, loop=True)
+    out = g.optimize(chain, robust=3.0)
+    assert pose_errors(out, truth)[0] < 0.2 * pose_errors(chain, truth)[0]
+    g.add(10, 35, relative(truth[10], compose(truth[35], [2.0, 1.0, 0.3])), tight, loop=True)  # a false revisit
+    with_wrong = g.optimize(chain, robust=3.0)
+    assert pose_errors(with_wrong, truth)[0] < 0.3 * pose_errors(chain, truth)[0]
+    no_kernel = g.optimize(chain, robust=0.0)
+    assert pose_errors(no_kernel, truth)[0] > 2 * pose_errors(with_wrong, truth)[0]
+
+
+def test_loop_hypotheses_find_a_known_rigid_motion():
+    office = load_scene("office")
+    centre = np.array([9.0, 7.0])
+    walls = office.walls[np.hypot(*(office.walls.mean(axis=1) - centre).T) < 6.0]
+    O = SegmentSet.from_segments([Segment(a, b, 100) for a, b in walls])
+    phi0, t0 = 0.06, np.array([0.45, -0.3])  # the drifted view: the old lines turned and shifted about centre
+    R = np.array([[np.cos(phi0), -np.sin(phi0)], [np.sin(phi0), np.cos(phi0)]])
+    Q = SegmentSet((O.start - centre) @ R.T + centre + t0, (O.end - centre) @ R.T + centre + t0, O.sums, O.edge)
+    best = loop_hypotheses(PlainGeometry(), Q, O, centre, 0.3, 2.0, MapParams())[0]
+    _, phi, t = best
+    assert np.isclose(phi, -phi0, atol=0.02)  # within the vote's resolution, loop_angle_tol
+    assert np.allclose(t, -(R.T @ t0), atol=0.1)
+
+
+def test_loop_closure_finds_the_room_again_after_a_blind_stretch():
+    room = load_scene("room")
+    truth = room.trajectory
+    rng = np.random.default_rng(0)
+    scans = simulate_scans(room, truth, rng)
+    odo = simulate_odometry(truth, rng)
+    blind = (np.full(len(scans[0][1]), np.inf), scans[0][1])
+    scans[40:150] = [blind] * 110  # the laser sees nothing for 7.4 m, beyond active_path: the map goes old
+    res = build_map(scans, odo, active_path=5.0)
+    lost = build_map(scans, odo, active_path=5.0, loop_closure=False)
+    assert res.loops and all(j < 40 < 150 <= k for j, k in res.loops)
+    assert pose_errors(res.poses, truth)[0] < 0.05
+    assert pose_errors(res.poses, truth)[0] < 0.5 * pose_errors(lost.poses, truth)[0]
+    assert np.hypot(*(res.poses[-1, :2] - truth[-1, :2])) < 0.03
+    assert np.median(map_errors(res.segments, room.walls)) < 0.015
+
+
+def test_intel_log_whole_run_beats_odometry_tenfold():
+    log = read_carmen_log(data_path("carmen", "intel-corrected.log.gz"))
+    truth = log.poses
+    odo = simulate_odometry(truth, np.random.default_rng(1))
+    res = build_map(log.scans, odo, max_range=8.0)
+    odo_pos, odo_head = pose_errors(odo, truth)
+    pos, head = pose_errors(res.poses, truth)
+    assert odo_pos / pos >= 10.0 and odo_head / head >= 10.0
+    assert len(res.loops) >= 10
+    cloud = scans_to_world(log.scans, truth, max_range=8.0, step=3)  # the log's points at the true poses
+    err = map_point_errors(res.segments, cloud)
+    assert np.median(err) < 0.10 and np.mean(err < 0.25) > 0.8
 
 
 def test_pose_and_map_errors_closed_form():
@@ -188,7 +370,6 @@ def test_build_map_rejects_bad_input():
 # ---------------------------------------------------------------- the conformal version (3.13-3.21)
 
 from cga_lessons import conformal as cga  # noqa: E402
-from cga_lessons.laser import compose  # noqa: E402
 from cga_lessons.mapping2d_conformal import (  # noqa: E402
     ConformalGeometry,
     c2e,
@@ -293,6 +474,17 @@ def test_conformal_geometry_equals_plain_geometry():
     assert np.allclose(P.centre_line_distance(G, L), C.centre_line_distance(G, L))
     assert np.allclose(P.moment_difference(G, L, c), C.moment_difference(G, L, c))
     assert np.isclose(P.distance([1.0, 2.0], [4.0, 6.0]), C.distance([1.0, 2.0], [4.0, 6.0]))
+    A, B = G.take([0, 1, 2, 3, 0]), L.take([0, 1, 2, 3, 3])
+    for margin in (0.0, 0.3):
+        assert np.array_equal(P.overlap_rows(A, B, margin), C.overlap_rows(A, B, margin))
+        assert np.array_equal(P.overlap_rows(A, B, margin), np.diag(P.overlap(A, B, margin)))
+    assert np.allclose(P.centre_line_distance_rows(A, B), C.centre_line_distance_rows(A, B))
+    assert np.allclose(P.centre_line_distance_rows(A, B), np.diag(P.centre_line_distance(A, B)))
+    poses, mount = rng.uniform(-3, 3, (len(A), 3)), np.array([0.2, -0.1, 0.3])
+    a, b = P.to_global_rows(A, poses, mount), C.to_global_rows(A, poses, mount)
+    assert np.allclose(a.start, b.start) and np.allclose(a.end, b.end) and np.allclose(a.sums, b.sums)
+    one = P.to_global(A.take([2]), poses[2], mount)  # row by row: the rigid motion (3.4) of each pose
+    assert np.allclose(one.start, a.start[2]) and np.allclose(one.sums, a.sums[2])
 
 
 def test_fuse_ends_3_20_3_21():

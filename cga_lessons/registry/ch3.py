@@ -4,6 +4,8 @@ from cga_lessons.equations import Entry
 
 L = "cga_lessons.lines"
 M = "cga_lessons.mapping2d"
+G = "cga_lessons.mapping2d_geometry"
+K = "cga_lessons.mapping2d_corrections"
 C = "cga_lessons.mapping2d_conformal"
 TL = "tests/test_lines.py"
 TM = "tests/test_mapping2d.py"
@@ -34,8 +36,15 @@ ENTRIES = [
         label="3.4",
         title="v' = R(theta_o) v + T_o",
         status="numeric",
-        implementation=f"cga_lessons.laser.compose, {L}.Segment.transformed, {M}.PlainGeometry.transform",
-        test=f"{TM}::test_transform_is_the_rigid_motion_3_4, {TL}::test_segment_transformed_is_the_motion_of_its_points_3_4",
+        implementation=(
+            f"cga_lessons.laser.compose, {L}.Segment.transformed, {G}.PlainGeometry.transform, "
+            f"{G}.PlainGeometry.to_global_rows"
+        ),
+        test=(
+            f"{TM}::test_transform_is_the_rigid_motion_3_4, "
+            f"{TL}::test_segment_transformed_is_the_motion_of_its_points_3_4, "
+            f"{TM}::test_refit_moves_the_map_with_the_poses"
+        ),
     ),
     Entry(
         label="3.5",
@@ -51,50 +60,56 @@ ENTRIES = [
         label="3.6",
         title="theta = theta_o + theta_corr",
         status="numeric",
-        implementation=f"{M}.build_map",
-        test=f"{TM}::test_build_map_noise_free_recovers_truth_and_walls, {TM}::test_build_map_office_meets_the_targets",
+        implementation=f"{M}.build_map, cga_lessons.mapping2d_builder.MapBuilder.correct",
+        test=(
+            f"{TM}::test_build_map_noise_free_recovers_truth_and_walls, {TM}::test_build_map_office_meets_the_targets, "
+            f"{TM}::test_correct_recovers_a_known_pose_and_gates_a_wrong_pair"
+        ),
     ),
     Entry(
         label="3.7",
         title="T = T_o + T_corr",
         status="numeric",
-        implementation=f"{M}.build_map",
-        test=f"{TM}::test_build_map_noise_free_recovers_truth_and_walls, {TM}::test_build_map_office_meets_the_targets",
+        implementation=f"{M}.build_map, cga_lessons.mapping2d_builder.MapBuilder.correct",
+        test=(
+            f"{TM}::test_build_map_noise_free_recovers_truth_and_walls, {TM}::test_build_map_office_meets_the_targets, "
+            f"{TM}::test_correct_recovers_a_known_pose_and_gates_a_wrong_pair"
+        ),
     ),
     Entry(
         label="3.8",
         title="theta_corr = mean of diffTheta over the correspondences",
         status="numeric",
-        implementation=f"{M}.theta_correction",
-        test=f"{TM}::test_theta_correction_3_8_is_the_mean",
+        implementation=f"{K}.theta_correction, {K}.pose_correction",
+        test=f"{TM}::test_theta_correction_3_8_is_the_mean, {TM}::test_pose_correction_is_3_8_and_3_12_solved_together",
     ),
     Entry(
         label="3.9",
         title="T_corr from one correspondence (closest points)",
         status="numeric",
-        implementation=f"{M}.translation_correction",
+        implementation=f"{K}.translation_correction",
         test=f"{TM}::test_translation_correction_3_9_to_3_12",
     ),
     Entry(
         label="3.10",
         title="l_G = l_L' + t_x cos(theta) + t_y sin(theta)",
         status="numeric",
-        implementation=f"{M}.translation_correction",
+        implementation=f"{K}.translation_correction",
         test=f"{TM}::test_translation_correction_3_9_to_3_12",
     ),
     Entry(
         label="3.11",
         title="rho_G - ((p_L'c + t) . n) = 0",
         status="numeric",
-        implementation=f"{M}.translation_correction",
-        test=f"{TM}::test_translation_correction_3_9_to_3_12",
+        implementation=f"{K}.translation_correction, {K}.pose_correction",
+        test=f"{TM}::test_translation_correction_3_9_to_3_12, {TM}::test_pose_correction_is_3_8_and_3_12_solved_together",
     ),
     Entry(
         label="3.12",
         title="least squares sum (rho_G - rho_T)^2",
         status="numeric",
-        implementation=f"{M}.translation_correction",
-        test=f"{TM}::test_translation_correction_3_9_to_3_12",
+        implementation=f"{K}.translation_correction, {K}.pose_correction",
+        test=f"{TM}::test_translation_correction_3_9_to_3_12, {TM}::test_pose_correction_is_3_8_and_3_12_solved_together",
     ),
     Entry(
         label="3.13",
@@ -140,28 +155,30 @@ ENTRIES = [
         label="3.18",
         title="x' = M_laser x ~M_laser",
         status="numeric",
-        implementation=f"{C}.ConformalGeometry.to_global",
-        test=f"{TM}::test_laser_motor_3_16_3_18",
+        implementation=f"{C}.ConformalGeometry.to_global, {C}.ConformalGeometry.to_global_rows",
+        test=f"{TM}::test_laser_motor_3_16_3_18, {TM}::test_conformal_geometry_equals_plain_geometry",
     ),
     Entry(
         label="3.19",
         title="correspondence matrix M_c from the sphere cases 1-5",
         status="numeric",
-        implementation=f"{C}.sphere_case, {C}.ConformalGeometry.overlap, {M}.correspondences",
+        implementation=(
+            f"{C}.sphere_case, {C}.ConformalGeometry.overlap, {C}.ConformalGeometry.overlap_rows, {G}.correspondences"
+        ),
         test=f"{TM}::test_sphere_cases_3_19, {TM}::test_plain_and_conformal_build_the_same_map",
     ),
     Entry(
         label="3.20",
         title="p_e1 = p_1 (same sense) or p_2 (opposite)",
         status="numeric",
-        implementation=f"{C}.ConformalGeometry.fuse_ends, {M}.PlainGeometry.fuse_ends",
+        implementation=f"{C}.ConformalGeometry.fuse_ends, {G}.PlainGeometry.fuse_ends",
         test=f"{TM}::test_fuse_ends_3_20_3_21",
     ),
     Entry(
         label="3.21",
         title="p_e2 = p_2 (same sense) or p_1 (opposite)",
         status="numeric",
-        implementation=f"{C}.ConformalGeometry.fuse_ends, {M}.PlainGeometry.fuse_ends",
+        implementation=f"{C}.ConformalGeometry.fuse_ends, {G}.PlainGeometry.fuse_ends",
         test=f"{TM}::test_fuse_ends_3_20_3_21",
     ),
 ]

@@ -18,6 +18,7 @@ __all__ = [
     "draw_correspondences",
     "draw_point_pair_spheres",
     "map_figure",
+    "log_map_figure",
 ]
 
 
@@ -145,3 +146,44 @@ def map_figure(segments, walls=None, truth=None, odometry=None, corrected=None, 
         draw_trajectory(corrected, ax=ax, color="tab:green", label="corrected", ls="--")
     ax.legend(loc="upper right", fontsize=8)
     return ax
+
+
+def log_map_figure(segments, cloud, truth, corrected, odometry=None, loops=(), figsize=(13, 6.2), dpi=80):
+    """A real log's map next to its truth: left the log's points at the true poses and the true trajectory,
+    right the line map over the same points (faint) with the corrected trajectory and the closed loops.
+
+    Parameters
+    ----------
+    segments : list of Segment
+    cloud : ndarray, shape (k, 2)
+        The log's points placed with the true poses.
+    truth, corrected : ndarray, shape (T, 3)
+    odometry : ndarray, shape (T, 3), optional
+    loops : sequence of (int, int)
+        Revisits (earlier scan, scan), drawn as thin links between the corrected poses.
+
+    Returns
+    -------
+    (Figure, ndarray of Axes)
+    """
+    fig, axs = plt.subplots(1, 2, figsize=figsize, dpi=dpi)
+    new_axes(ax=axs[0], title="the log's points at the true poses")
+    axs[0].scatter(*np.asarray(cloud).T, s=0.3, color="0.45")
+    draw_trajectory(truth, ax=axs[0], color="k", lw=0.6, label="truth")
+    new_axes(ax=axs[1], title="line map and corrected trajectory (truth points faint)")
+    axs[1].scatter(*np.asarray(cloud).T, s=0.3, color="0.85")
+    draw_segments(segments, ax=axs[1], lw=1.0, ends=False, label="map")
+    if odometry is not None:
+        draw_trajectory(odometry, ax=axs[1], color="tab:orange", ls=":", lw=0.8, label="odometry")
+    draw_trajectory(corrected, ax=axs[1], color="tab:green", lw=0.6, label="corrected")
+    c = np.asarray(corrected)
+    for j, k in loops:
+        axs[1].plot(c[[j, k], 0], c[[j, k], 1], color="tab:purple", lw=0.8)
+    if len(loops):
+        axs[1].plot([], [], color="tab:purple", lw=0.8, label="loop closed")
+    for ax in axs:
+        ax.set_xlim(axs[0].get_xlim())
+        ax.set_ylim(axs[0].get_ylim())
+    axs[1].legend(loc="lower left", fontsize=8)
+    fig.tight_layout()
+    return fig, axs

@@ -1,0 +1,73 @@
+"""Errors of a trajectory and of a line map against the truth (for chapter 3's result tables)."""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from .algebra import InvalidInputError
+from .laser import wrap_angle
+
+__all__ = ["pose_errors", "map_errors", "map_point_errors"]
+
+
+def pose_errors(poses, truth):
+    """Root-mean-square position (m) and heading (radians) error of a trajectory.
+
+    Parameters
+    ----------
+    poses, truth : array_like, shape (T, 3)
+
+    Returns
+    -------
+    (float, float)
+    """
+    p, t = np.asarray(poses, float), np.asarray(truth, float)
+    if p.shape != t.shape or p.ndim != 2 or p.shape[1] != 3:
+        raise InvalidInputError(f"pose_errors: shapes {p.shape} and {t.shape} must be equal (T, 3)")
+    pos = np.sqrt(np.mean(np.sum((p[:, :2] - t[:, :2]) ** 2, axis=1)))
+    head = np.sqrt(np.mean(wrap_angle(p[:, 2] - t[:, 2]) ** 2))
+    return float(pos), float(head)
+
+
+def map_errors(segments, walls):
+    """Distance (m) of every segment end point to the nearest true wall.
+
+    Parameters
+    ----------
+    segments : list of Segment
+    walls : array_like, shape (W, 2, 2)
+
+    Returns
+    -------
+    ndarray, shape (2 * len(segments),)
+    """
+    walls = np.asarray(walls, float).reshape(-1, 2, 2)
+    if not segments:
+        return np.zeros(0)
+    pts = np.array([p for s in segments for p in (s.start, s.end)])
+    a, v = walls[:, 0], walls[:, 1] - walls[:, 0]
+    rel = pts[:, None, :] - a[None]
+    t = np.clip(np.einsum("pwi,wi->pw", rel, v) / np.maximum(np.einsum("wi,wi->w", v, v), 1e-300), 0, 1)
+    d = np.hypot(*(rel - t[..., None] * v[None]).transpose(2, 0, 1))
+    return d.min(axis=1)
+
+
+def map_point_errors(segments, points):
+    """Distance (m) of every segment end point to the nearest reference point (e.g. a log's scans at the true poses).
+
+    Parameters
+    ----------
+    segments : list of Segment
+    points : array_like, shape (k, 2)
+
+    Returns
+    -------
+    ndarray, shape (2 * len(segments),)
+    """
+    ref = np.asarray(points, float).reshape(-1, 2)
+    if not segments or len(ref) == 0:
+        return np.zeros(0)
+    ends = np.array([p for s in segments for p in (s.start, s.end)])
+    d, _ = cKDTree(ref).query(ends)
+    return d
