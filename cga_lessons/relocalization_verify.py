@@ -1,0 +1,322 @@
+"""Checking and refining a relocalization hypothesis against the whole scan.
+
+* :func:`score_poses`: returning beams whose points lie on the map count for a
+  pose, beams that would have to pass through a map wall count against it,
+  beams without return included (they must not cross a wall within the
+  laser's range);
+* :func:`match_lines`: the scan lines that lie on map lines at a pose (the
+  correspondences of the answer);
+* :func:`refine_pose_points`: a few Gauss-Newton steps on the distances of
+  the scan's points to the walls their beams meet first (projective
+  association: a point is pulled to the near face of a thin wall);
+* the steps of :func:`cga_lessons.relocalization.relocalize` after the
+  hypotheses: :func:`screen_hypotheses`, :func:`verify_hypotheses` (refined,
+  checked, and moved along the least constrained direction while the score
+  improves: beams through doors and past wall ends can fix a position the
+  points on parallel walls leave open) and :func:`decide` (ok, ambiguous or
+  failed).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .laser import wrap_angle
+from .relocalization_geometry import MapLines, Observation, ScanLines, first_hits, pose_error, rotation_matrix
+from .relocalization_search import overlap_fraction
+
+__all__ = [
+    "Candidate",
+    "distinct",
+    "screen_hypotheses",
+    "verify_hypotheses",
+    "decide",
+    "score_poses",
+    "score_pose",
+    "match_lines",
+    "refine_pose_points",
+    "pose_information",
+    "pose_covariance",
+]
+
+
+def score_poses(M: MapLines, obs: Observation, poses, inlier_distance: float, ray_margin: float, step: int = 1):
+    """Check poses against the whole scan, beam by beam (one ray cast per beam and pose).
+
+    A returned beam is an *inlier* when the first map wall along it lies within
+    ``inlier_distance`` of its point (measured perpendicular to that wall).  A
+    beam is a *violation* when the map says it could not have been seen: it
+    meets a map wall more than ``ray_margin`` before its point or, for a beam
+    without return, before ``max_range - ray_margin`` (it must not cross a wall
+    within range).  Beams that end in front of the map's walls (an object the
+    map does not hold) count neither way.
+
+    Parameters
+    ----------
+    poses : array_like, shape (C, 3)
+    step : int
+        Use every ``step``-th returned beam and every ``step``-th beam without
+        return (a quick screening).
+
+    Returns
+    -------
+    score : ndarray, shape (C,)
+        ``(inliers - violations) / returned beams`` (at most 1; ``-inf`` with no returned beam).
+    inliers, violations : ndarray of int, shape (C,)
+    """
+    poses = np.asarray(poses, float).reshape(-1, 3)
+    pts, rng, nr = obs.points, obs.ranges, obs.no_return
+    if step > 1:
+        pts, rng, nr = pts[::step], rng[::step], nr[::step]
+    n = len(pts)
+    if n == 0:
+        z = np.zeros(len(poses), int)
+        return np.full(len(poses), -np.inf), z, z
+    dirs = np.concatenate([pts / rng[:, None], nr])
+    limit = np.concatenate([rng - ray_margin, np.full(len(nr), obs.max_range - ray_margin)])
+    reach = (obs.max_range if np.isfinite(obs.max_range) else float(rng.max())) + 1.0
+    s_hit, seg = first_hits(M, poses, dirs, reach)
+    vio = np.sum(s_hit < limit[None], axis=1)
+    th = poses[:, 2][:, None]
+    c, s = np.cos(th), np.sin(th)
+    ux = c * dirs[None, :n, 0] - s * dirs[None, :n, 1]
+    uy = s * dirs[None, :n, 0] + c * dirs[None, :n, 1]
+    nrm = M.normal[seg[:, :n]]
+    cos_inc = np.abs(nrm[..., 0] * ux + nrm[..., 1] * uy)
+    with np.errstate(invalid="ignore"):
+        perp = np.abs(s_hit[:, :n] - rng[None]) * cos_inc
+    inl = np.sum(np.isfinite(s_hit[:, :n]) & (perp < inlier_distance), axis=1)
+    return (inl - vio) / n, inl, vio
+
+
+def score_pose(M: MapLines, obs: Observation, pose, inlier_distance: float, ray_margin: float):
+    """:func:`score_poses` for one pose: ``(score, inliers, violations)``."""
+    sc, inl, vio = score_poses(M, obs, np.asarray(pose, float)[None], inlier_distance, ray_margin)
+    return float(sc[0]), int(inl[0]), int(vio[0])
+
+
+def match_lines(M: MapLines, S: ScanLines, pose, distance: float, parallel_tol: float, overlap_margin, min_overlap):
+    """Scan lines matched to map lines at ``pose``: parallel, midpoint close, lying on the map segment.
+
+    Returns
+    -------
+    ndarray of int, shape (k, 2)
+        Rows ``(map index, scan index)``; each scan line gets its nearest match.
+    """
+    if len(S) == 0:
+        return np.zeros((0, 2), int)
+    R = rotation_matrix(pose[2])
+    ends = S.segments @ R.T + np.asarray(pose[:2])
+    mid = S.midpoint @ R.T + np.asarray(pose[:2])
+    ang = np.mod(S.angle + pose[2], np.pi)
+    par = np.abs(wrap_angle(2 * (M.angle[None, :] - ang[:, None])) / 2) < parallel_tol  # (L, M)
+    dist = np.abs(mid @ M.normal.T - M.offset[None, :])  # (L, M)
+    mi = np.broadcast_to(np.arange(len(M))[None, :], par.shape)
+    frac = overlap_fraction(
+        M, mi, np.broadcast_to(ends[:, None], (len(S), len(M), 2, 2)), S.length[:, None], overlap_margin
+    )
+    cost = np.where(par & (dist < distance) & (frac >= min_overlap), dist, np.inf)
+    best = np.argmin(cost, axis=1)
+    ok = np.isfinite(cost[np.arange(len(S)), best])
+    return np.column_stack([best[ok], np.flatnonzero(ok)]).astype(int)
+
+
+def refine_pose_points(M: MapLines, obs: Observation, poses, gates=(0.3, 0.15, 0.08, 0.05), damping: float = 1e-3):
+    """Gauss-Newton steps on the scan's points against the walls their beams meet first, for many poses.
+
+    Each returned point ``q = R(theta) p + t`` is paired with the map wall its
+    beam meets first at the current pose (projective association: a point
+    behind the near face of a thin wall is pulled to the near face, not the
+    far one), and ``(x, y, theta)`` moves to reduce the squared distances
+    ``(n_w . q - c_w)^2`` of the points within ``gate`` of their wall; one
+    step per gate.  The normal equations are damped by ``damping`` times their
+    diagonal, so a direction no point constrains (a corridor without ends in
+    view) stays where it is.
+
+    Parameters
+    ----------
+    poses : array_like, shape (C, 3)
+    gates : sequence of float
+        Association distances (m), one Gauss-Newton step each.
+
+    Returns
+    -------
+    ndarray, shape (C, 3)
+    """
+    poses = np.array(poses, float).reshape(-1, 3)
+    p = obs.points
+    if len(p) < 3 or len(M) == 0:
+        return poses
+    dirs = p / obs.ranges[:, None]
+    reach = (obs.max_range if np.isfinite(obs.max_range) else float(obs.ranges.max())) + 1.0
+    for gate in gates:
+        s_hit, seg = first_hits(M, poses, dirs, reach)
+        c, s = np.cos(poses[:, 2])[:, None], np.sin(poses[:, 2])[:, None]
+        rx = c * p[None, :, 0] - s * p[None, :, 1]  # R p, (C, n)
+        ry = s * p[None, :, 0] + c * p[None, :, 1]
+        nx, ny = M.normal[seg, 0], M.normal[seg, 1]
+        e = nx * (rx + poses[:, 0:1]) + ny * (ry + poses[:, 1:2]) - M.offset[seg]
+        w = (np.isfinite(s_hit) & (np.abs(e) < gate)).astype(float)
+        J = np.stack([nx, ny, ny * rx - nx * ry], axis=-1) * w[..., None]  # d e / d (x, y, theta)
+        H = np.einsum("cni,cnj->cij", J, J)
+        g = np.einsum("cni,cn->ci", J, e)
+        H = H + damping * np.einsum("cii->ci", H)[:, :, None] * np.eye(3) + 1e-9 * np.eye(3)
+        enough = w.sum(axis=1) >= 3
+        if not enough.any():
+            break
+        step = np.zeros_like(poses)
+        step[enough] = -np.linalg.solve(H[enough], g[enough][..., None])[..., 0]
+        poses = poses + step
+        poses[:, 2] = wrap_angle(poses[:, 2])
+    return poses
+
+
+def pose_information(M: MapLines, obs: Observation, pose, gate: float = 0.05):
+    """What the scan's points say about a pose: the information matrix ``J^T J`` (3, 3) and the residual variance.
+
+    ``J`` holds the rows of :func:`refine_pose_points` (derivatives of each
+    point's distance to the wall its beam meets first, by ``x, y, theta``) for
+    the points within ``gate`` of their wall; ``sigma^2`` is their mean
+    squared distance (``inf`` with fewer than four such points).
+    """
+    pose = np.asarray(pose, float).reshape(3)
+    p = obs.points
+    if len(p) < 4 or len(M) == 0:
+        return np.zeros((3, 3)), np.inf
+    dirs = p / obs.ranges[:, None]
+    reach = (obs.max_range if np.isfinite(obs.max_range) else float(obs.ranges.max())) + 1.0
+    s_hit, seg = first_hits(M, pose[None], dirs, reach)
+    s_hit, seg = s_hit[0], seg[0]
+    r = p @ rotation_matrix(pose[2]).T
+    n = M.normal[seg]
+    e = np.einsum("ij,ij->i", n, r + pose[:2]) - M.offset[seg]
+    ok = np.isfinite(s_hit) & (np.abs(e) < gate)
+    if ok.sum() < 4:
+        return np.zeros((3, 3)), np.inf
+    J = np.column_stack([n[ok, 0], n[ok, 1], n[ok, 1] * r[ok, 0] - n[ok, 0] * r[ok, 1]])
+    return J.T @ J, float(np.sum(e[ok] ** 2) / (ok.sum() - 3))
+
+
+def pose_covariance(M: MapLines, obs: Observation, pose, gate: float = 0.05) -> np.ndarray:
+    """Covariance of a pose from the scan's points, ``sigma^2 (J^T J)^-1`` (see :func:`pose_information`), (3, 3).
+
+    A direction that no point constrains (along a corridor whose ends are out
+    of sight) gets an infinite variance.
+    """
+    H, sigma2 = pose_information(M, obs, pose, gate)
+    vals, vecs = np.linalg.eigh(H)
+    tiny = vals <= 1e-9 * max(vals[-1], 1e-300)
+    if not np.isfinite(sigma2) or tiny.all():
+        return np.full((3, 3), np.inf)
+    cov = sigma2 * (vecs[:, ~tiny] / vals[~tiny]) @ vecs[:, ~tiny].T
+    for k in np.flatnonzero(tiny):
+        cov = np.where(np.abs(np.outer(vecs[:, k], vecs[:, k])) > 1e-12, np.inf, cov)
+    return cov
+
+
+# --------------------------------------------------------------------------- the steps of relocalize
+
+
+@dataclass
+class Candidate:
+    """One verified pose: ``pose`` (3,), its ``score`` and the ``inliers`` and ``violations`` behind it."""
+
+    pose: np.ndarray
+    score: float
+    inliers: int
+    violations: int
+
+
+def distinct(p, q, params) -> bool:
+    """Are two poses clearly different (further apart than ``params.distinct_position`` or turned more than
+    ``params.distinct_heading``)?"""
+    dp, dh = pose_error(p, q)
+    return dp > params.distinct_position or dh > params.distinct_heading
+
+
+def screen_hypotheses(M, obs, poses, quick, params):
+    """The hypotheses near the best quick score, one per small cell of pose space, checked on a subset of
+    the beams; the best of each group of poses that are not clearly different goes on: all those within
+    90 % of the best screening score (up to ``4 n_verify``), at least ``n_verify``."""
+    chosen = np.zeros((0, 3))
+    if not len(poses):
+        return chosen
+    keep = np.flatnonzero(quick >= params.quick_ratio * quick.max())
+    keep = keep[np.argsort(-quick[keep], kind="stable")]
+    cells = np.column_stack([np.round(poses[keep, :2] / 0.03), np.round(poses[keep, 2] / np.radians(0.5))])
+    _, first = np.unique(cells.astype(np.int64), axis=0, return_index=True)
+    keep = keep[np.sort(first)][: params.n_screen]
+    step = max(1, len(obs.points) // params.screen_beams)
+    # twice the tolerances: a hypothesis is only as good as its voted rotation until it is refined
+    sc, _, _ = score_poses(M, obs, poses[keep], 2 * params.inlier_distance, 2 * params.ray_margin, step)
+    order = np.argsort(-sc, kind="stable")
+    for k, score in zip(keep[order], sc[order]):
+        # every clearly different pose near the best screening score goes on (twins must not be missed),
+        # then the next best up to n_verify
+        if len(chosen) >= params.n_verify and (score < 0.9 * sc.max() or len(chosen) >= 4 * params.n_verify):
+            break
+        if all(distinct(poses[k], c, params) for c in chosen):
+            chosen = np.vstack([chosen, poses[k]])
+    return chosen
+
+
+def verify_hypotheses(M, obs, chosen, params):
+    """Every chosen pose refined on the scan's points, then checked against the whole scan; the refined
+    pose is kept where it scores at least as well as the unrefined one."""
+    sc, inl, vio = score_poses(M, obs, chosen, params.inlier_distance, params.ray_margin)
+    refined = refine_pose_points(M, obs, chosen)
+    sc2, inl2, vio2 = score_poses(M, obs, refined, params.inlier_distance, params.ray_margin)
+    better = sc2 >= sc
+    chosen = np.where(better[:, None], refined, chosen)
+    sc, inl, vio = np.where(better, sc2, sc), np.where(better, inl2, inl), np.where(better, vio2, vio)
+    # the contenders: a few steps along the direction the points leave weakest (a corridor), where beams
+    # through doors and past wall ends may still decide
+    for k in np.flatnonzero(sc >= 0.9 * sc.max()) if np.isfinite(sc.max()) else []:
+        H, _ = pose_information(M, obs, chosen[k], params.inlier_distance)
+        weak = np.linalg.eigh(H[:2, :2])[1][:, 0]
+        coarse, rounds = True, 0
+        while rounds < 5:
+            steps = [-0.2, -0.1, -0.05, 0.05, 0.1, 0.2] if coarse else [-0.02, 0.02]
+            trial = chosen[k] + np.column_stack([np.outer(steps, weak), np.zeros(len(steps))])
+            s3, i3, v3 = score_poses(M, obs, trial, params.inlier_distance, params.ray_margin)
+            j = int(np.argmax(s3))
+            if s3[j] > sc[k]:
+                chosen[k], sc[k], inl[k], vio[k] = trial[j], s3[j], i3[j], v3[j]
+            elif not coarse:
+                break
+            else:
+                coarse = False  # no better coarse step: one fine step more
+            rounds += 1
+    ranked = []
+    for k in np.argsort(-sc, kind="stable"):
+        if all(distinct(chosen[k], r.pose, params) for r in ranked):
+            ranked.append(Candidate(chosen[k], float(sc[k]), int(inl[k]), int(vio[k])))
+    return ranked
+
+
+def decide(M, obs, ranked, params):
+    """``(status, message)``: failed below ``min_score``; ambiguous when a clearly different candidate, or the
+    best moved by ``distinct_position`` along its least constrained direction (or turned by
+    ``distinct_heading``), scores at least ``ambiguity_ratio`` of the best."""
+    best = ranked[0]
+    if best.score < params.min_score:
+        return "failed", f"best score {best.score:.3f} below min_score {params.min_score}"
+    rivals = [c for c in ranked[1:] if c.score >= params.ambiguity_ratio * best.score]
+    if rivals:
+        return "ambiguous", f"{len(rivals)} clearly different pose(s) score >= {params.ambiguity_ratio:.0%} of the best"
+    H, _ = pose_information(M, obs, best.pose, params.inlier_distance)
+    weak = np.linalg.eigh(H[:2, :2])[1][:, 0]
+    d, a = params.distinct_position * 1.01, params.distinct_heading * 1.01
+    probes = best.pose + np.array([[*(d * weak), 0.0], [*(-d * weak), 0.0], [0.0, 0.0, a], [0.0, 0.0, -a]])
+    sc, inl, vio = score_poses(M, obs, probes, params.inlier_distance, params.ray_margin)
+    if np.any(sc >= params.ambiguity_ratio * best.score):
+        k = int(np.argmax(sc))
+        ranked.insert(1, Candidate(probes[k], float(sc[k]), int(inl[k]), int(vio[k])))  # the evidence
+        return "ambiguous", (
+            f"the pose moved by {params.distinct_position} m along ({weak[0]:.2f}, {weak[1]:.2f}) or turned by "
+            f"{np.degrees(params.distinct_heading):.1f} deg scores >= {params.ambiguity_ratio:.0%} of it: "
+            "the scan does not fix it"
+        )
+    return "ok", ""

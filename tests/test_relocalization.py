@@ -1,0 +1,368 @@
+"""Tests of the relocalization (thesis chapter 5, Eqs. 5.1-5.6).
+
+Truths used: the segment members of chapter 3 (lines.Segment.rho/theta), lines
+moved by explicit rotation matrices, votes counted by hand, the simulator's
+ground-truth poses, the simulator's own ray casting, and mapping2d's least
+squares (3.12).
+"""
+
+import numpy as np
+import pytest
+
+from cga_lessons import data_path
+from cga_lessons.algebra import InvalidInputError
+from cga_lessons.laser import Scene, compose, load_scene, read_carmen_log, simulate_scan, wrap_angle
+from cga_lessons.lines import Segment, diff_theta, extract_segments
+from cga_lessons.relocalization import ReferenceMap, prepare_map, relocalize
+from cga_lessons.relocalization_eval import evaluate_log, evaluate_poses, random_free_poses
+from cga_lessons.relocalization_geometry import MapLines, Observation, ScanLines, first_hits, pose_error
+from cga_lessons.relocalization_hough import (
+    THETA_XI,
+    hough_comparison,
+    hough_differences,
+    hough_set,
+    shifted_set,
+    shifted_set_corrected,
+    vote_matrix,
+    vote_matrix_indexed,
+)
+from cga_lessons.relocalization_search import pose_hypotheses, propose_rotations
+from cga_lessons.relocalization_thesis import (
+    correspondences_from_votes,
+    mean_angle,
+    rotate_entities,
+    thesis_relocalization,
+    translate_entities,
+    translation_from_lines,
+)
+from cga_lessons.relocalization_verify import refine_pose_points, score_pose
+
+
+def _rot(t):
+    return np.array([[np.cos(t), -np.sin(t)], [np.sin(t), np.cos(t)]])
+
+
+def _move(segs, pose):
+    """Segments (K, 2, 2) moved by the rigid motion x -> R x + t (the truth for the thesis's steps)."""
+    return np.asarray(segs) @ _rot(pose[2]).T + np.asarray(pose[:2])
+
+
+def _to_laser(segs, pose):
+    """Map segments seen from a laser at ``pose``: the inverse motion."""
+    return (np.asarray(segs) - np.asarray(pose[:2])) @ _rot(pose[2])
+
+
+def _wall_polygons(outline, thickness=0.1):
+    """Thin wall polygons along a closed outline (k, 2)."""
+    out = []
+    for a, b in zip(outline, np.roll(outline, -1, axis=0)):
+        d = (b - a) / np.hypot(*(b - a))
+        n = np.array([-d[1], d[0]]) * thickness / 2
+        a2, b2 = a - d * thickness / 2, b + d * thickness / 2
+        out.append(np.array([a2 - n, b2 - n, b2 + n, a2 + n]))
+    return out
+
+
+@pytest.fixture(scope="module")
+def hall():
+    """An irregular hall of orthogonal walls with three boxes (no symmetry)."""
+    outline = np.array(
+        [[0, 0], [7, 0], [7, 2], [9.5, 2], [9.5, 6], [6, 6], [6, 8.5], [2.5, 8.5], [2.5, 5], [0, 5]], float
+    )
+    boxes = [
+        np.array([[1.5, 1.2], [2.7, 1.2], [2.7, 1.8], [1.5, 1.8]]),
+        np.array([[7.5, 4.0], [8.2, 4.0], [8.2, 5.2], [7.5, 5.2]]),
+        np.array([[3.6, 6.8], [4.4, 6.8], [4.4, 7.3], [3.6, 7.3]]),
+    ]
+    return Scene("hall", _wall_polygons(outline) + boxes, np.zeros((1, 3)))
+
+
+# ---------------------------------------------------------------- figure 5.1 and Eqs. 5.1-5.5
+
+
+def test_hough_set_is_the_segment_members_fig_5_1():
+    rng = np.random.default_rng(0)
+    segs = rng.uniform(-5, 5, size=(40, 2, 2))
+    H = hough_set(segs)
+    ref = np.array([[Segment(a, b).rho, Segment(a, b).theta] for a, b in segs])
+    assert np.allclose(H, ref, atol=1e-12)
+    assert np.all(H[:, 0] >= 0) and np.all((H[:, 1] >= 0) & (H[:, 1] < 2 * np.pi))
+    # section 5.1: a rotation about the laser moves every point along theta only, cyclically
+    turned = hough_set(_move(segs, (0.0, 0.0, 1.0)))
+    assert np.allclose(turned[:, 0], H[:, 0])
+    assert np.allclose(np.mod(turned[:, 1] - H[:, 1], 2 * np.pi), 1.0)
+
+
+def test_hough_differences_5_1_to_5_3():
+    m = np.array([3.0, 0.2])
+    L_h = np.array([[1.0, 0.1], [2.5, 6.25], [0.5, 3.0]])
+    phi = hough_differences(m, L_h)
+    assert phi.shape == (3, 2)
+    assert np.allclose(phi[:, 0], [2.0, 0.5, 2.5])  # (5.2)
+    assert np.allclose(phi[:, 1], [diff_theta(0.2, t, THETA_XI) for t in L_h[:, 1]])  # (5.1)
+    assert np.isclose(phi[0, 1], 0.1) and np.isclose(phi[2, 1], 0.2 - 3.0)
+
+
+def test_shifted_set_and_comparison_5_4_5_5():
+    L_h = np.array([[1.0, 0.1], [2.0, 6.2]])
+    phi = np.array([[0.5, 0.3], [-0.2, 0.2]])
+    psi = shifted_set(L_h, phi)
+    assert psi.shape == (2, 2, 2)
+    assert np.allclose(psi[0, 1], [2.5, np.mod(6.5, 2 * np.pi)])  # theta wraps to [0, 2 pi)
+    assert np.allclose(psi[1, 0], [0.8, 0.3])
+    M_h = np.array([[2.5, 0.2], [0.8, 0.31]])
+    xi = hough_comparison(M_h, psi)
+    assert xi.shape == (2, 2, 2, 2)
+    assert np.allclose(xi[1, 0, 1], [0.0, 0.01])
+    assert np.allclose(xi[0, 1, 0], [0.0, diff_theta(0.2, np.mod(6.5, 2 * np.pi), THETA_XI)])
+
+
+def test_shifted_set_as_printed_fails_under_a_translation_erratum_5_4():
+    """(5.4) shifts every rho by the same Delta rho; a translation moves each by t . n(theta)."""
+    rng = np.random.default_rng(3)
+    scan = rng.uniform(-4, 4, size=(6, 2, 2))
+    pose = np.array([1.5, -0.7, 0.4])
+    truth = hough_set(_move(scan, pose))  # where the lines really are in the map
+    L_h = hough_set(scan)
+    # printed: shift all by the differences of the first (true) correspondence
+    phi = hough_differences(truth[0], L_h[:1])
+    printed = shifted_set(L_h, phi)[0]
+    corrected = shifted_set_corrected(L_h, pose[2], pose[:2])
+    assert np.allclose(corrected, truth, atol=1e-12)
+    assert np.allclose(printed[0], truth[0])  # the anchor itself lands...
+    assert np.max(np.abs(printed[1:, 0] - truth[1:, 0])) > 0.5  # ...the others do not
+    # a rotation alone (section 5.1) is where the printed shift holds
+    only_turn = shifted_set(L_h, hough_differences(hough_set(_move(scan[:1], (0, 0, 0.4)))[0], L_h[:1]))[0]
+    assert np.allclose(only_turn, hough_set(_move(scan, (0, 0, 0.4))), atol=1e-12)
+
+
+# ---------------------------------------------------------------- Eq. 5.6 and steps 6-10
+
+
+def test_vote_matrix_hand_built_5_6():
+    # two scan lines; the map holds them shifted by (0.5, 0.5) and one unrelated line
+    L_h = np.array([[1.0, 0.0], [2.0, np.pi / 2]])
+    M_h = np.array([[1.5, 0.5], [2.5, 0.5 + np.pi / 2], [4.0, 3.0]])
+    # counted by hand: V[i, j] = pairs (k, m) with l_k + (m_i - l_j) within the thresholds of m
+    expected = np.array([[2, 1], [1, 2], [1, 1]])
+    V = vote_matrix(M_h, L_h, xi_theta=0.05, xi_rho=0.1)
+    assert V.tolist() == expected.tolist()
+    assert vote_matrix_indexed(M_h, L_h, xi_theta=0.05, xi_rho=0.1).tolist() == expected.tolist()
+    assert correspondences_from_votes(V).tolist() == [0, 1, -1]  # step 6: column maxima
+
+
+def test_vote_matrix_indexed_equals_the_literal_loop():
+    rng = np.random.default_rng(11)
+    for _ in range(10):
+        M_h = np.column_stack([rng.uniform(0, 6, 40), rng.uniform(0, 2 * np.pi, 40)])
+        L_h = np.column_stack([rng.uniform(0, 6, 7), rng.uniform(0, 2 * np.pi, 7)])
+        for xr in (0.3, np.inf):
+            assert np.array_equal(vote_matrix(M_h, L_h, 0.1, xr), vote_matrix_indexed(M_h, L_h, 0.1, xr))
+
+
+def test_thesis_steps_6_to_10_find_a_rotation_about_the_laser():
+    """Steps 6-10 as printed recover a pure rotation about the map's origin (where 5.4 holds)."""
+    corners = np.array([[3, -1], [3.5, 2], [-1, 4], [-2.5, -1.5]], float)
+    walls = np.stack([corners, np.roll(corners, -1, axis=0)], axis=1)
+    pose = np.array([0.0, 0.0, 0.35])
+    scan = _to_laser(walls, pose)
+    out = thesis_relocalization(walls, scan, xi_theta=0.02, xi_rho=0.05)
+    assert out["C"].tolist() == [0, 1, 2, 3]
+    assert np.allclose(out["pose"], pose, atol=1e-9)
+    assert np.allclose(out["placed"], walls, atol=1e-9)  # rotor (2.96) and translator (2.100) on the point pairs
+    # step 7 alone, and step 9 reusing the least squares (3.12) of mapping2d
+    assert np.isclose(mean_angle(out["M_h"], out["L_h"], out["C"]), 0.35)
+    t = translation_from_lines(out["M_h"], hough_set(out["rotated"]), out["C"])
+    assert np.allclose(t, 0.0, atol=1e-9)
+
+
+def test_rotor_and_translator_steps_move_point_pairs_like_matrices():
+    rng = np.random.default_rng(5)
+    segs = rng.uniform(-3, 3, size=(5, 2, 2))
+    assert np.allclose(rotate_entities(segs, 0.7), _move(segs, (0, 0, 0.7)), atol=1e-12)
+    assert np.allclose(translate_entities(segs, [1.0, -2.0]), segs + [1.0, -2.0], atol=1e-12)
+    # far away (2.131) loses accuracy; the versor then moves the spanning points, still exact
+    far = translate_entities(segs, [3e4, 1e4])
+    assert np.allclose(far, segs + [3e4, 1e4], atol=1e-6)
+
+
+def test_thesis_method_fails_on_a_translated_pose(hall):
+    """Read literally the method does not find a pose that includes a translation (DESIGN.md)."""
+    pose = np.array([4.0, 3.0, 0.6])
+    r, a = simulate_scan(hall, pose)
+    res = relocalize(hall.walls, scan=(r, a))
+    assert res.status == "ok" and pose_error(res.pose, pose)[0] < 0.05
+    thesis = res.thesis_pose
+    assert thesis is None or pose_error(thesis, pose)[0] > 0.5
+    assert res.votes.shape == (len(hall.walls), len(res.scan_segments))
+
+
+# ---------------------------------------------------------------- the search
+
+
+def test_pose_hypotheses_include_the_exact_translation_3_12():
+    walls = np.array([[[0, 0], [6, 0]], [[6, 0], [6, 4]], [[6, 4], [0, 4]], [[0, 4], [0, 0]], [[2, 1], [3, 1.5]]])
+    pose = np.array([2.2, 2.9, -0.8])
+    r, a = simulate_scan(walls, pose)
+    L = np.array([[s.start, s.end] for s in extract_segments(r, a, max_range=5.0)])
+    M, S = MapLines(walls), ScanLines(L)
+    rots, _ = propose_rotations(M.angle, S.angle, S.length, np.radians(3))
+    assert np.min(np.abs(wrap_angle(rots - pose[2]))) < 1e-3
+    rot = rots[np.argmin(np.abs(wrap_angle(rots - pose[2])))]
+    kw = dict(n_anchor_pairs=4, min_anchor_angle=np.radians(30), overlap_margin=0.3, min_overlap=0.5)
+    poses, quick = pose_hypotheses(M, S, rot, parallel_tol=np.radians(4), line_tolerance=0.1, **kw)
+    d = np.hypot(*(poses[:, :2] - pose[:2]).T)
+    assert d.min() < 0.01 and quick[np.argmin(d)] == pytest.approx(quick.max())  # up to the voted rotation's error
+
+
+def test_first_hits_is_the_simulators_ray_cast():
+    scene = load_scene("office")
+    M = MapLines(scene.walls)
+    rng = np.random.default_rng(2)
+    poses = random_free_poses(scene, 20, rng)
+    a = np.linspace(-np.pi / 2, np.pi / 2, 361)
+    hits, _ = first_hits(M, poses, np.column_stack([np.cos(a), np.sin(a)]), reach=6.0)
+    for p, h in zip(poses, hits):
+        r, _ = simulate_scan(scene, p, max_range=5.0)
+        ok = np.isfinite(r)
+        assert np.allclose(h[ok], r[ok], atol=1e-5)
+        assert np.all(h[~ok] > 5.0 - 1e-6)
+
+
+def test_score_counts_beams_that_cross_walls():
+    wall = np.array([[[2.0, -3.0], [2.0, 3.0]]])
+    M = MapLines(wall)
+    a = np.linspace(-0.5, 0.5, 11)
+    r = np.full(11, 2.0) / np.cos(a)  # all on the wall at x = 2
+    r[:3] = np.inf  # three beams saw nothing: impossible with the wall 2 m ahead and a 5 m laser
+    obs = Observation.from_scan(r, a, 5.0)
+    score, inl, vio = score_pose(M, obs, [0.0, 0.0, 0.0], 0.05, 0.08)
+    assert (inl, vio) == (8, 3) and score == pytest.approx((8 - 3) / 8)
+    # moved 0.5 m back, the returned beams end before the wall: not inliers, not violations
+    assert score_pose(M, obs, [-0.5, 0.0, 0.0], 0.05, 0.08)[1:] == (0, 3)
+    # 0.5 m forward, every beam would pass through the wall
+    assert score_pose(M, obs, [0.5, 0.0, 0.0], 0.05, 0.08)[1:] == (0, 11)
+
+
+def test_refine_pose_points_converges_to_the_truth(hall):
+    pose = np.array([3.0, 2.5, 0.3])
+    obs = Observation.from_scan(*simulate_scan(hall, pose), 5.0)
+    start = pose + np.array([[0.06, -0.05, 0.015], [-0.1, 0.08, -0.02]])
+    out = refine_pose_points(MapLines(hall.walls), obs, start)
+    assert np.allclose(out, pose, atol=1e-6)
+
+
+# ---------------------------------------------------------------- relocalize
+
+
+def test_relocalize_random_poses_in_an_irregular_hall(hall):
+    rng = np.random.default_rng(7)
+    ev = evaluate_poses(hall, hall.walls, random_free_poses(hall, 40, rng), rng)
+    s = ev.summary()
+    assert s["confidently_wrong"] == 0
+    assert s["success_rate_distinguishable"] >= 0.95
+    assert s["success_rate"] >= 0.85
+    assert np.all(ev.position_error[ev.success] < 0.03) and np.all(ev.heading_error[ev.success] < np.radians(0.5))
+
+
+def test_relocalize_office_never_confidently_wrong():
+    """The office's rooms repeat every 6 m: most poses are flagged ambiguous, with a witness, never wrong."""
+    scene = load_scene("office")
+    rng = np.random.default_rng(1)
+    ev = evaluate_poses(scene, scene.walls, random_free_poses(scene, 30, rng), rng)
+    s = ev.summary()
+    assert s["confidently_wrong"] == 0
+    assert s["success"] + s["indistinguishable"] >= 0.85 * s["n"]
+    # an ambiguous answer carries the truth among its tied candidates
+    amb = [i for i in range(s["n"]) if ev.status[i] == "ambiguous"]
+    near_truth = [any(pose_error(c.pose, ev.truth[i])[0] < 0.1 for c in ev.results[i].candidates[:8]) for i in amb]
+    assert np.mean(near_truth) >= 0.9
+
+
+def test_symmetric_room_is_ambiguous():
+    room = load_scene("room")  # a plain 6 m x 4 m rectangle
+    pose = np.array([2.0, 1.5, 0.4])
+    res = relocalize(room.walls, scan=simulate_scan(room, pose, np.random.default_rng(0)))
+    assert res.ambiguous and res.status == "ambiguous"
+    centre = room.walls.reshape(-1, 2).mean(axis=0)
+    mirror = np.array([*(2 * centre - pose[:2]), wrap_angle(pose[2] + np.pi)])  # turned by pi about the centre
+    found = [c.pose for c in res.candidates]
+    assert any(pose_error(p, pose)[0] < 0.05 for p in found)
+    assert any(pose_error(p, mirror)[0] < 0.05 for p in found)
+    assert np.isfinite(res.score) and not np.any(np.isnan(res.pose))
+
+
+def test_relocalize_input_forms_agree(hall):
+    pose = np.array([5.0, 3.5, 2.0])
+    r, a = simulate_scan(hall, pose, np.random.default_rng(4))
+    segs = extract_segments(r, a, max_range=5.0)
+    arr = np.array([[s.start, s.end] for s in segs])
+    map_list = [Segment(w[0], w[1]) for w in hall.walls]
+    ref = prepare_map(hall.walls)
+    assert isinstance(ref, ReferenceMap)
+    results = [
+        relocalize(hall.walls, scan=(r, a)),
+        relocalize(map_list, segs, scan=(r, a)),
+        relocalize(ref, arr, scan=(r, a)),
+        relocalize(hall.walls, arr),  # segments only: checked against points along them
+    ]
+    for res in results:
+        assert res.status == "ok"
+        assert pose_error(res.pose, pose)[0] < 0.05 and pose_error(res.pose, pose)[1] < np.radians(1)
+        assert len(res.correspondences) >= 2
+        assert np.all(res.correspondences[:, 1] < len(segs))
+
+
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(map_segments=np.zeros((0, 2, 2)), scan_segments=np.ones((2, 2, 2))), "map_segments is empty"),
+        (dict(map_segments=np.full((3, 2, 2), np.nan), scan_segments=np.ones((2, 2, 2))), "NaN"),
+        (dict(map_segments=np.ones((3, 4)), scan_segments=np.ones((2, 2, 2))), r"shape \(K, 2, 2\)"),
+        (dict(map_segments=[[[0, 0], [0, 0]]], scan_segments=np.ones((2, 2, 2))), "zero length"),
+        (dict(map_segments=[[[0, 0], [1, 0]]], scan_segments=[[[0, 0], [1, np.inf]]]), "NaN or inf"),
+        (dict(map_segments=[[[0, 0], [1, 0]]]), "give scan_segments"),
+        (dict(map_segments=[[[0, 0], [1, 0]]], scan=(np.ones(5), np.linspace(0, 1, 4))), "equal 1-D shapes"),
+        (dict(map_segments=[[[0, 0], [1, 0]]], scan=(np.ones(4), np.array([0, 1, 1, 2.0]))), "strictly increasing"),
+        (dict(map_segments=[[[0, 0], [1, 0]]], scan=(np.ones(4), np.array([0, 1, np.nan, 2.0]))), "finite"),
+        (dict(map_segments=[[[0, 0], [1, 0]]], scan=np.ones(4)), "pair"),
+        (dict(map_segments=[[[0, 0], [1, 0]]], scan_segments=np.ones((2, 2, 2)), max_range=0.0), "max_range"),
+        (dict(map_segments=[[[0, 0], [1, 0]]], scan_segments=np.ones((2, 2, 2)), nonsense=1), "unknown parameter"),
+    ],
+)
+def test_relocalize_bad_input_raises(kwargs, match):
+    with pytest.raises(InvalidInputError, match=match) as info:
+        relocalize(**kwargs)
+    assert "relocalize" in str(info.value)
+
+
+def test_too_few_lines_is_an_explicit_failure():
+    walls = np.array([[[3.0, -10.0], [3.0, 10.0]]])  # one long wall ahead: one line
+    r, a = simulate_scan(walls, [0.0, 0.0, 0.0])
+    res = relocalize(walls, scan=(r, a))
+    assert res.status == "failed" and res.ambiguous and res.pose is None
+    assert "too few lines" in res.message and res.score == -np.inf
+    nothing = relocalize(walls, scan=(np.full(10, np.inf), np.linspace(-1, 1, 10)))
+    assert nothing.status == "failed" and nothing.pose is None
+    assert nothing.votes.shape == (1, 0)
+
+
+def test_relocalize_intel_log_against_the_rest_of_it():
+    log = read_carmen_log(data_path("carmen", "intel-corrected.log.gz"))
+    test = np.arange(40, len(log), 90)  # 10 scans spread over the log
+    ev, segs = evaluate_log(log, test, exclude=2, map_step=3)
+    s = ev.summary()
+    assert len(segs) > 100
+    assert s["success"] >= 6
+    assert np.median(ev.position_error[ev.status == "ok"]) < 0.1
+    # the map lies in the frame of the logged poses: at the truth most of a scan lies on it
+    obs = Observation.from_scan(*log.scans[test[0]], 8.0)
+    M = MapLines(np.array([[g.start, g.end] for g in segs]))
+    assert score_pose(M, obs, log.poses[test[0]], 0.06, 0.08)[0] > 0.5
+
+
+def test_pose_error_and_compose_agree():
+    a, b = np.array([1.0, 2.0, 0.3]), np.array([1.5, 1.0, -0.4])
+    d = compose(a, [0.5, 0.0, 0.0])
+    assert pose_error(d, a) == pytest.approx((0.5, 0.0))
+    assert pose_error(a, b)[1] == pytest.approx(0.7)
