@@ -1,0 +1,505 @@
+"""The ``cga-lessons`` command line.
+
+Subcommands::
+
+    cga-lessons lab                       open the course in JupyterLab (root-safe, on 127.0.0.1)
+    cga-lessons map2d LOG                 line map of a CARMEN laser log: a PNG and the segments as CSV
+    cga-lessons relocalize MAP_CSV LOG --scan-index K
+                                          where is the robot of scan K on a saved map (chapter 5)
+    cga-lessons equations                 the equation registry as a table (--todo, --write-readme)
+    cga-lessons export-html               the stored, executed notebooks as a static site, offline
+
+Every subcommand that writes files refuses to overwrite one unless ``--force``
+is given; missing or malformed inputs give a one-line error and exit status 1
+(2 for a wrong command line).  ``python -m cga_lessons`` runs the same program.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import html
+import importlib
+import importlib.util
+import json
+import math
+import os
+import shlex
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+__all__ = ["main", "build_parser", "CLIError", "read_segments_csv", "write_segments_csv"]
+
+_ROOT = Path(__file__).resolve().parents[1]
+SEGMENT_COLUMNS = ("x_start", "y_start", "x_end", "y_end", "rho", "theta", "n_points", "start_is_edge", "end_is_edge")
+
+
+class CLIError(Exception):
+    """A problem the user can fix (a missing file, an output that exists); printed without a traceback."""
+
+
+def _refuse_overwrite(paths, force: bool):
+    existing = [str(p) for p in paths if Path(p).exists()]
+    if existing and not force:
+        raise CLIError(f"will not overwrite {', '.join(existing)} (pass --force to replace)")
+
+
+def _positive(kind):
+    def parse(text):
+        try:
+            value = kind(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+        if not (value > 0 and math.isfinite(value)):
+            raise argparse.ArgumentTypeError(f"{text!r} must be positive")
+        return value
+
+    return parse
+
+
+# --------------------------------------------------------------------------- progress
+
+
+class Progress:
+    """A plain progress bar on a stream: redrawn in place on a terminal, a line every 10 % otherwise."""
+
+    def __init__(self, total: int, label: str, stream=None, enabled: bool = True):
+        self.total, self.label, self.enabled = max(int(total), 1), label, enabled
+        self.stream = stream or sys.stderr
+        self.tty = bool(getattr(self.stream, "isatty", lambda: False)())
+        self.done, self._shown, self._last_draw, self._start = 0, -1, 0.0, time.monotonic()
+
+    def update(self, done: int):
+        self.done = min(max(int(done), self.done), self.total)
+        if not self.enabled:
+            return
+        if self.tty:
+            now = time.monotonic()
+            if now - self._last_draw > 0.1 or self.done == self.total:
+                self._last_draw = now
+                self.stream.write("\r" + self._line())
+                self.stream.flush()
+        else:
+            step = 10 * self.done // self.total
+            if step > self._shown:
+                self._shown = step
+                self.stream.write(self._line() + "\n")
+                self.stream.flush()
+
+    def _line(self) -> str:
+        frac = self.done / self.total
+        bar = "#" * int(30 * frac)
+        return f"{self.label} [{bar:<30}] {self.done}/{self.total} {time.monotonic() - self._start:5.1f} s"
+
+    def close(self):
+        self.update(self.total)
+        if self.enabled and self.tty:
+            self.stream.write("\n")
+            self.stream.flush()
+
+
+def _build_map_with_progress(scans, odometry, progress: Progress, **kwargs):
+    from .mapping2d import build_map
+
+    return build_map(scans, odometry, progress=lambda k, total: progress.update(k), **kwargs)
+
+
+# --------------------------------------------------------------------------- segments as CSV
+
+
+def write_segments_csv(path, segments):
+    """Write segments (objects with ``start``, ``end``, ``rho``, ``theta``, ...) with the columns of
+    :data:`SEGMENT_COLUMNS`; metres and radians, ``rho``/``theta`` the Hough form (3.3) about the origin."""
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(SEGMENT_COLUMNS)
+        for s in segments:
+            w.writerow(
+                [f"{v:.6f}" for v in (*s.start, *s.end, s.rho, s.theta)]
+                + [int(s.n_points), int(bool(s.start_is_edge)), int(bool(s.end_is_edge))]
+            )
+
+
+def read_segments_csv(path) -> list:
+    """Read a segments CSV written by ``map2d``: a list of :class:`cga_lessons.lines.Segment`.
+
+    Raises :class:`CLIError` naming the file and line when it is missing or malformed.
+    """
+    from .lines import Segment
+
+    path = Path(path)
+    if not path.is_file():
+        raise CLIError(f"no such map file {str(path)!r}")
+    out = []
+    with open(path, newline="") as f:
+        rows = csv.reader(f)
+        header = next(rows, None)
+        if header is None or [h.strip() for h in header[:4]] != list(SEGMENT_COLUMNS[:4]):
+            raise CLIError(f"{path}: not a segments CSV (the header must start with {', '.join(SEGMENT_COLUMNS[:4])})")
+        for lineno, row in enumerate(rows, start=2):
+            if not row:
+                continue
+            try:
+                x0, y0, x1, y1 = (float(v) for v in row[:4])
+                n = int(row[6]) if len(row) > 6 else 2
+                e0, e1 = (bool(int(row[i])) if len(row) > i else False for i in (7, 8))
+                if not all(math.isfinite(v) for v in (x0, y0, x1, y1)):
+                    raise ValueError("non-finite coordinate")
+                out.append(Segment([x0, y0], [x1, y1], max(n, 2), None, e0, e1))
+            except (ValueError, IndexError) as exc:
+                raise CLIError(f"{path}, line {lineno}: malformed segment row ({exc})") from None
+    if not out:
+        raise CLIError(f"{path}: the map holds no segment")
+    return out
+
+
+def _log_stem(path: Path) -> str:
+    name = path.name
+    for suffix in (".gz", ".log", ".txt"):
+        name = name.removesuffix(suffix)
+    return name or "map"
+
+
+def _read_log(path):
+    from .algebra import InvalidInputError
+    from .laser import read_carmen_log
+
+    try:
+        return read_carmen_log(path)
+    except InvalidInputError as exc:
+        raise CLIError(str(exc).removeprefix("read_carmen_log: ")) from None
+    except (OSError, EOFError, UnicodeDecodeError) as exc:  # a corrupt gzip stream, a binary file
+        raise CLIError(f"cannot read the log {str(path)!r}: {exc}") from None
+
+
+# --------------------------------------------------------------------------- subcommands
+
+
+def _cmd_lab(args) -> int:
+    nbdir = Path(args.notebook_dir) if args.notebook_dir else _ROOT / "notebooks"
+    if not nbdir.is_dir():
+        raise CLIError(f"no notebooks folder at {nbdir} (run from a checkout of the course, or pass --notebook-dir)")
+    cmd = [sys.executable, "-m", "jupyterlab", f"--ServerApp.root_dir={nbdir}", "--ServerApp.ip=127.0.0.1"]
+    if args.port:
+        cmd.append(f"--ServerApp.port={args.port}")
+    if args.no_browser:
+        cmd.append("--no-browser")
+    if (nbdir / "00_start_here.ipynb").is_file():
+        cmd.append("--LabApp.default_url=/lab/tree/00_start_here.ipynb")
+    if getattr(os, "geteuid", lambda: 1)() == 0:
+        cmd.append("--allow-root")  # JupyterLab refuses to start as root without it
+    if args.dry_run:
+        print(shlex.join(cmd))
+        return 0
+    if importlib.util.find_spec("jupyterlab") is None:
+        raise CLIError("JupyterLab is not installed: pip install -e . installs it with the course")
+    if os.name == "posix":  # become JupyterLab: signals (Ctrl-C, a kill) reach the server, no orphan is left
+        os.execv(cmd[0], cmd)
+    try:
+        return subprocess.call(cmd)
+    except KeyboardInterrupt:
+        return 130
+
+
+def _cmd_map2d(args) -> int:
+    import numpy as np
+
+    log_path = Path(args.log)
+    stem = _log_stem(log_path)
+    out = Path(args.out_dir)
+    files = [out / f"{stem}_map.png", out / f"{stem}_segments.csv", out / f"{stem}_poses.csv"]
+    _refuse_overwrite(files, args.force)  # before the (long) run, not after
+    log = _read_log(log_path)
+    n = len(log) if args.limit is None else min(args.limit, len(log))
+    scans = log.scans[:n]
+    odometry = (log.odometry if args.odometry == "logged" else log.poses)[:n]
+    show = args.progress == "always" or (args.progress == "auto" and n >= 100)
+    bar = Progress(n, f"map2d {stem}", enabled=show)
+    t0 = time.perf_counter()
+    try:
+        result = _build_map_with_progress(scans, odometry, bar, method=args.method, max_range=args.max_range)
+    except ValueError as exc:
+        raise CLIError(f"cannot build the map: {exc}") from None
+    bar.close()
+    elapsed = time.perf_counter() - t0
+    out.mkdir(parents=True, exist_ok=True)
+    _draw_map(
+        files[0], result, log.poses[:n], args.odometry, f"{log_path.name}: {n} scans, {len(result.segments)} segments"
+    )
+    write_segments_csv(files[1], result.segments)
+    with open(files[2], "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["scan", "x", "y", "theta", "corrected", "n_matches"])
+        for k, (p, c, m) in enumerate(zip(result.poses, result.corrected, result.n_matches)):
+            w.writerow([k, f"{p[0]:.6f}", f"{p[1]:.6f}", f"{p[2]:.6f}", int(c), int(m)])
+    print(
+        f"map2d: {n} scans -> {len(result.segments)} segments, {int(np.sum(result.corrected))} poses corrected "
+        f"({elapsed:.1f} s)"
+    )
+    for p in files:
+        print(f"  wrote {p}")
+    return 0
+
+
+def _draw_map(path, result, log_poses, odometry_source, title):
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    from .viz.laser import draw_segments, draw_trajectory
+
+    fig = Figure(figsize=(8, 8), dpi=100)
+    FigureCanvasAgg(fig)
+    ax = fig.add_subplot()
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_title(title)
+    draw_segments(result.segments, ax=ax, lw=1.0, ends=False, label="line map")
+    if odometry_source != "poses":
+        draw_trajectory(log_poses, ax=ax, color="0.6", lw=0.8, ls=":", label="log poses")
+    draw_trajectory(result.poses, ax=ax, color="tab:green", lw=0.8, label="corrected")
+    ax.legend(loc="best", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path)
+
+
+def _cmd_relocalize(args) -> int:
+    try:
+        reloc = importlib.import_module("cga_lessons.relocalization")
+    except ModuleNotFoundError as exc:
+        if exc.name != "cga_lessons.relocalization":
+            raise
+        raise CLIError(
+            "relocalization (chapter 5) is not in this checkout yet: cga_lessons/relocalization.py"
+        ) from None
+    segments = read_segments_csv(args.map_csv)
+    log = _read_log(Path(args.log))
+    k = args.scan_index
+    if not -len(log) <= k < len(log):
+        raise CLIError(f"--scan-index {k} is out of range: {args.log} holds {len(log)} scans")
+    ranges, angles = log.scans[k]
+    try:
+        found = reloc.relocalize(segments, scan=(ranges, angles), max_range=args.max_range)
+    except ValueError as exc:
+        raise CLIError(f"relocalization failed: {exc}") from None
+    status = getattr(found, "status", "ok" if getattr(found, "pose", None) is not None else "failed")
+    where = f"scan {k} of {Path(args.log).name} on {Path(args.map_csv).name} ({len(segments)} segments)"
+    print(f"relocalize: {where}: {status}")
+    if found.pose is None:
+        message = getattr(found, "message", "")
+        print(f"  no pose found{': ' + message if message else ''}")
+        return 0
+    print(f"  pose (laser in the map frame): {_pose_text(found.pose)}, score {float(found.score):.3f}")
+    print(f"  ambiguous: {'yes' if found.ambiguous else 'no'}")
+    print(f"  (the log's own pose for this scan: {_pose_text(log.poses[k])})")
+    others = list(getattr(found, "candidates", []))[1:]
+    if found.ambiguous and others:
+        print("  other candidates:")
+        for c in others[:5]:
+            print(f"    {_pose_text(c.pose)}, score {float(c.score):.3f}")
+    return 0
+
+
+def _pose_text(pose) -> str:
+    x, y, th = (float(v) for v in pose)
+    return f"x = {x:.3f} m, y = {y:.3f} m, theta = {math.degrees(th):.2f} deg"
+
+
+def _cmd_equations(args) -> int:
+    from . import equations as eq
+
+    argv = ["--format", args.format] + (["--todo"] if args.todo else [])
+    if args.write_readme:
+        argv.append("--write-readme")
+    if args.check_readme:
+        argv.append("--check-readme")
+    if args.readme:
+        if not Path(args.readme).is_file():
+            raise CLIError(f"no such README {args.readme!r}")
+        argv += ["--readme", args.readme]
+    return eq.main(argv)
+
+
+_OFFLINE_TEMPLATE = """{%- extends 'index.html.j2' -%}
+{%- block html_head_js_requirejs -%}{%- endblock html_head_js_requirejs -%}
+{% block jupyter_widgets %}{% endblock jupyter_widgets %}
+{%- block html_head_js_mathjax -%}
+{%- if resources.mathjax_url -%}{{ mathjax(resources.mathjax_url) }}{%- endif -%}
+{%- endblock html_head_js_mathjax -%}
+{%- block html_head_js_mermaidjs -%}{%- endblock html_head_js_mermaidjs -%}
+"""
+
+
+def _notebook_title(nb, fallback: str) -> str:
+    for cell in nb.cells:
+        if cell.cell_type == "markdown":
+            for line in cell.source.splitlines():
+                if line.startswith("# "):
+                    return line[2:].strip()
+    return fallback
+
+
+def _cmd_export_html(args) -> int:
+    import nbformat
+    from jinja2 import DictLoader
+    from nbconvert import HTMLExporter
+
+    nbdir = Path(args.notebook_dir) if args.notebook_dir else _ROOT / "notebooks"
+    if not nbdir.is_dir():
+        raise CLIError(f"no notebooks folder at {nbdir}")
+    paths = sorted(p for p in nbdir.glob("*.ipynb") if args.include_solutions or p.stem != "teacher_solutions")
+    if not paths:
+        raise CLIError(f"no notebooks (*.ipynb) in {nbdir}")
+    out = Path(args.out_dir)
+    targets = [out / f"{p.stem}.html" for p in paths] + [out / "index.html"]
+    _refuse_overwrite(targets, args.force)
+    exporter = HTMLExporter(
+        template_name="lab",
+        extra_loaders=[DictLoader({"cga_offline.html.j2": _OFFLINE_TEMPLATE})],
+        template_file="cga_offline.html.j2",
+        mathjax_url=args.mathjax_url or "",
+    )
+    pages = []
+    for p, target in zip(paths, targets):
+        try:
+            nb = nbformat.read(p, as_version=4)
+        except (OSError, ValueError, json.JSONDecodeError, nbformat.reader.NotJSONError) as exc:
+            raise CLIError(f"{p}: not a readable notebook ({exc})") from None
+        code = [c for c in nb.cells if c.cell_type == "code" and c.source.strip()]
+        if code and all(c.get("execution_count") is None and not c.get("outputs") for c in code):
+            print(f"export-html: warning: {p.name} has no stored outputs (it is exported as it is)", file=sys.stderr)
+        body, _ = exporter.from_notebook_node(nb, resources={"metadata": {"name": p.stem}})
+        out.mkdir(parents=True, exist_ok=True)
+        target.write_text(body, encoding="utf-8")
+        pages.append((target.name, _notebook_title(nb, p.stem)))
+        print(f"  wrote {target}")
+    targets[-1].write_text(_index_page(pages, bool(args.mathjax_url)), encoding="utf-8")
+    print(f"  wrote {targets[-1]}")
+    print(f"export-html: {len(pages)} notebooks; open {targets[-1]} in a browser (no network needed)")
+    return 0
+
+
+def _index_page(pages, mathjax: bool) -> str:
+    items = "\n".join(f'<li><a href="{html.escape(name)}">{html.escape(title)}</a></li>' for name, title in pages)
+    math_note = (
+        ""
+        if mathjax
+        else "<p><small>Formulas appear as LaTeX source: no MathJax is bundled. Rebuild with "
+        "<code>--mathjax-url</code> pointing at a local MathJax 2.7 copy to typeset them.</small></p>"
+    )
+    return f"""<!DOCTYPE html>
+<html lang="en">
+<head><meta charset="utf-8"><title>cga-lessons: the course</title>
+<style>body {{ font-family: sans-serif; max-width: 48em; margin: 2em auto; line-height: 1.5; }}</style>
+</head>
+<body>
+<h1>cga-lessons</h1>
+<p>Conformal geometric algebra for robot mapping, a runnable course after M. Bernal Mar&iacute;n's thesis (2007).
+These pages are the notebooks as executed and stored in the repository.</p>
+<ol>
+{items}
+</ol>
+{math_note}
+</body>
+</html>
+"""
+
+
+# --------------------------------------------------------------------------- the parser
+
+
+def build_parser() -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(
+        prog="cga-lessons",
+        description="Conformal geometric algebra for robot mapping: the course's command line.",
+    )
+    sub = ap.add_subparsers(dest="command", metavar="COMMAND")
+
+    p = sub.add_parser("lab", help="open the course in JupyterLab", description="Open the notebooks in JupyterLab.")
+    p.add_argument("--notebook-dir", help="the notebooks folder (default: the checkout's notebooks/)")
+    p.add_argument("--port", type=int, help="port to listen on (default: JupyterLab's choice)")
+    p.add_argument("--no-browser", action="store_true", help="do not open a browser")
+    p.add_argument("--dry-run", action="store_true", help="print the command instead of running it")
+    p.set_defaults(func=_cmd_lab)
+
+    p = sub.add_parser(
+        "map2d",
+        help="build a line map from a CARMEN laser log",
+        description="Read a CARMEN log (FLASER lines, plain or .gz), build the line map of chapter 3 and write "
+        "LOG_map.png, LOG_segments.csv and LOG_poses.csv.",
+    )
+    p.add_argument("log", help="CARMEN log file (.log or .log.gz)")
+    p.add_argument("--out-dir", default=".", help="folder for the outputs (default: current folder)")
+    p.add_argument("--max-range", type=_positive(float), default=8.0, help="drop readings beyond this (m; default 8)")
+    p.add_argument("--limit", type=_positive(int), metavar="N", help="use only the first N scans")
+    p.add_argument(
+        "--odometry",
+        choices=("logged", "poses"),
+        default="logged",
+        help="odometry for the builder: the log's odometry fields (default) or its laser poses",
+    )
+    p.add_argument("--method", choices=("plain", "conformal"), default="plain", help="section 3.1 or 3.2")
+    p.add_argument(
+        "--progress",
+        choices=("auto", "always", "never"),
+        default="auto",
+        help="progress bar on stderr (auto: 100+ scans)",
+    )
+    p.add_argument("--force", action="store_true", help="overwrite existing output files")
+    p.set_defaults(func=_cmd_map2d)
+
+    p = sub.add_parser(
+        "relocalize",
+        help="locate one scan of a log on a saved line map (chapter 5)",
+        description="Find the pose of scan K of LOG on the map MAP_CSV (a segments CSV written by map2d).",
+    )
+    p.add_argument("map_csv", help="segments CSV written by map2d")
+    p.add_argument("log", help="CARMEN log holding the scan")
+    p.add_argument("--scan-index", type=int, required=True, metavar="K", help="which scan of the log (0-based)")
+    p.add_argument("--max-range", type=_positive(float), default=8.0, help="drop readings beyond this (m; default 8)")
+    p.set_defaults(func=_cmd_relocalize)
+
+    p = sub.add_parser("equations", help="the equation registry as a table", description="The coverage table.")
+    p.add_argument("--format", choices=("markdown", "text"), default="text", help="output format (default text)")
+    p.add_argument("--todo", action="store_true", help="list only the equations still todo")
+    p.add_argument("--write-readme", action="store_true", help="regenerate the table between the README's markers")
+    p.add_argument("--check-readme", action="store_true", help="exit with status 1 when the README's table is stale")
+    p.add_argument("--readme", help="README to write or check (default: the checkout's README.md)")
+    p.set_defaults(func=_cmd_equations)
+
+    p = sub.add_parser(
+        "export-html",
+        help="the executed notebooks as a static site",
+        description="Convert the stored, executed notebooks to HTML pages with an index, without executing them and "
+        "without any script or style loaded from the network.",
+    )
+    p.add_argument("--out-dir", default="site", help="folder for the pages (default: site)")
+    p.add_argument("--notebook-dir", help="the notebooks folder (default: the checkout's notebooks/)")
+    p.add_argument("--include-solutions", action="store_true", help="also export teacher_solutions.ipynb")
+    p.add_argument("--mathjax-url", default="", help="MathJax 2.7 script to typeset formulas (e.g. a local copy)")
+    p.add_argument("--force", action="store_true", help="overwrite existing pages")
+    p.set_defaults(func=_cmd_export_html)
+    return ap
+
+
+def main(argv=None) -> int:
+    """Run the command line; returns the exit status."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if not getattr(args, "command", None):
+        parser.print_help()
+        return 2
+    try:
+        return int(args.func(args) or 0)
+    except CLIError as exc:
+        print(f"cga-lessons {args.command}: error: {exc}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print(f"cga-lessons {args.command}: interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())
