@@ -10,21 +10,7 @@ a versor is its matrices per grade (:mod:`cga_lessons.algebra_versors`); the
 norms and the inverse (2.19) live in :mod:`cga_lessons.algebra_inverse`, the
 text/LaTeX display and the SymPy helpers in :mod:`cga_lessons.algebra_display`.
 
-Operators (the thesis's notation on the left)::
-
-    A B         A * B           geometric product (2.11)
-    A ^ B       A ^ B           outer product (2.14, 2.30)
-    A . B       A | B           the thesis's inner product (2.21-2.29), with
-                                scalar . M = 0 (2.28)
-    A _| B      A << B          left contraction (not the thesis's; offered
-                                because most modern texts use it)
-    M~          ~M              reverse (2.32-2.34)
-    M^          M.involute()    grade involution (2.35)
-    M*          M.dual()        dual M I^-1 (2.31)
-    M^-1        M.inv()         inverse (2.19; versors and general)
-    A x B       commutator(A,B) commutator product (2.36)
-    <M>_k       M.grade(k)      grade projection (2.18)
-    V X V~      V >> X          sandwich product (2.98, 2.101, 2.103)
+The operators and the thesis's notation for each are tabled in :mod:`cga_lessons.algebra`.
 
 Import these names from :mod:`cga_lessons.algebra`, their public home.
 """
