@@ -24,18 +24,13 @@ from .exercises import (
     compare_vector,
     exercise,
 )
+from .stereo_rig import rotation_matrix  # Rodrigues in plain NumPy: independent of the algebra
 
 
 def _symbols(*names):
     import sympy
 
     return {n: sympy.Symbol(n, real=True) for n in names}
-
-
-def _rodrigues(axis, angle) -> np.ndarray:
-    n = np.asarray(axis, float) / np.linalg.norm(axis)
-    K = np.array([[0, -n[2], n[1]], [n[2], 0, -n[0]], [-n[1], n[0], 0]])
-    return np.eye(3) + math.sin(angle) * K + (1 - math.cos(angle)) * K @ K
 
 
 def _wrap(a):
@@ -240,14 +235,14 @@ def _ch2_7(answer):
     if not norm.grade(2, 4).iszero(atol=1e-9 * max(abs(k), 1.0)) or k <= 0:
         raise Wrong("M ~M is not a positive scalar, so this is not a motor (a product of a translator and a rotor).")
     c = np.array([1.0, 1.0, 0.0])
-    truth = (_PROBES - c) @ _rodrigues([0, 0, 1], math.pi / 2).T + c
+    truth = (_PROBES - c) @ rotation_matrix([0, 0, 1], math.pi / 2).T + c
     moved = _motion_of(answer, _PROBES)
     if not np.allclose(moved, truth, atol=1e-7):
-        if np.allclose(moved, (_PROBES - c) @ _rodrigues([0, 0, 1], -math.pi / 2).T + c, atol=1e-7):
+        if np.allclose(moved, (_PROBES - c) @ rotation_matrix([0, 0, 1], -math.pi / 2).T + c, atol=1e-7):
             raise Wrong("the axis is right but it turns the wrong way: +90 degrees is counter-clockwise seen from +z.")
-        if np.allclose(moved, _PROBES @ _rodrigues([0, 0, 1], math.pi / 2).T, atol=1e-7):
+        if np.allclose(moved, _PROBES @ rotation_matrix([0, 0, 1], math.pi / 2).T, atol=1e-7):
             raise Wrong("that turns about the z axis through the origin; the axis must pass through c.")
-        if np.allclose(moved, (_PROBES + c) @ _rodrigues([0, 0, 1], math.pi / 2).T - c, atol=1e-7):
+        if np.allclose(moved, (_PROBES + c) @ rotation_matrix([0, 0, 1], math.pi / 2).T - c, atol=1e-7):
             raise Wrong("the axis passes through -c: the two translators are swapped (T R ~T with T moving by +c).")
         if not np.allclose(moved[3], c, atol=1e-7):
             raise Wrong("the point c should stay where it is (it is on the axis), and your motor moves it.")
@@ -304,7 +299,7 @@ def _ch2_8(answer):
     equations=("2.99", "2.102"),
 )
 def _ch2_9(answer):
-    Rz = _rodrigues([0, 0, 1], math.pi / 2)
+    Rz = rotation_matrix([0, 0, 1], math.pi / 2)
     t = np.array([1.0, 0.0, 0.0])
     truth = Rz @ (np.zeros(3) + t)  # in M X ~M with M = R T, T acts first
     compare_vector(
@@ -355,21 +350,21 @@ def _ch2_10(answer):
         raise Wrong("the axis is the zero vector.")
     # R = cos(t/2) - sin(t/2) n I_E with e3 I_E = e12: cos(t/2) = 0.6, sin(t/2) = 0.8, n = e3
     true_theta, true_axis = 2 * math.acos(0.6), np.array([0.0, 0.0, 1.0])
-    truth = _rodrigues(true_axis, true_theta)
+    truth = rotation_matrix(true_axis, true_theta)
     if abs(n - 1) > 1e-6:
-        if np.allclose(_rodrigues(axis, theta), truth, atol=1e-6):
+        if np.allclose(rotation_matrix(axis, theta), truth, atol=1e-6):
             raise Wrong("the rotation is right, but the axis must be a unit vector.")
         raise Wrong("the axis must be a unit vector (and the rotation is off too).")
-    mine = _rodrigues(axis, theta)
+    mine = rotation_matrix(axis, theta)
     if np.allclose(mine, truth, atol=1e-6):
         return "c = cos(theta/2) gives the angle; the bivector part, read as a line (2.126), gives the axis."
-    if np.allclose(_rodrigues(axis, math.radians(theta)), truth, atol=1e-6):
+    if np.allclose(rotation_matrix(axis, math.radians(theta)), truth, atol=1e-6):
         raise Wrong("it looks like degrees; give theta in radians.")
     if np.allclose(mine, truth.T, atol=1e-6):
         raise Wrong("the axis line is right but the rotation goes the other way: flip the sign of the axis or angle.")
-    if np.allclose(_rodrigues(axis, 2 * theta), truth, atol=1e-6):
+    if np.allclose(rotation_matrix(axis, 2 * theta), truth, atol=1e-6):
         raise Wrong("that is half the angle: the rotor holds theta/2.")
-    if np.allclose(_rodrigues(axis, theta / 2), truth, atol=1e-6):
+    if np.allclose(rotation_matrix(axis, theta / 2), truth, atol=1e-6):
         raise Wrong("that is twice the angle: theta = 2 arccos(c), not 4 arccos(c).")
     if abs(abs(axis @ true_axis) / n - 1) < 1e-6:
         raise Wrong("the axis is right (up to its sign); the angle is off.")
@@ -394,7 +389,7 @@ def _ch2_11_given():
 )
 def _ch2_11(answer):
     t = np.array([0.7, -1.3, 0.4])  # the 4x4 matrix of T R is [[Rot, t], [0, 1]]: t is its last column
-    Rot = _rodrigues(np.array([1.0, 2.0, 2.0]) / 3, 1.2)
+    Rot = rotation_matrix(np.array([1.0, 2.0, 2.0]) / 3, 1.2)
     compare_vector(
         answer,
         t,

@@ -7,17 +7,10 @@ worked out by hand for the printed (4.3).
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from .exercises import Malformed, Wrong, as_array, compare_expression, compare_matrix, compare_vector, exercise
-
-
-def _rot(axis, angle) -> np.ndarray:
-    n = np.asarray(axis, float) / np.linalg.norm(axis)
-    K = np.array([[0, -n[2], n[1]], [n[2], 0, -n[0]], [-n[1], n[0], 0]])
-    return np.eye(3) + math.sin(angle) * K + (1 - math.cos(angle)) * K @ K
+from .stereo_rig import rotation_matrix  # Rodrigues in plain NumPy: independent of the algebra
 
 
 def _h(R=None, t=None) -> np.ndarray:
@@ -51,9 +44,9 @@ def _camera_pose(order="pan-tilt", position=True) -> np.ndarray:
     g = _geometry()
     s = _STATE
     eje = _nearest_point(g.pan_point, g.pan_direction, g.tilt_point, g.tilt_direction)
-    pan, tilt = _rot(g.pan_direction, s["pan"]), _rot(g.tilt_direction, s["tilt"])
+    pan, tilt = rotation_matrix(g.pan_direction, s["pan"]), rotation_matrix(g.tilt_direction, s["tilt"])
     head = pan @ tilt if order == "pan-tilt" else tilt @ pan
-    base = _h(_rot([0, 0, 1], s["theta"]), [s["x"], s["y"], 0.0] if position else None)
+    base = _h(rotation_matrix([0, 0, 1], s["theta"]), [s["x"], s["y"], 0.0] if position else None)
     return base @ _h(t=eje) @ _h(head) @ _h(t=g.eye_offset)
 
 
@@ -152,8 +145,8 @@ _TURN = dict(theta=0.3, pan=1.2, tilt=0.5)
 )
 def _ch4_3(answer):
     g = _geometry()
-    Rz = _rot([0, 0, 1], _TURN["theta"])
-    pan, tilt = _rot(g.pan_direction, _TURN["pan"]), _rot(g.tilt_direction, _TURN["tilt"])
+    Rz = rotation_matrix([0, 0, 1], _TURN["theta"])
+    pan, tilt = rotation_matrix(g.pan_direction, _TURN["pan"]), rotation_matrix(g.tilt_direction, _TURN["tilt"])
     x = np.array([1.0, 0.0, 0.0])
     truth = Rz @ tilt @ pan @ x
     right = Rz @ pan @ tilt @ x

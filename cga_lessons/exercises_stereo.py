@@ -7,19 +7,12 @@ centre into the other camera, and the rank of a matrix built here with NumPy.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from .exercises import Wrong, as_float, compare_number, compare_vector, exercise
+from .stereo_rig import rotation_matrix  # Rodrigues in plain NumPy: independent of the algebra
 
 _K = np.array([[700.0, 0.0, 320.0], [0.0, 700.0, 240.0], [0.0, 0.0, 1.0]])
-
-
-def _rotation(axis, angle) -> np.ndarray:
-    n = np.asarray(axis, float) / np.linalg.norm(axis)
-    K = np.array([[0, -n[2], n[1]], [n[2], 0, -n[0]], [-n[1], n[0], 0]])
-    return np.eye(3) + math.sin(angle) * K + (1 - math.cos(angle)) * K @ K
 
 
 def _camera(R, C) -> np.ndarray:
@@ -28,11 +21,11 @@ def _camera(R, C) -> np.ndarray:
 
 
 # chA.1: one camera, turned and moved
-_R_A1 = _rotation([0.2, 1.0, 0.1], 0.4)
+_R_A1 = rotation_matrix([0.2, 1.0, 0.1], 0.4)
 _C_A1 = np.array([0.5, -0.2, -2.0])
 
 # chA.2, chA.3: a verging pair, the second camera 0.3 m to the right and turned 0.15 rad toward the first
-_R2 = _rotation([0.0, 1.0, 0.0], -0.15)
+_R2 = rotation_matrix([0.0, 1.0, 0.0], -0.15)
 _C2 = np.array([0.3, 0.0, 0.05])
 _P1 = _camera(np.eye(3), np.zeros(3))
 _P2 = _camera(_R2, _C2)
