@@ -11,7 +11,7 @@ import pytest
 
 from cga_lessons import data_path
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.laser import Scene, compose, load_scene, read_carmen_log, simulate_scan, wrap_angle
+from cga_lessons.laser import compose, load_scene, read_carmen_log, simulate_scan, wrap_angle
 from cga_lessons.lines import Segment, diff_theta, extract_segments
 from cga_lessons.relocalization import ReferenceMap, prepare_map, relocalize
 from cga_lessons.relocalization_eval import evaluate_log, evaluate_poses, random_free_poses
@@ -50,31 +50,6 @@ def _move(segs, pose):
 def _to_laser(segs, pose):
     """Map segments seen from a laser at ``pose``: the inverse motion."""
     return (np.asarray(segs) - np.asarray(pose[:2])) @ _rot(pose[2])
-
-
-def _wall_polygons(outline, thickness=0.1):
-    """Thin wall polygons along a closed outline (k, 2)."""
-    out = []
-    for a, b in zip(outline, np.roll(outline, -1, axis=0)):
-        d = (b - a) / np.hypot(*(b - a))
-        n = np.array([-d[1], d[0]]) * thickness / 2
-        a2, b2 = a - d * thickness / 2, b + d * thickness / 2
-        out.append(np.array([a2 - n, b2 - n, b2 + n, a2 + n]))
-    return out
-
-
-@pytest.fixture(scope="module")
-def hall():
-    """An irregular hall of orthogonal walls with three boxes (no symmetry)."""
-    outline = np.array(
-        [[0, 0], [7, 0], [7, 2], [9.5, 2], [9.5, 6], [6, 6], [6, 8.5], [2.5, 8.5], [2.5, 5], [0, 5]], float
-    )
-    boxes = [
-        np.array([[1.5, 1.2], [2.7, 1.2], [2.7, 1.8], [1.5, 1.8]]),
-        np.array([[7.5, 4.0], [8.2, 4.0], [8.2, 5.2], [7.5, 5.2]]),
-        np.array([[3.6, 6.8], [4.4, 6.8], [4.4, 7.3], [3.6, 7.3]]),
-    ]
-    return Scene("hall", _wall_polygons(outline) + boxes, np.zeros((1, 3)))
 
 
 # ---------------------------------------------------------------- figure 5.1 and Eqs. 5.1-5.5

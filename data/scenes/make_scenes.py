@@ -1,4 +1,5 @@
-"""Generate the synthetic 2D scenes of chapter 3 (``room.json``, ``corridor.json``, ``office.json``).
+"""Generate the synthetic 2D scenes of chapter 3 (``room.json``, ``corridor.json``, ``office.json``,
+``office_twins.json``).
 
 Run from anywhere: ``python data/scenes/make_scenes.py``.  Only NumPy and the
 standard library are used, so the scenes can be regenerated without the package.
@@ -129,7 +130,71 @@ def corridor():
 
 
 def office():
-    """An office floor: a 24 m x 14 m outline, a 2.4 m corridor along x, four rooms each side with doors."""
+    """An office floor 24 m x 14 m: a 2.4 m corridor along x, four rooms each side, no two alike.
+
+    Real floors are not made of copies: the rooms differ in width, door
+    position and furniture (a desk, desks in a row, a meeting table, shelves,
+    a table set at an angle).  ``office_twins`` is the same floor made of
+    eight identical rooms, the hard case for relocalization (chapter 5).
+    """
+    polys = []
+    W, H = 24.0, 14.0
+    y_c0, y_c1 = 5.8, 8.2  # corridor between these y
+    polys += wall(0, 0, W, 0)
+    polys += wall(0, H, W, H)
+    polys += wall(0, 0, 0, H)
+    polys += wall(W, 0, W, H)
+    south = [0.0, 5.0, 11.0, 15.5, 24.0]  # partitions; rooms 5, 6, 4.5 and 8.5 m wide
+    north = [0.0, 7.0, 10.5, 17.0, 24.0]  # rooms 7, 3.5, 6.5 and 7 m wide
+    polys += wall(0, y_c0, W, y_c0, doors=[(1.5, 0.9), (9.0, 0.9), (13.2, 0.9), (16.7, 0.9), (21.0, 1.6)])
+    polys += wall(0, y_c1, W, y_c1, doors=[(4.5, 0.9), (8.0, 0.9), (15.5, 0.9), (18.5, 0.9)])
+    for x in south[1:-1]:
+        polys += wall(x, 0, x, y_c0)
+    for x in north[1:-1]:
+        polys += wall(x, y_c1, x, H)
+    # south rooms
+    polys.append(rect(3.2, 0.4, 4.6, 1.1))  # S1: a desk against the outer wall
+    polys.append(rect(0.1, 2.0, 0.5, 3.6))  # S1: a bookshelf on the west wall
+    polys.append(rect(6.8, 2.0, 9.2, 3.2))  # S2: a meeting table
+    polys.append(rect(5.1, 4.6, 5.6, 5.6))  # S2: a cabinet
+    polys.append(rect(11.4, 0.4, 12.8, 1.1))  # S3: two desks in a row
+    polys.append(rect(13.6, 0.4, 15.0, 1.1))
+    polys.append(rect(21.5, 0.4, 23.5, 1.1))  # S4: an L-shaped desk
+    polys.append(rect(22.8, 1.1, 23.5, 2.6))
+    polys.append(rect(16.0, 2.8, 16.8, 4.8))  # S4: a sofa
+    # north rooms
+    polys.append(rect(0.8, 12.9, 2.2, 13.6))  # N1: a desk
+    polys.append(rect(6.4, 9.0, 6.9, 10.0))  # N1: a cabinet
+    polys.append(rect(7.1, 9.0, 7.5, 13.5))  # N2: storage shelves on both long walls
+    polys.append(rect(10.0, 9.0, 10.4, 12.0))
+    polys.append(rect(12.0, 12.9, 13.4, 13.6))  # N3: a desk and a table set at an angle
+    polys.append(box(14.6, 10.8, 1.4, 0.8, np.radians(30.0)))
+    polys.append(rect(20.5, 12.9, 21.9, 13.6))  # N4: two desks and a cabinet
+    polys.append(rect(22.3, 12.9, 23.7, 13.6))
+    polys.append(rect(17.2, 10.5, 17.7, 11.5))
+    yc = 0.5 * (y_c0 + y_c1)
+    waypoints = [
+        [2.0, yc], [1.5, yc], [1.5, 3.5], [3.0, 2.5], [1.5, 4.0], [1.5, yc],          # S1 (south west)
+        [8.0, yc], [8.0, 9.5], [8.8, 11.5], [8.0, 9.5], [8.0, yc],                   # N2 (the narrow store)
+        [13.2, yc], [13.2, 3.0], [14.0, 2.5], [13.2, 4.0], [13.2, yc],               # S3
+        [18.5, yc], [18.5, 10.5], [20.5, 11.5], [18.5, 10.0], [18.5, yc],            # N4 (north east)
+        [4.0, yc],
+    ]
+    traj = trajectory(waypoints, step=0.2, turn_step=np.radians(12.0), initial_heading=np.pi)
+    return {
+        "name": "office",
+        "description": (
+            "An office floor 24 m x 14 m: a corridor 2.4 m wide along x, four rooms on each side, no two alike "
+            "(3.5 to 8.5 m wide, doors in different places, desks, shelves, a meeting table, a sofa, a table "
+            "set at an angle). The robot visits four rooms and returns along the corridor."
+        ),
+        "polygons": polys,
+        "trajectory": traj,
+    }
+
+
+def office_twins():
+    """The office floor made of eight identical rooms (same size, door and desk): a hard case for chapter 5."""
     polys = []
     W, H = 24.0, 14.0
     y_c0, y_c1 = 5.8, 8.2  # corridor between these y
@@ -160,11 +225,11 @@ def office():
     ]
     traj = trajectory(waypoints, step=0.2, turn_step=np.radians(12.0), initial_heading=np.pi)
     return {
-        "name": "office",
+        "name": "office_twins",
         "description": (
-            "An office floor 24 m x 14 m: a corridor 2.4 m wide along x, four rooms on each side "
-            "(6 m x 5.8 m) with 0.9 m doors, a desk in each room and two cabinets. The robot visits four rooms "
-            "and returns along the corridor."
+            "The office floor built from copies: a corridor 2.4 m wide along x, four identical rooms on each side "
+            "(6 m x 5.8 m, the same 0.9 m door, the same desk) and two cabinets. From inside a room a single "
+            "scan cannot tell which room it is (chapter 5). The robot visits four rooms and returns along the corridor."
         ),
         "polygons": polys,
         "trajectory": traj,
@@ -183,7 +248,7 @@ def write(scene, folder=HERE):
 
 
 if __name__ == "__main__":
-    for make in (room, corridor, office):
+    for make in (room, corridor, office, office_twins):
         p = write(make())
         s = json.loads(p.read_text())
         print(f"{p.name}: {len(s['polygons'])} polygons, {len(s['trajectory'])} poses")
