@@ -8,8 +8,10 @@ Prints numbers only; nothing here is asserted.
    of the thesis's vote step as written (``vote_matrix``, every shifted line against the whole map)
    and as kept (``vote_matrix_indexed``, a binary search per shifted line), with ratios to the
    smallest map and the growth exponent fitted on a log-log scale.
-2. Success at scale: random poses in the office, the corridor and an irregular hall (1 cm noise),
-   the office against range noise, and held-out scans of the Intel log.
+2. Success at scale: random poses in the office, the twin-room office, the corridor and an irregular
+   hall (1 cm noise), from one scan and from a look around (four scans turning on the spot, with the
+   turn's odometry drift; all four, or stopping at the first confident answer); the office against
+   range noise; held-out scans of the Intel log, one by one and as short runs with the log's odometry.
 """
 
 from __future__ import annotations
@@ -21,9 +23,10 @@ import numpy as np
 
 from cga_lessons import data_path, laser
 from cga_lessons.laser import Scene
-from cga_lessons.relocalization import prepare_map, relocalize
+from cga_lessons.relocalization import pose_error, prepare_map, relocalize
 from cga_lessons.relocalization_eval import evaluate_log, evaluate_poses, random_free_poses
 from cga_lessons.relocalization_hough import hough_set, vote_matrix, vote_matrix_indexed
+from cga_lessons.relocalization_lookaround import evaluate_log_sequences, evaluate_look_around
 
 
 def tiled(walls, k, period=(24.2, 14.2)):
@@ -107,27 +110,38 @@ def line(name, s):
 
 def success(quick):
     n = 60 if quick else 240
+    scenes = [laser.load_scene(name) for name in ("office", "office_twins", "corridor")] + [hall_scene()]
     print("\nrandom poses, 1 cm range noise, 361 beams over 180 deg, 5 m (map: the scene's walls)")
-    for scene in (laser.load_scene("office"), laser.load_scene("corridor"), hall_scene()):
+    print("one scan:")
+    for scene in scenes:
         rng = np.random.default_rng(2024)
         ev = evaluate_poses(scene, scene.walls, random_free_poses(scene, n, rng), rng)
         line(scene.name, ev.summary())
+    print("a look around (4 scans, turning 90 deg on the spot between them, odometry drift of the turn):")
+    for scene in scenes:
+        rng = np.random.default_rng(2024)
+        poses = random_free_poses(scene, n, rng)
+        ev, _ = evaluate_look_around(scene, scene.walls, poses, rng)
+        line(scene.name, ev.summary())
         if scene.name == "office":
-            office_ev = ev
-    amb = office_ev.status == "ambiguous"
-    print(
-        f"  office, ambiguous answers whose witness agrees on >= 99 % of beams: "
-        f"{int(np.sum(np.nan_to_num(office_ev.witness[amb]) >= 0.99))} of {int(amb.sum())}"
-    )
+            ev, used = evaluate_look_around(
+                scene, scene.walls, poses, np.random.default_rng(2025), stop_when_confident=True
+            )
+            line("office, turn when unsure", ev.summary())
+            print(f"  {'':24} scans used: " + ", ".join(f"{k}: {c}" for k, c in enumerate(np.bincount(used)) if c))
 
     office = laser.load_scene("office")
     ref = prepare_map(office.walls)
     poses = random_free_poses(office, n // 2, np.random.default_rng(7))
-    print("\noffice against range noise")
+    print("\noffice against range noise (one scan; a look around, turning when unsure)")
     for sigma in (0.0, 0.01, 0.02, 0.03, 0.05):
         ev = evaluate_poses(office, ref, poses, np.random.default_rng(8), range_noise=sigma)
-        line(f"noise {100 * sigma:.0f} cm", ev.summary())
-    print("\noffice, 360 deg scan (the robot turns on the spot, section 5.1) and 10 m range")
+        line(f"noise {100 * sigma:.0f} cm, one scan", ev.summary())
+        ev, _ = evaluate_look_around(
+            office, ref, poses, np.random.default_rng(8), range_noise=sigma, stop_when_confident=True
+        )
+        line(f"noise {100 * sigma:.0f} cm, look around", ev.summary())
+    print("\noffice, one 360 deg scan and 10 m range")
     for kw in (
         dict(fov=2 * np.pi * 719 / 720, n_beams=720),
         dict(fov=2 * np.pi * 719 / 720, n_beams=720, max_range=10.0),
@@ -151,6 +165,23 @@ def success(quick):
             f"  confidently wrong: scan {test[i]}, {ev.position_error[i]:.2f} m, "
             f"{np.degrees(ev.heading_error[i]):.1f} deg"
         )
+    starts = np.arange(7, len(log) - 10, 60 if quick else 30)
+    ev, _, segs = evaluate_log_sequences(log, starts, length=3, stride=3)
+    print(
+        f"Intel log: {len(starts)} runs of 3 scans (3 apart) with the logged odometry, "
+        f"map of {len(segs)} segments from the other scans"
+    )
+    line("Intel, runs of 3 scans", ev.summary())
+    ref = prepare_map(segs)
+    single = [relocalize(ref, scan=log.scans[k + 6], max_range=8.0) for k in starts]
+    right = [
+        r.status == "ok"
+        and pose_error(r.pose, log.poses[k + 6])[0] < 0.1
+        and pose_error(r.pose, log.poses[k + 6])[1] < np.radians(2)
+        for r, k in zip(single, starts)
+    ]
+    wrong = sum(r.status == "ok" for r in single) - sum(right)
+    print(f"  {'the last scans alone':<24} success {sum(right)} of {len(starts)}, confidently wrong {wrong}")
 
 
 if __name__ == "__main__":

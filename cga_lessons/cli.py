@@ -4,7 +4,7 @@ Subcommands::
 
     cga-lessons lab                       open the course in JupyterLab (root-safe, on 127.0.0.1)
     cga-lessons map2d LOG                 line map of a CARMEN laser log: a PNG and the segments as CSV
-    cga-lessons relocalize MAP_CSV LOG --scan-index K
+    cga-lessons relocalize MAP_CSV LOG --scan-index K [K ...]
                                           where is the robot of scan K on a saved map (chapter 5)
     cga-lessons equations                 the equation registry as a table (--todo, --write-readme)
     cga-lessons export-html               the stored, executed notebooks as a static site, offline
@@ -276,16 +276,24 @@ def _cmd_relocalize(args) -> int:
         ) from None
     segments = read_segments_csv(args.map_csv)
     log = _read_log(Path(args.log))
-    k = args.scan_index
-    if not -len(log) <= k < len(log):
-        raise CLIError(f"--scan-index {k} is out of range: {args.log} holds {len(log)} scans")
-    ranges, angles = log.scans[k]
+    indices = list(args.scan_index)
+    for k in indices:
+        if not -len(log) <= k < len(log):
+            raise CLIError(f"--scan-index {k} is out of range: {args.log} holds {len(log)} scans")
+    k = indices[-1]
     try:
-        found = reloc.relocalize(segments, scan=(ranges, angles), max_range=args.max_range)
+        if len(indices) == 1:
+            found = reloc.relocalize(segments, scan=log.scans[k], max_range=args.max_range)
+        else:  # a sequence: the scans with the log's odometry between them; the pose is the last scan's
+            from .relocalization_sequence import relocalize_sequence
+
+            scans = [log.scans[i] for i in indices]
+            found = relocalize_sequence(segments, scans, log.odometry[indices], max_range=args.max_range)
     except ValueError as exc:
         raise CLIError(f"relocalization failed: {exc}") from None
     status = getattr(found, "status", "ok" if getattr(found, "pose", None) is not None else "failed")
-    where = f"scan {k} of {Path(args.log).name} on {Path(args.map_csv).name} ({len(segments)} segments)"
+    which = f"scan {k}" if len(indices) == 1 else f"scans {', '.join(map(str, indices))} (pose at scan {k})"
+    where = f"{which} of {Path(args.log).name} on {Path(args.map_csv).name} ({len(segments)} segments)"
     print(f"relocalize: {where}: {status}")
     if found.pose is None:
         message = getattr(found, "message", "")
@@ -457,7 +465,14 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("map_csv", help="segments CSV written by map2d")
     p.add_argument("log", help="CARMEN log holding the scan")
-    p.add_argument("--scan-index", type=int, required=True, metavar="K", help="which scan of the log (0-based)")
+    p.add_argument(
+        "--scan-index",
+        type=int,
+        nargs="+",
+        required=True,
+        metavar="K",
+        help="which scan of the log (0-based); several: relocalize them as a sequence with the log's odometry",
+    )
     p.add_argument("--max-range", type=_positive(float), default=8.0, help="drop readings beyond this (m; default 8)")
     p.set_defaults(func=_cmd_relocalize)
 

@@ -31,6 +31,10 @@ instead (``DESIGN.md``, measured in notebook 09):
    ``ambiguity_ratio`` (98 %) of the best: another candidate, or the best
    itself moved along its least constrained direction (a symmetric room, a
    corridor, identical rooms, a corner whose walls run out of range).
+
+When one scan is not enough, :class:`cga_lessons.relocalization_sequence.Relocalizer`
+takes more (a turn on the spot, or driving on) with the odometry between
+them and keeps every candidate until the scans tell them apart.
 """
 
 from __future__ import annotations
@@ -230,6 +234,25 @@ class Relocalization:
         return self.thesis["C"]
 
 
+def noise_scaled(params: RelocParams, noise: float) -> RelocParams:
+    """The thresholds that are distances grown with a scan's range noise (they are set for about 1 cm)."""
+    return replace(
+        params,
+        inlier_distance=max(params.inlier_distance, 4 * noise),
+        ray_margin=max(params.ray_margin, 5 * noise),
+        line_tolerance=max(params.line_tolerance, 5 * noise),
+    )
+
+
+def resolve_params(params: RelocParams | None, overrides: dict, func: str = "relocalize") -> RelocParams:
+    """``params`` (default :class:`RelocParams`) with single fields replaced by ``overrides``; unknown names raise."""
+    params = params or RelocParams()
+    bad = set(overrides) - set(RelocParams.__dataclass_fields__)
+    if bad:
+        raise InvalidInputError(f"{func}: unknown parameter(s) {sorted(bad)}")
+    return RelocParams(**{**params.__dict__, **overrides}) if overrides else params
+
+
 # --------------------------------------------------------------------------- the search
 
 
@@ -276,12 +299,7 @@ def relocalize(
         geometry, or an unknown parameter.  A scan with too few lines is not an
         error: the result says ``status="failed"``.
     """
-    params = params or RelocParams()
-    bad = set(overrides) - set(RelocParams.__dataclass_fields__)
-    if bad:
-        raise InvalidInputError(f"relocalize: unknown parameter(s) {sorted(bad)}")
-    if overrides:
-        params = RelocParams(**{**params.__dict__, **overrides})
+    params = resolve_params(params, overrides)
     if not (max_range > 0):
         raise InvalidInputError(f"relocalize: max_range must be > 0, got {max_range}")
     ref = prepare_map(map_segments)
@@ -292,13 +310,7 @@ def relocalize(
         ranges, angles = check_scan(scan)
         obs = Observation.from_scan(ranges, angles, max_range)
         noise = estimate_range_noise(np.where(ranges < max_range, ranges, np.inf))
-        # thresholds that are distances grow with the scan's own noise (they are set for about 1 cm)
-        params = replace(
-            params,
-            inlier_distance=max(params.inlier_distance, 4 * noise),
-            ray_margin=max(params.ray_margin, 5 * noise),
-            line_tolerance=max(params.line_tolerance, 5 * noise),
-        )
+        params = noise_scaled(params, noise)
     if scan_segments is None:
         ext = {"max_range": max_range, "xi": max(0.03, 3 * noise), **(extraction or {})}
         segs = extract_segments(ranges, angles, **ext)

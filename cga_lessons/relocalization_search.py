@@ -210,7 +210,8 @@ def pose_hypotheses(
 
 
 def _slide(M: MapLines, S: ScanLines, li, mi, mid, ends, min_angle, margin, min_overlap, step, below, budget=300):
-    """Translations putting the longest scan line on each map partner, ``step`` apart along it (see above)."""
+    """Translations putting the longest scan line on each map partner, ``step`` apart along it and with an
+    end on an end of the partner (see above)."""
     has = np.unique(li)
     if step <= 0 or len(has) == 0:
         return np.zeros((0, 2))
@@ -230,8 +231,13 @@ def _slide(M: MapLines, S: ScanLines, li, mi, mid, ends, min_angle, margin, min_
     m, lo, hi = m[ok], lo[ok], hi[ok]
     step = max(step, float(np.sum(hi - lo)) / budget)  # at most about ``budget`` positions
     out = []
-    for k, a0, a1 in zip(m, lo, hi):
+    p = p[ok]
+    for k, a0, a1, (p0, p1) in zip(m, lo, hi, p):
         t_perp = (M.offset[k] - M.normal[k] @ mid[a]) * M.normal[k]
         along = np.arange(a0, a1 + 1e-9, step) if a1 - a0 > step else np.array([0.5 * (a0 + a1)])
+        # and the exact shifts that put an end of the scan segment on an end of the map segment (a door
+        # jamb, a wall end): the grid is ``step`` coarse, an end fixes the position along the wall
+        ends_on_ends = np.array([-p0, M.length[k] - p1])
+        along = np.concatenate([along, ends_on_ends[(ends_on_ends >= a0) & (ends_on_ends <= a1)]])
         out.append(t_perp + along[:, None] * M.direction[k])
     return np.concatenate(out) if out else np.zeros((0, 2))

@@ -243,6 +243,19 @@ def test_relocalize_finds_the_scans_pose_on_a_map_from_map2d(room_log, tmp_path,
     assert abs(laser.wrap_angle(best[2] - truth[k, 2])) < np.radians(2)
 
 
+def test_relocalize_a_sequence_of_scans_with_the_logs_odometry(room_log, tmp_path, capsys):
+    pytest.importorskip("cga_lessons.relocalization_sequence")
+    path, _, truth, _ = room_log
+    assert run(["map2d", path, "--out-dir", tmp_path, "--odometry", "poses"], capsys)[0] == 0
+    ks = [20, 25, 30]
+    rc, out, err = run(["relocalize", tmp_path / "room_segments.csv", path, "--scan-index", *ks], capsys)
+    assert rc == 0, err
+    assert "scans 20, 25, 30 (pose at scan 30)" in out
+    x, y, t = re.findall(r"x = (-?[\d.]+) m, y = (-?[\d.]+) m, theta = (-?[\d.]+) deg", out)[0]
+    assert np.hypot(float(x) - truth[30, 0], float(y) - truth[30, 1]) < 0.1
+    assert abs(laser.wrap_angle(np.radians(float(t)) - truth[30, 2])) < np.radians(2)
+
+
 def test_relocalize_bad_inputs_are_clear_errors(room_log, tmp_path, capsys):
     path, *_ = room_log
     bad = tmp_path / "bad.csv"

@@ -9,6 +9,7 @@ from matplotlib.collections import LineCollection
 from .laser import draw_scan, draw_walls, new_axes
 
 __all__ = [
+    "look_around_figure",
     "hough_figure",
     "steps_figure",
     "votes_figure",
@@ -156,3 +157,48 @@ def rates_figure(x, series, xlabel, ax=None, title=None, counts=None):
     ax.legend(loc="best", fontsize=8)
     ax.grid(alpha=0.3)
     return ax
+
+
+def look_around_figure(map_segments, scans, history, truth=None, figsize=(12, 4.8), dpi=70):
+    """A look around: the scans placed at the best chain's poses, and the candidates' scores scan by scan.
+
+    Parameters
+    ----------
+    map_segments : (M, 2, 2)
+    scans : list of (ranges, angles)
+    history : list of SequenceRelocalization
+        The answer after each scan (``Relocalizer.add``'s return values).
+    truth : ndarray (n, 3), optional
+        The true poses, drawn as small triangles.
+    """
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=figsize, dpi=dpi, gridspec_kw={"width_ratios": [1.7, 1]})
+    _lines(ax, map_segments, "k", 0.8, zorder=2)
+    final = history[-1]
+    cols = ["tab:green", "tab:blue", "tab:orange", "tab:purple", "tab:brown", "tab:pink"]
+    for j in range(len(scans)):
+        ax.scatter([], [], color=cols[j % len(cols)], label=f"scan {j + 1}")
+    for j in range(len(scans) - 1, -1, -1):  # the first scan on top
+        ranges, angles = scans[j]
+        draw_scan(ranges, angles, final.trajectory[j], ax=ax, s=3, color=cols[j % len(cols)])
+    first = history[0].candidates[:6]
+    if first:
+        c = np.array([k.pose for k in first])
+        ax.scatter(c[:, 0], c[:, 1], marker="x", color="tab:red", s=40, zorder=8, label="candidates after scan 1")
+    if truth is not None:
+        t = np.asarray(truth)[-1]
+        ax.scatter([t[0]], [t[1]], marker="^", color="k", s=40, zorder=9, label="truth")
+    ax.set_aspect("equal")
+    ax.set_title(f"the scans placed at the answer ({final.status})")
+    ax.legend(loc="upper right", fontsize=7)
+    for k, h in enumerate(history):
+        sc = [c.score for c in h.candidates[:6]]
+        bx.scatter(np.full(len(sc), k + 1), sc, color=["tab:green"] + ["tab:red"] * (len(sc) - 1), s=25, zorder=3)
+        if len(sc) > 1:
+            bx.plot([k + 0.8, k + 1.2], [0.98 * sc[0]] * 2, color="0.4", lw=1)
+    bx.set_xlabel("scans so far")
+    bx.set_ylabel("score over all scans")
+    bx.set_xticks(np.arange(1, len(history) + 1))
+    bx.set_title("best (green), rivals (red), 98 % of the best (grey)")
+    bx.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig

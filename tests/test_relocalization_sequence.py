@@ -1,0 +1,131 @@
+"""Tests of relocalization from a sequence of scans (a look around) and of its evaluation.
+
+Truths used: the simulator's ground-truth poses and its ray casting, the
+odometry model's own increments, and the symmetry of a scene (identical rooms
+6 m apart, a rectangle turned by pi about its centre).
+"""
+
+import numpy as np
+import pytest
+
+from cga_lessons.algebra import InvalidInputError
+from cga_lessons.laser import OdometryModel, Scene, compose, invert, load_scene, simulate_scan
+from cga_lessons.relocalization import pose_error, relocalize
+from cga_lessons.relocalization_eval import random_free_poses
+from cga_lessons.relocalization_lookaround import evaluate_look_around, look_around
+from cga_lessons.relocalization_sequence import Relocalizer, relocalize_sequence
+
+
+@pytest.fixture(scope="module")
+def office():
+    return load_scene("office")
+
+
+def test_look_around_simulates_a_turn_on_the_spot(office):
+    pose = np.array([3.0, 2.5, 0.4])
+    rng = np.random.default_rng(0)
+    truth, scans, odo = look_around(office, pose, rng, looks=4)
+    assert np.allclose(truth[:, :2], pose[:2]) and len(scans) == 4
+    turns = np.diff(np.unwrap(truth[:, 2]))
+    assert np.allclose(turns, np.pi / 2)
+    # the odometer reports the turns with the model's noise: sigma_turn sqrt(pi/2) = 0.038 rad each
+    d = np.diff(np.unwrap(odo[:, 2]))
+    assert np.all(np.abs(d - np.pi / 2) < 5 * OdometryModel().sigma_turn * np.sqrt(np.pi / 2) + 0.01)
+    r0, _ = simulate_scan(office, truth[2], max_range=5.0)
+    hit = np.isfinite(r0) & np.isfinite(scans[2][0])
+    assert np.median(np.abs(scans[2][0][hit] - r0[hit])) < 0.02  # 1 cm noise around the noise-free scan
+
+
+def test_look_around_resolves_poses_one_scan_cannot(office):
+    """Poses where one scan is ambiguous or failed: the look around finds them (within 10 cm / 2 deg)."""
+    rng = np.random.default_rng(11)
+    hard = []
+    for p in random_free_poses(office, 80, rng):
+        res = relocalize(office.walls, scan=simulate_scan(office, p, rng))
+        if res.status != "ok":
+            hard.append(p)
+        if len(hard) == 5:
+            break
+    assert len(hard) >= 3  # about one pose in twelve is ambiguous from one 180-degree scan
+    ev, n = evaluate_look_around(office, office.walls, np.array(hard), np.random.default_rng(12), witness=False)
+    s = ev.summary()
+    assert s["confidently_wrong"] == 0 and np.all(n == 4)
+    assert s["success"] >= len(hard) - 1
+    assert np.all(ev.position_error[ev.success] < 0.05) and np.all(ev.heading_error[ev.success] < np.radians(1))
+
+
+def test_twin_rooms_stay_ambiguous_however_the_robot_turns():
+    """In identical rooms 6 m apart a full look around cannot tell them apart: ambiguous, the twin tied."""
+    twins = load_scene("office_twins")
+    pose = np.array([15.0, 2.8, 0.7])  # the middle of the third south room (the fourth is its copy)
+    truth, scans, odo = look_around(twins, pose, np.random.default_rng(3))
+    res = relocalize_sequence(twins.walls, scans, odo)
+    assert res.status == "ambiguous" and res.n_scans == 4
+    last = truth[-1]
+    found = [c.pose for c in res.candidates if c.score >= 0.98 * res.score]
+    assert any(pose_error(p, last)[0] < 0.1 for p in found)
+    twin = last + np.array([6.0, 0.0, 0.0])  # (the second room holds a cabinet the others lack)
+    assert any(pose_error(p, twin)[0] < 0.1 for p in found)
+
+
+def test_chains_started_late_are_carried_back_through_the_odometry():
+    """The first look sees one wall only (a failure); the chain found later holds the true earlier poses."""
+    t = 0.1
+    walls = [[[0, -t], [20, -t], [20, 0], [0, 0]], [[0, 12], [20, 12], [20, 12 + t], [0, 12 + t]]]
+    walls += [[[-t, 0], [0, 0], [0, 12], [-t, 12]], [[20, 0], [20 + t, 0], [20 + t, 12], [20, 12]]]
+    boxes = [[[7.6, 3.0], [8.8, 3.0], [8.8, 3.7], [7.6, 3.7]], [[11.5, 3.6], [12.1, 3.6], [12.1, 5.0], [11.5, 5.0]]]
+    hall = Scene("big hall", [np.array(p, float) for p in walls + boxes], np.zeros((1, 3)))
+    pose = np.array([10.0, 0.7, -np.pi / 2])  # facing the south wall, the side walls 10 m away
+    rng = np.random.default_rng(5)
+    truth, scans, odo = look_around(hall, pose, rng, looks=4)
+    loc = Relocalizer(hall.walls)
+    first = loc.add(scans[0], odo[0])
+    assert first.status == "failed" and first.pose is None
+    for s, o in zip(scans[1:], odo[1:]):
+        res = loc.add(s, o)
+    assert res.status == "ok" and res.trajectory.shape == (4, 3)
+    for est, tr in zip(res.trajectory, truth):
+        pe, he = pose_error(est, tr)
+        assert pe < 0.05 and he < np.radians(1.0)
+
+
+def test_the_odometry_frame_does_not_matter(hall):
+    pose = np.array([5.0, 3.5, 2.0])
+    truth, scans, odo = look_around(hall, pose, np.random.default_rng(8), looks=3)
+    moved = compose(np.array([-40.0, 12.0, 2.5]), compose(invert(odo[0]), odo))  # another odometry origin
+    a = relocalize_sequence(hall.walls, scans, odo)
+    b = relocalize_sequence(hall.walls, scans, moved)
+    assert a.status == b.status == "ok"
+    assert pose_error(a.pose, b.pose)[0] < 1e-6 and pose_error(a.pose, truth[-1])[0] < 0.05
+
+
+def test_stop_when_confident_uses_fewer_scans(hall):
+    pose = np.array([5.0, 3.5, 2.0])
+    truth, scans, odo = look_around(hall, pose, np.random.default_rng(9), looks=4)
+    res = relocalize_sequence(hall.walls, scans, odo, stop_when_confident=True)
+    assert res.status == "ok" and res.n_scans == 1
+    assert pose_error(res.pose, truth[0])[0] < 0.05
+
+
+@pytest.mark.parametrize(
+    "call, match",
+    [
+        (lambda w, s: relocalize_sequence(w, [s], np.zeros((2, 3))), "one row per scan"),
+        (lambda w, s: relocalize_sequence(w, [], np.zeros((0, 3))), "one row per scan"),
+        (lambda w, s: Relocalizer(w).add(s, [0.0, np.nan, 0.0]), "odometry must be a finite"),
+        (lambda w, s: Relocalizer(w).add(s, [0.0, 0.0]), "odometry must be a finite"),
+        (lambda w, s: Relocalizer(w).add((s[0][:5], s[1]), [0.0, 0.0, 0.0]), "equal 1-D shapes"),
+        (lambda w, s: Relocalizer(w, max_chains=0), "max_chains"),
+        (lambda w, s: Relocalizer(w, max_range=-1.0), "max_range"),
+        (lambda w, s: Relocalizer(w, xi_gamma=1.0), "unknown parameter"),
+    ],
+)
+def test_sequence_bad_input_raises(hall, call, match):
+    scan = simulate_scan(hall, [5.0, 3.5, 2.0])
+    with pytest.raises(InvalidInputError, match=match):
+        call(hall.walls, scan)
+
+
+def test_look_around_bad_input_raises(office):
+    with pytest.raises(InvalidInputError, match="looks"):
+        look_around(office, [3.0, 2.5, 0.0], np.random.default_rng(0), looks=0)
