@@ -180,17 +180,20 @@ def office():
         [18.5, yc], [18.5, 10.5], [20.5, 11.5], [18.5, 10.0], [18.5, yc],            # N4 (north east)
         [4.0, yc],
     ]
+    return _office_scene(
+        "office",
+        "An office floor 24 m x 14 m: a corridor 2.4 m wide along x, four rooms on each side, no two alike "
+        "(3.5 to 8.5 m wide, doors in different places, desks, shelves, a meeting table, a sofa, a table "
+        "set at an angle). The robot visits four rooms and returns along the corridor.",
+        polys,
+        waypoints,
+    )
+
+
+def _office_scene(name, description, polys, waypoints):
+    """A scene of the office floor: the robot drives 20 cm per scan and turns up to 12 degrees per scan."""
     traj = trajectory(waypoints, step=0.2, turn_step=np.radians(12.0), initial_heading=np.pi)
-    return {
-        "name": "office",
-        "description": (
-            "An office floor 24 m x 14 m: a corridor 2.4 m wide along x, four rooms on each side, no two alike "
-            "(3.5 to 8.5 m wide, doors in different places, desks, shelves, a meeting table, a sofa, a table "
-            "set at an angle). The robot visits four rooms and returns along the corridor."
-        ),
-        "polygons": polys,
-        "trajectory": traj,
-    }
+    return {"name": name, "description": description, "polygons": polys, "trajectory": traj}
 
 
 def office_twins():
@@ -223,17 +226,14 @@ def office_twins():
         [22.5, yc], [22.5, 10.5], [20.5, 11.5], [22.5, 10.0], [22.5, yc],       # room 8 (north east)
         [4.0, yc],
     ]
-    traj = trajectory(waypoints, step=0.2, turn_step=np.radians(12.0), initial_heading=np.pi)
-    return {
-        "name": "office_twins",
-        "description": (
-            "The office floor built from copies: a corridor 2.4 m wide along x, four identical rooms on each side "
-            "(6 m x 5.8 m, the same 0.9 m door, the same desk) and two cabinets. From inside a room a single "
-            "scan cannot tell which room it is (chapter 5). The robot visits four rooms and returns along the corridor."
-        ),
-        "polygons": polys,
-        "trajectory": traj,
-    }
+    return _office_scene(
+        "office_twins",
+        "The office floor built from copies: a corridor 2.4 m wide along x, four identical rooms on each side "
+        "(6 m x 5.8 m, the same 0.9 m door, the same desk) and two cabinets. From inside a room a single "
+        "scan cannot tell which room it is (chapter 5). The robot visits four rooms and returns along the corridor.",
+        polys,
+        waypoints,
+    )
 
 
 def write(scene, folder=HERE):
