@@ -24,7 +24,7 @@ import time
 import numpy as np
 
 from .algebra import InvalidInputError
-from .laser import OdometryModel, Scene, compose, relative, simulate_odometry, simulate_scan
+from .laser import OdometryModel, Scene, compose, relative, simulate_odometry, simulate_scan, wrap_angle
 from .relocalization import pose_error, prepare_map
 from .relocalization_eval import HEADING_TOLERANCE, POSITION_TOLERANCE, Evaluation, map_from_log, scan_agreement
 from .relocalization_sequence import relocalize_sequence
@@ -60,7 +60,7 @@ def look_around(
     pose = np.asarray(pose, float).reshape(3)
     turns = 2 * np.pi * np.arange(int(looks)) / int(looks)
     truth = np.column_stack([np.full(len(turns), pose[0]), np.full(len(turns), pose[1]), pose[2] + turns])
-    truth[:, 2] = np.mod(truth[:, 2] + np.pi, 2 * np.pi) - np.pi
+    truth[:, 2] = wrap_angle(truth[:, 2])
     scans = [
         simulate_scan(scene, t, rng, range_noise=range_noise, max_range=max_range, n_beams=n_beams, fov=fov)
         for t in truth

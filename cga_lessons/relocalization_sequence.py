@@ -38,7 +38,7 @@ from .algebra import InvalidInputError
 from .laser import compose, relative
 from .relocalization import RelocParams, noise_scaled, relocalize, resolve_params
 from .relocalization_geometry import Observation, check_scan, estimate_range_noise, prepare_map
-from .relocalization_verify import Candidate, distinct, pose_information, refine_pose_points, score_poses
+from .relocalization_verify import Candidate, distinct, pose_information, refine_if_better, score_poses
 
 __all__ = ["Relocalizer", "SequenceRelocalization", "relocalize_sequence"]
 
@@ -212,11 +212,9 @@ class Relocalizer:
 
     def _fit(self, j, poses):
         """Poses (C, 3) snapped to scan ``j``'s points where that scores better; with their inliers, violations."""
-        sc, inl, vio = self._score(j, poses)
-        refined = refine_pose_points(self.ref.lines, self.obs[j], poses)
-        sc2, inl2, vio2 = self._score(j, refined)
-        better = (sc2 >= sc)[:, None]
-        return np.where(better, refined, poses), np.where(better[:, 0], inl2, inl), np.where(better[:, 0], vio2, vio)
+        p = self._scan_params[j]
+        poses, _, inl, vio = refine_if_better(self.ref.lines, self.obs[j], poses, p.inlier_distance, p.ray_margin)
+        return poses, inl, vio
 
     def _advance(self, k, nearby):
         """Every chain moved by the odometry increment to scan ``k`` and snapped to it.
@@ -299,11 +297,8 @@ class Relocalizer:
 
     def _summed(self, poses):
         """Inliers and violations summed over the scans, for one chain of poses (n_scans, 3)."""
-        inl = vio = 0
-        for j, q in enumerate(poses):
-            _, i, v = self._score(j, q[None])
-            inl, vio = inl + int(i[0]), vio + int(v[0])
-        return inl, vio
+        inl, vio = self._per_scan(poses)
+        return int(inl.sum()), int(vio.sum())
 
     def _polish(self, ch, rounds: int = 5):
         """Slide the whole chain along its least constrained direction while the summed score grows.
@@ -319,12 +314,13 @@ class Relocalizer:
         for _ in range(rounds):
             steps = [-0.2, -0.1, -0.05, 0.05, 0.1, 0.2] if coarse else [-0.02, 0.02]
             trials = [(poses + np.array([st * weak[0], st * weak[1], 0.0])) for st in steps]
-            sums = [self._summed(t) for t in trials]
-            k = int(np.argmax([i - v for i, v in sums]))
-            if sums[k][0] - sums[k][1] > cur:
-                poses, cur = trials[k], sums[k][0] - sums[k][1]
+            per_scan = [self._per_scan(t) for t in trials]
+            net = [int(i.sum() - v.sum()) for i, v in per_scan]
+            k = int(np.argmax(net))
+            if net[k] > cur:
+                poses, cur = trials[k], net[k]
                 ch.poses = list(poses)
-                ch.inliers, ch.violations = self._per_scan(poses)
+                ch.inliers, ch.violations = per_scan[k]
             elif coarse:
                 coarse = False
             else:

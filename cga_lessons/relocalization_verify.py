@@ -262,15 +262,21 @@ def screen_hypotheses(M, obs, poses, quick, params):
     return chosen
 
 
+def refine_if_better(M, obs, poses, inlier_distance: float, ray_margin: float):
+    """Poses (C, 3) refined on the scan's points (:func:`refine_pose_points`) where that scores at least as
+    well against the whole scan; returns the poses and their scores, inliers and violations."""
+    sc, inl, vio = score_poses(M, obs, poses, inlier_distance, ray_margin)
+    refined = refine_pose_points(M, obs, poses)
+    sc2, inl2, vio2 = score_poses(M, obs, refined, inlier_distance, ray_margin)
+    better = sc2 >= sc
+    poses = np.where(better[:, None], refined, poses)
+    return poses, np.where(better, sc2, sc), np.where(better, inl2, inl), np.where(better, vio2, vio)
+
+
 def verify_hypotheses(M, obs, chosen, params):
     """Every chosen pose refined on the scan's points, then checked against the whole scan; the refined
     pose is kept where it scores at least as well as the unrefined one."""
-    sc, inl, vio = score_poses(M, obs, chosen, params.inlier_distance, params.ray_margin)
-    refined = refine_pose_points(M, obs, chosen)
-    sc2, inl2, vio2 = score_poses(M, obs, refined, params.inlier_distance, params.ray_margin)
-    better = sc2 >= sc
-    chosen = np.where(better[:, None], refined, chosen)
-    sc, inl, vio = np.where(better, sc2, sc), np.where(better, inl2, inl), np.where(better, vio2, vio)
+    chosen, sc, inl, vio = refine_if_better(M, obs, chosen, params.inlier_distance, params.ray_margin)
     # the contenders: a few steps along the direction the points leave weakest (a corridor), where beams
     # through doors and past wall ends may still decide
     for k in np.flatnonzero(sc >= 0.9 * sc.max()) if np.isfinite(sc.max()) else []:
