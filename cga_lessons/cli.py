@@ -3,7 +3,8 @@
 Subcommands::
 
     cga-lessons lab                       open the course in JupyterLab (root-safe, on 127.0.0.1)
-    cga-lessons map2d LOG                 line map of a CARMEN laser log: a PNG and the segments as CSV
+    cga-lessons map2d LOG                 line map of a CARMEN laser log: a PNG, the segments as CSV, the
+                                          trajectory as a TUM file, and its error against the log's poses
     cga-lessons relocalize MAP_CSV LOG --scan-index K [K ...]
                                           where is the robot of scan K on a saved map (chapter 5)
     cga-lessons equations                 the equation registry as a table (--todo, --write-readme)
@@ -29,6 +30,7 @@ import subprocess
 import sys
 import time
 from pathlib import Path
+from types import SimpleNamespace
 
 __all__ = ["main", "build_parser", "CLIError", "read_segments_csv", "write_segments_csv"]
 
@@ -44,6 +46,16 @@ def _refuse_overwrite(paths, force: bool):
     existing = [str(p) for p in paths if Path(p).exists()]
     if existing and not force:
         raise CLIError(f"will not overwrite {', '.join(existing)} (pass --force to replace)")
+
+
+def _non_negative_int(text):
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"{text!r} must be >= 0")
+    return value
 
 
 def _positive(kind):
@@ -206,15 +218,35 @@ def _cmd_lab(args) -> int:
 def _cmd_map2d(args) -> int:
     import numpy as np
 
+    from .algebra import InvalidInputError
+    from .laser import simulate_odometry
+    from .trajectories import odometry_repeats_poses, write_tum
+
     log_path = Path(args.log)
     stem = _log_stem(log_path)
     out = Path(args.out_dir)
-    files = [out / f"{stem}_map.png", out / f"{stem}_segments.csv", out / f"{stem}_poses.csv"]
+    names = ("map.png", "segments.csv", "poses.csv", "trajectory.tum")
+    files = [out / f"{stem}_{name}" for name in names]
+    if args.seed is not None and args.odometry != "simulated":
+        raise CLIError(f"--seed applies to --odometry simulated only (not --odometry {args.odometry})")
     _refuse_overwrite(files, args.force)  # before the (long) run, not after
     log = _read_log(log_path)
     n = len(log) if args.limit is None else min(args.limit, len(log))
-    scans = log.scans[:n]
-    odometry = (log.odometry if args.odometry == "logged" else log.poses)[:n]
+    scans, truth = log.scans[:n], log.poses[:n]
+    if args.odometry == "simulated":
+        seed = 0 if args.seed is None else args.seed
+        odometry = simulate_odometry(truth, np.random.default_rng(seed))
+        print(f"map2d: odometry simulated from the log's poses (laser.OdometryModel() drift, seed {seed})")
+    elif args.odometry == "poses":
+        odometry = truth
+    else:
+        odometry = log.odometry[:n]
+        if odometry_repeats_poses(SimpleNamespace(poses=truth, odometry=odometry)):
+            print(
+                "map2d: note: the log's odometry equals its corrected poses (the odometry fields repeat the pose a "
+                "SLAM back end settled on), so there is no drift to correct and the map shows no correction at work; "
+                "try --odometry simulated --seed N (N = 0, 1, ...) to drive the builder with odometry that drifts"
+            )
     show = args.progress == "always" or (args.progress == "auto" and n >= 100)
     bar = Progress(n, f"map2d {stem}", enabled=show)
     t0 = time.perf_counter()
@@ -225,25 +257,61 @@ def _cmd_map2d(args) -> int:
     bar.close()
     elapsed = time.perf_counter() - t0
     out.mkdir(parents=True, exist_ok=True)
-    _draw_map(
-        files[0], result, log.poses[:n], args.odometry, f"{log_path.name}: {n} scans, {len(result.segments)} segments"
-    )
+    title = f"{log_path.name}: {n} scans, {len(result.segments)} segments"
+    _draw_map(files[0], result, truth, args.odometry, title, odometry=odometry)
     write_segments_csv(files[1], result.segments)
     with open(files[2], "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["scan", "x", "y", "theta", "corrected", "n_matches"])
         for k, (p, c, m) in enumerate(zip(result.poses, result.corrected, result.n_matches)):
             w.writerow([k, f"{p[0]:.6f}", f"{p[1]:.6f}", f"{p[2]:.6f}", int(c), int(m)])
+    stamps = np.asarray(log.timestamps[:n], float)
+    by_index = not (np.all(np.isfinite(stamps)) and np.all(np.diff(stamps) > 0))
+    try:
+        write_tum(files[3], result.poses, np.arange(n, dtype=float) if by_index else stamps, overwrite=args.force)
+    except InvalidInputError as exc:
+        raise CLIError(str(exc)) from None
     print(
         f"map2d: {n} scans -> {len(result.segments)} segments, {int(np.sum(result.corrected))} poses corrected "
         f"({elapsed:.1f} s)"
     )
+    _print_trajectory_errors(odometry, result.poses, truth, args.odometry)
+    if by_index:
+        print(f"  (the log's timestamps do not increase strictly: {files[3].name} gives the scan index as the time)")
     for p in files:
         print(f"  wrote {p}")
     return 0
 
 
-def _draw_map(path, result, log_poses, odometry_source, title):
+def _print_trajectory_errors(odometry, corrected, truth, source: str):
+    """The ATE and the RPE per metre of the odometry and of the corrected poses against the log's poses."""
+    import numpy as np
+
+    from .trajectories import absolute_trajectory_error, relative_pose_error
+
+    travelled = float(np.sum(np.hypot(*np.diff(truth[:, :2], axis=0).T))) if len(truth) > 1 else 0.0
+    print(
+        f"  error against the log's poses ({len(truth)} poses, {travelled:.1f} m travelled; ATE without alignment, "
+        "both start at the log's first pose; RPE over 1 m segments of the log's path):"
+    )
+    rows = [("corrected", corrected)]
+    if source != "poses":
+        rows.insert(0, (f"{source} odometry", odometry))
+    for label, poses in rows:
+        ate = absolute_trajectory_error(poses, truth)
+        text = f"    {label + ':':20} ATE {ate.position_rmse:.3f} m RMS"
+        text += f", heading {math.degrees(ate.heading_rmse):.2f} deg RMS"
+        if travelled >= 1.0:
+            rpe = relative_pose_error(poses, truth, delta=1.0)
+            text += (
+                f"; RPE {100 * rpe.translation_per_metre:.2f} cm/m, {math.degrees(rpe.heading_per_metre):.3f} deg/m"
+            )
+        else:
+            text += "; RPE: the log's poses travel less than 1 m"
+        print(text)
+
+
+def _draw_map(path, result, log_poses, odometry_source, title, odometry=None):
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
@@ -257,8 +325,10 @@ def _draw_map(path, result, log_poses, odometry_source, title):
     ax.set_ylabel("y (m)")
     ax.set_title(title)
     draw_segments(result.segments, ax=ax, lw=1.0, ends=False, label="line map")
+    if odometry_source == "simulated" and odometry is not None:
+        draw_trajectory(odometry, ax=ax, color="tab:purple", lw=0.6, ls="--", label="simulated odometry")
     if odometry_source != "poses":
-        draw_trajectory(log_poses, ax=ax, color="0.6", lw=0.8, ls=":", label="log poses")
+        draw_trajectory(log_poses, ax=ax, color="0.6", lw=0.8, ls=":", label="the log's poses")
     draw_trajectory(result.poses, ax=ax, color="tab:green", lw=0.8, label="corrected")
     ax.legend(loc="best", fontsize=8)
     fig.tight_layout()
@@ -436,7 +506,8 @@ def build_parser() -> argparse.ArgumentParser:
         "map2d",
         help="build a line map from a CARMEN laser log",
         description="Read a CARMEN log (FLASER lines, plain or .gz), build the line map of chapter 3 and write "
-        "LOG_map.png, LOG_segments.csv and LOG_poses.csv.",
+        "LOG_map.png, LOG_segments.csv, LOG_poses.csv and LOG_trajectory.tum (the corrected trajectory as a TUM file); "
+        "print its error (ATE, RPE per metre) against the log's poses.",
     )
     p.add_argument("log", help="CARMEN log file (.log or .log.gz)")
     p.add_argument("--out-dir", default=".", help="folder for the outputs (default: current folder)")
@@ -444,9 +515,19 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--limit", type=_positive(int), metavar="N", help="use only the first N scans")
     p.add_argument(
         "--odometry",
-        choices=("logged", "poses"),
+        choices=("logged", "poses", "simulated"),
         default="logged",
-        help="odometry for the builder: the log's odometry fields (default) or its laser poses",
+        help="odometry for the builder: the log's odometry fields (default), its laser poses, or drift simulated "
+        "from its poses (see --seed)",
+    )
+    p.add_argument(
+        "--seed",
+        type=_non_negative_int,
+        metavar="N",
+        help="random seed of --odometry simulated (default 0). The drift model (laser.OdometryModel()): a step of "
+        "d metres turning a radians, from one logged pose to the next, is reported with noise N(0, 0.02^2 d) m on "
+        "each axis and a heading error of 0.005 d (a steady drift) + N(0, 0.01^2 d + 0.03^2 |a|) rad; the steps "
+        "are composed from the log's first pose",
     )
     p.add_argument("--method", choices=("plain", "conformal"), default="plain", help="section 3.1 or 3.2")
     p.add_argument(

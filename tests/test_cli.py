@@ -30,12 +30,13 @@ def run(argv, capsys):
     return rc, out, err
 
 
-def write_carmen_log(path, scans, poses, odometry):
-    """A CARMEN log of FLASER lines (old format), as the Radish logs hold them."""
+def write_carmen_log(path, scans, poses, odometry, stamps=None):
+    """A CARMEN log of FLASER lines (old format), as the Radish logs hold them (timestamps 0.2 s apart by default)."""
     lines = ["# synthetic log for the tests", "PARAM robot_frontlaser_offset 0.0 nohost 0"]
-    for k, ((ranges, _), p, o) in enumerate(zip(scans, poses, odometry)):
+    stamps = 0.2 * np.arange(len(poses)) if stamps is None else stamps
+    for (ranges, _), p, o, t in zip(scans, poses, odometry, stamps):
         r = np.where(np.isfinite(ranges), ranges, NO_RETURN)
-        fields = [f"{v:.4f}" for v in r] + [f"{v:.6f}" for v in (*p, *o)] + [f"{k * 0.2:.3f}", "testhost", "0.0"]
+        fields = [f"{v:.4f}" for v in r] + [f"{v:.6f}" for v in (*p, *o)] + [f"{t:.3f}", "testhost", "0.0"]
         lines.append(f"FLASER {len(r)} " + " ".join(fields))
     opener = gzip.open if str(path).endswith(".gz") else open
     with opener(path, "wt") as f:
@@ -201,6 +202,121 @@ def test_map2d_progress_bar_counts_every_scan(room_log, tmp_path, capsys):
     assert counts[-1] == 20 and counts == sorted(counts) and len(counts) >= 5
     rc, _, err = run(["map2d", path, "--out-dir", tmp_path, "--limit", "20", "--force", "--progress", "never"], capsys)
     assert rc == 0 and "/20" not in err
+
+
+ERRORS = r"ATE ([\d.]+) m RMS, heading ([\d.]+) deg RMS; RPE ([\d.]+) cm/m, ([\d.]+) deg/m"
+
+
+def plain_ate(poses, truth):
+    """Position (m) and heading (deg) RMS differences, in plain NumPy."""
+    d = np.asarray(poses, float) - np.asarray(truth, float)
+    heading = np.arctan2(np.sin(d[:, 2]), np.cos(d[:, 2]))
+    return np.sqrt(np.mean(d[:, 0] ** 2 + d[:, 1] ** 2)), np.degrees(np.sqrt(np.mean(heading**2)))
+
+
+@pytest.fixture(scope="module")
+def room_log_repeating(tmp_path_factory):
+    """The room scene logged as the Radish corrected logs are: the odometry fields repeat the poses."""
+    scene = laser.load_scene("room")
+    truth = scene.trajectory[:40]
+    rng = np.random.default_rng(7)
+    scans = [laser.simulate_scan(scene, p, rng, n_beams=181, max_range=8.0) for p in truth]
+    path = write_carmen_log(tmp_path_factory.mktemp("repeat") / "repeat.log", scans, truth, truth)
+    return path, scans, truth
+
+
+def test_map2d_says_when_the_logged_odometry_repeats_the_poses(room_log_repeating, room_log, tmp_path, capsys):
+    path, _, truth = room_log_repeating
+    rc, out, err = run(["map2d", path, "--out-dir", tmp_path, "--progress", "never"], capsys)
+    assert rc == 0, err
+    assert "the log's odometry equals its corrected poses" in out and "--odometry simulated --seed N" in out
+    odo = re.search(r"logged odometry:\s+" + ERRORS, out)
+    assert odo and all(float(v) == 0.0 for v in odo.groups())  # nothing to correct
+    drifting, *_ = room_log
+    rc, out, _ = run(["map2d", drifting, "--out-dir", tmp_path / "drift", "--progress", "never"], capsys)
+    assert rc == 0 and "equals its corrected poses" not in out and "logged odometry:" in out
+
+
+def test_map2d_simulated_odometry_prints_the_errors_against_the_logs_poses(room_log_repeating, tmp_path, capsys):
+    from evo.core import metrics
+    from evo.core.trajectory import PoseTrajectory3D
+    from evo.tools import file_interface
+
+    path, _, truth = room_log_repeating
+    argv = ["map2d", path, "--out-dir", tmp_path, "--progress", "never", "--odometry", "simulated", "--seed", "3"]
+    rc, out, err = run(argv, capsys)
+    assert rc == 0, err
+    assert "equals its corrected poses" not in out and "seed 3" in out and "the log's poses" in out
+    # the drift printed is the drift of laser.simulate_odometry(poses, default_rng(3)) with the default model
+    odometry = laser.simulate_odometry(truth, np.random.default_rng(3))
+    printed = [float(v) for v in re.search(r"simulated odometry:\s+" + ERRORS, out).groups()]
+    position, heading = plain_ate(odometry, truth)
+    assert position > 0.01 and printed[0] == pytest.approx(position, abs=6e-4)  # printed: mm, 0.01 deg
+    assert printed[1] == pytest.approx(heading, abs=6e-3)
+    # the corrected line is the error of the poses written, which are the TUM file's (read here by evo)
+    corrected = [float(v) for v in re.search(r"corrected:\s+" + ERRORS, out).groups()]
+    rows = read_rows(tmp_path / "repeat_poses.csv")
+    poses = np.array([[float(r[c]) for c in ("x", "y", "theta")] for r in rows])
+    position, heading = plain_ate(poses, truth)
+    assert corrected[0] == pytest.approx(position, abs=6e-4) and corrected[1] == pytest.approx(heading, abs=6e-3)
+    traj = file_interface.read_tum_trajectory_file(str(tmp_path / "repeat_trajectory.tum"))
+    assert np.allclose(traj.positions_xyz[:, :2], poses[:, :2], atol=1e-6)
+    assert np.allclose(traj.timestamps[:3], [0, 0.2, 0.4])  # the log's own times
+    # evo's RPE over 1 m of the log's path, per metre, is the printed RPE (cm/m)
+    ref = laser.read_carmen_log(path).poses
+    quat = np.column_stack([np.cos(ref[:, 2] / 2), np.zeros((len(ref), 2)), np.sin(ref[:, 2] / 2)])
+    ref_traj = PoseTrajectory3D(np.column_stack([ref[:, :2], np.zeros(len(ref))]), quat, traj.timestamps)
+    rpe = metrics.RPE(metrics.PoseRelation.translation_part, 1.0, metrics.Unit.meters, pairs_from_reference=True)
+    rpe.process_data((ref_traj, traj))
+    steps = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(ref[:, :2], axis=0).T))])
+    ends = [0, *rpe.delta_ids]
+    per_metre = np.sqrt(np.mean((rpe.error / np.diff(steps[ends])) ** 2))
+    assert corrected[2] == pytest.approx(100 * per_metre, abs=0.01)
+
+
+def test_map2d_trajectory_file_refuses_to_overwrite_before_the_run(room_log, tmp_path, capsys):
+    path, *_ = room_log
+    tum = tmp_path / "room_trajectory.tum"
+    tum.write_text("kept\n")
+    rc, out, err = run(["map2d", path, "--out-dir", tmp_path, "--odometry", "simulated"], capsys)
+    assert rc == 1 and "will not overwrite" in err and "room_trajectory.tum" in err and out == ""
+    assert tum.read_text() == "kept\n" and sorted(p.name for p in tmp_path.iterdir()) == ["room_trajectory.tum"]
+    assert run(["map2d", path, "--out-dir", tmp_path, "--limit", "12", "--force"], capsys)[0] == 0
+    assert len(tum.read_text().splitlines()) == 12
+
+
+def test_map2d_tum_file_uses_the_scan_index_when_the_log_time_stands_still(room_log_repeating, tmp_path, capsys):
+    _, scans, truth = room_log_repeating
+    log = write_carmen_log(tmp_path / "still.log", scans[:15], truth[:15], truth[:15], stamps=np.zeros(15))
+    rc, out, err = run(["map2d", log, "--out-dir", tmp_path, "--odometry", "poses"], capsys)
+    assert rc == 0, err
+    assert "scan index" in out
+    stamps = [float(line.split()[0]) for line in (tmp_path / "still_trajectory.tum").read_text().splitlines()]
+    assert stamps == list(range(15))
+    assert "RPE: the log's poses travel less than 1 m" not in out  # 15 scans of the room travel more
+
+
+@pytest.mark.parametrize("args", [["--seed", "-1"], ["--seed", "x"], ["--odometry", "simulate"]])
+def test_map2d_bad_seed_arguments_exit_with_usage_status(tmp_path, capsys, args):
+    with pytest.raises(SystemExit) as exc:
+        cli.main(["map2d", str(tmp_path / "x.log"), "--odometry", "simulated", *args])
+    assert exc.value.code == 2 and "error" in capsys.readouterr().err
+
+
+def test_map2d_seed_without_simulated_odometry_is_a_clear_error(room_log, tmp_path, capsys):
+    path, *_ = room_log
+    rc, _, err = run(["map2d", path, "--out-dir", tmp_path / "o", "--seed", "2"], capsys)
+    assert rc == 1 and "--seed applies to --odometry simulated only" in err and not (tmp_path / "o").exists()
+
+
+def test_map2d_help_states_the_drift_model_it_uses(capsys):
+    with pytest.raises(SystemExit):
+        cli.main(["map2d", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    model = laser.OdometryModel()
+    assert "OdometryModel" in text and "simulated" in text
+    for value in (model.sigma_xy, model.heading_bias, model.sigma_heading, model.sigma_turn):
+        assert f"{value:g}" in text
 
 
 def test_progress_bar_redraws_in_place_on_a_terminal():
