@@ -150,9 +150,21 @@ class MapParams:
         Bound (radians) on a heading correction (3.8).
     n_iterations : int
         Rounds of correspondence and correction per scan.
-    range_noise : float
+    range_noise : float or None
         Standard deviation (m) of the laser's range noise; with the point count
         and length of a segment it gives the variance of its angle and offset.
+        None (default): estimated from each scan, the median scatter of its
+        segments' points about their lines
+        (:func:`~cga_lessons.mapping2d_estimation.scan_range_noise`; the logs
+        differ, 0.7 cm median on Intel, 1.4 cm on ACES).
+    significance : float
+        A correction is applied only when the F test of its innovation rejects
+        the prediction at this level
+        (:func:`~cga_lessons.mapping2d_estimation.estimate_correction`): 0.99
+        moves a right prediction in one scan of a hundred.
+    robust_kernel : float
+        Huber constant (in scaled standard deviations) of the robust least
+        squares of each correction.
     angle_floor, offset_floor : float
         Model error added to every line's angle (radians) and offset (m)
         standard deviation (walls that are not perfectly straight).
@@ -194,7 +206,12 @@ class MapParams:
         Resolution of the revisit search: angle (rad) and offset (m) within
         which a line pair agrees with a hypothesis.
     loop_max_angle, loop_max_shift : float
-        Largest rotation (rad) and translation (m) a revisit may correct.
+        Largest rotation (rad) and translation (m) a revisit may correct, on
+        top of the search window, which is three standard deviations of the
+        pose's uncertainty relative to the old lines, propagated along the
+        chain of poses (it grows with the distance travelled since they were
+        seen).  No bound by default (pi, inf): a fixed bound of 3 m missed the
+        revisits of the ACES log's 170 m loops, whose drift reached 5-10 m.
     loop_min_lines : int
         Fewest old lines a revisit must match.
     loop_min_support : float
@@ -219,9 +236,15 @@ class MapParams:
     t_xi: float = 0.3
     theta_max: float = 0.2
     n_iterations: int = 3
-    range_noise: float = 0.01
+    range_noise: float | None = None
+    significance: float = 0.999
+    estimate_odometry: bool = True
+    robust_kernel: float = 2.0
+    registration_xy: float = 0.025
+    registration_theta: float = 0.009
     angle_floor: float = 0.0
     offset_floor: float = 0.003
+    estimate_floors: bool = True
     gate: float = 3.0
     consensus_angle: float = 0.02
     odo_sigma_xy: float = 0.02
@@ -240,8 +263,8 @@ class MapParams:
     loop_every: float = 1.0
     loop_angle_tol: float = 0.02
     loop_shift_tol: float = 0.1
-    loop_max_angle: float = 0.35
-    loop_max_shift: float = 3.0
+    loop_max_angle: float = np.pi
+    loop_max_shift: float = np.inf
     loop_min_lines: int = 3
     loop_min_support: float = 0.3
     loop_max_sigma: float = 0.1
@@ -287,6 +310,19 @@ class MapResult:
 
 
 # --------------------------------------------------------------------------- the map
+
+
+def _warm_up(corrector, scans, odometry, ext, params):
+    """Learn how good the odometry is from the first scans, each registered on the one before, before any
+    correction (so that the first corrections already use it); returns their segments (laser frame)."""
+    n = min(len(scans), corrector.innovations.min_count + 1) if params.estimate_odometry else 0
+    local = [SegmentSet.from_segments(extract_segments(r, a, **ext)) for r, a in scans[:n]]
+    for k in range(1, n):
+        if len(local[k]) and len(local[k - 1]):
+            inc = relative(odometry[k - 1], odometry[k])
+            corrector.learn_odometry(local[k - 1], local[k], inc, odometry_covariance(inc, params))
+    return local
+
 
 
 def build_map(
@@ -372,6 +408,8 @@ def build_map(
     corrected = np.zeros(T, bool)
     history = []
     P = np.zeros((3, 3))
+    local = _warm_up(b.corrector, scans, odometry, ext, params)
+    previous = SegmentSet.empty()
     for k, (ranges, angles) in enumerate(scans):
         if k == 0:
             pose = odometry[0].copy()
@@ -383,20 +421,24 @@ def build_map(
             Q = odometry_covariance(inc, params)
             d = pose[:2] - poses[k - 1, :2]
             J = np.array([[1.0, 0.0, -d[1]], [0.0, 1.0, d[0]], [0.0, 0.0, 1.0]])
-            P = J @ P @ J.T + Q  # the prediction's covariance
+            carried = J @ P @ J.T
         predicted[k] = pose
-        L = SegmentSet.from_segments(extract_segments(ranges, angles, **ext))
+        L = local[k] if k < len(local) else SegmentSet.from_segments(extract_segments(ranges, angles, **ext))
+        if k >= len(local) and len(L) and len(previous):
+            b.corrector.learn_odometry(previous, L, inc, Q)  # how good the odometry is, scan against scan
+        previous = L
+        if k > 0:
+            P = carried + b.corrector.odometry_scale * Q  # the step scaled by what the data say of the odometry
         pts = np.zeros((0, 2))
         if len(L):
             r = np.asarray(ranges, float)
             pts, _ = scan_points(np.where(r < max_range, r, np.inf), angles)
         if k > 0 and len(L) and len(b.G):
-            pose, P, pairs = b.correct(L, pose, P, b.near(pose[:2], k), pts)
-            corrected[k] = pairs is not None
-            n_matches[k] = len(pairs[0]) if corrected[k] else 0
+            pose, P, pairs, corrected[k] = b.correct(L, pose, P, b.near(pose[:2], k), pts, step=(carried, Q))
+            n_matches[k] = 0 if pairs is None else len(pairs[0])
         poses[k] = pose
         if k > 0:
-            loops.add_step(k, poses, P if corrected[k] else Q)
+            loops.add_step(k, poses, P if n_matches[k] else b.corrector.odometry_scale * Q)
         b.fuse(L, pose, k)
         a = np.asarray(angles, float)
         closed = loops.search(b, k, poses, L, pts, (a.min(), a.max()))

@@ -23,8 +23,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .lines import diff_theta, line_from_sums
-from .mapping2d_corrections import line_variances, pose_correction
+from .lines import line_from_sums
+from .mapping2d_correction import ScanCorrector
 from .mapping2d_geometry import SegmentSet, _close_angle_pairs, _compose, correspondences
 
 __all__ = ["MapBuilder"]
@@ -57,6 +57,7 @@ class MapBuilder:
         self._obs_scan = np.zeros(0, int)  # per observation: the scan ...
         self._obs_id = np.zeros(0, int)  # ... and the id of the line it was fused into
         self.path = []  # distance travelled up to each scan (m)
+        self.corrector = ScanCorrector(geometry, params, self.mount)
 
     # ------------------------------------------------------------------ map queries
 
@@ -120,134 +121,45 @@ class MapBuilder:
 
     # ------------------------------------------------------------------ correction (3.6-3.12)
 
-    def _pair_terms(self, Gn, Lw, gi, li, centre):
-        """Angle and centroid-offset measurements of corresponding pairs, with variances and normals."""
-        p = self.p
-        G2, L2 = Gn.take(gi), Lw.take(li)
-        _, tg = self.geo.hough(G2, centre)
-        _, tl = self.geo.hough(L2, centre)
-        dth = diff_theta(tg, tl, p.theta_xi)
-        ng = np.column_stack([np.cos(tg), np.sin(tg)])
-        lever = L2.centroid - centre
-        offset = np.einsum("ij,ij->i", ng, G2.centroid - L2.centroid)
-        vt_l, vr_l = line_variances(L2, L2.centroid, p.range_noise, p.angle_floor, p.offset_floor)
-        vt_g, vr_g = line_variances(G2, L2.centroid, p.range_noise, p.angle_floor, p.offset_floor)
-        return dth, vt_l + vt_g, offset, vr_l + vr_g, ng, lever
-
-    def _edge_terms(self, Gn, Lw, gi, li, centre):
-        """Along-line measurements from ends that are real edges in both the map and the scan."""
-        rows, res = [], []
-        for g, k in zip(gi, li):
-            dl = Lw.end[k] - Lw.start[k]
-            dl = dl / np.hypot(*dl)
-            same = (Gn.end[g] - Gn.start[g]) @ dl >= 0
-            gends = (Gn.start[g], Gn.end[g]) if same else (Gn.end[g], Gn.start[g])
-            gflags = Gn.edge[g] if same else Gn.edge[g][::-1]
-            for e, (lp, lf) in enumerate(((Lw.start[k], Lw.edge[k, 0]), (Lw.end[k], Lw.edge[k, 1]))):
-                if lf and gflags[e] and self.geo.distance(gends[e], lp) < self.p.edge_match:
-                    lev = lp - centre
-                    rows.append([dl[0], dl[1], dl[1] * lev[0] - dl[0] * lev[1]])
-                    res.append(dl @ (gends[e] - lp))
-        if not rows:
-            return None
-        return np.array(rows), np.array(res), np.full(len(res), 1.0 / self.p.edge_sigma**2)
-
-    def _gate(self, dth, vt, off, vo, h, cov):
-        """Pairs whose innovation (angle, offset) lies within ``gate`` of zero in the Mahalanobis sense.
-
-        The innovation's covariance is the pair's own plus the pose's seen
-        through the measurement: ``S = diag(var_theta, var_offset) + H cov H'``.
-        """
-        s_tt = vt + cov[2, 2]
-        s_oo = vo + np.einsum("ij,jk,ik->i", h, cov, h)
-        s_to = h @ cov[:, 2]
-        det = s_tt * s_oo - s_to**2
-        d2 = (dth**2 * s_oo - 2 * dth * off * s_to + off**2 * s_tt) / det
-        return d2 < self.p.gate**2
-
-    def _angle_consensus(self, dth, vt, weight, ok):
-        """Mask of the largest set (by total ``weight``) of pairs whose angle differences agree.
-
-        Two pairs agree when their diffTheta (3.5) differ by at most ``gate``
-        standard deviations or ``consensus_angle``, whichever is larger; each
-        pair in ``ok`` proposes the set of those that agree with it.
-        """
-        tol = np.maximum(self.p.gate * np.sqrt(vt[:, None] + vt[None, :]), self.p.consensus_angle)
-        agree = (np.abs(dth[:, None] - dth[None, :]) <= tol) & ok[None, :]
-        score = np.where(ok, agree @ weight, -1.0)
-        return agree[int(np.argmax(score))]
-
-    def correct(self, L, pose, prior_cov, idx, points=None, widen=True):
+    def correct(self, L, pose, prior_cov, idx, points=None, widen=True, test=True, step=None):
         """Correct one scan's predicted pose against the map lines ``idx`` (3.6-3.12).
 
-        Each round finds the thesis's correspondences at the current pose,
-        keeps the pairs whose angle and offset innovations lie within
-        ``gate`` standard deviations (their own variance plus the pose's), and
-        solves heading and position together with the prediction as one more
-        measurement; the next round's gate uses the new, smaller pose
-        covariance, so pairs that disagree with the consensus drop out.  When
-        ``points`` (the scan's points, laser frame) are given, the corrected
-        pose is refused if the prediction puts them on the map clearly better
-        (:meth:`support`, by more than 1 % of the points).  With ``widen``
-        the first round's gate uses the prediction's covariance times
-        ``gate^2``: the odometry may do worse than its model says, and the
-        consensus of the pairs decides.
+        The registration is :meth:`ScanCorrector.register
+        <cga_lessons.mapping2d_correction.ScanCorrector.register>`.  With
+        ``test`` (and ``step = (carried, step_cov)``, the prediction's
+        covariance split into the part carried from the last pose and the
+        odometry step's model covariance) the correction is applied only if
+        :meth:`~cga_lessons.mapping2d_correction.ScanCorrector.decide` admits
+        it and, when ``points`` (the scan's points, laser frame) are given, if
+        the prediction does not put them on the map clearly better
+        (:meth:`support`, by more than 1 % of the points).  Without ``test``
+        the refined pose is returned as it is (a revisit's hypothesis is
+        refined, not tested against its start).
 
         Returns
         -------
         pose : ndarray, shape (3,)
         cov : ndarray, shape (3, 3)
-            Its covariance (the prior's if not corrected).
+            Its covariance (the prediction's if the correction was not applied).
         pairs : tuple (map line indices, local indices) or None
-            The correspondences of the last round.
+            The correspondences of the last round; None if no line was matched.
+        applied : bool
         """
-        p = self.p
         predicted = np.array(pose, float)
-        pose = predicted.copy()
-        cov = np.asarray(prior_cov, float)
-        Gn = self.G.take(idx)
-        pairs = None
-        first = widen
-        if len(Gn) == 0 or len(L) == 0:
-            return pose, cov, None
-        for _ in range(p.n_iterations):
-            Lw = self.geo.to_global(L, pose, self.mount)
-            C, _, _ = correspondences(Gn, Lw, pose[:2], p, self.geo)
-            gi = np.flatnonzero(C >= 0)
-            if len(gi) == 0:
-                break
-            li = C[gi]
-            dth, vt, off, vo, ng, lever = self._pair_terms(Gn, Lw, gi, li, pose[:2])
-            h = np.column_stack([ng, ng[:, 1] * lever[:, 0] - ng[:, 0] * lever[:, 1]])
-            # first round: the prediction's covariance widened (the odometry may do worse than its model),
-            # and only the largest set of pairs that agree on the angle: one long wrong line cannot pull the rest
-            ok = self._gate(dth, vt, off, vo, h, cov * (p.gate**2 if first else 1.0))
-            if first and ok.any():
-                ok &= self._angle_consensus(dth, vt, np.minimum(Gn.length[gi], Lw.length[li]), ok)
-            first = False
-            if not ok.any():
-                break
-            gi, li = gi[ok], li[ok]
-            edges = self._edge_terms(Gn, Lw, gi, li, pose[:2])
-            prior_offset = predicted - pose
-            prior_offset[2] = np.mod(prior_offset[2] + np.pi, 2 * np.pi) - np.pi
-            delta, cov = pose_correction(
-                dth[ok], vt[ok], off[ok], vo[ok], ng[ok], lever[ok], prior_cov, prior_offset, edges
-            )
-            delta[:2] = np.clip(delta[:2], -p.t_xi, p.t_xi)  # bounded by T_xi
-            delta[2] = np.clip(delta[2], -p.theta_max, p.theta_max)
-            pose = np.array([pose[0] + delta[0], pose[1] + delta[1], pose[2] + delta[2]])  # (3.6), (3.7)
-            pose[2] = np.mod(pose[2] + np.pi, 2 * np.pi) - np.pi
-            pairs = (idx[gi], li)
-            if np.hypot(*delta[:2]) < 1e-3 and abs(delta[2]) < 1e-4:  # converged: the pairs will not change
-                break
-        if pairs is None:
-            return predicted, np.asarray(prior_cov, float), None
-        if points is not None and p.support_distance > 0:
+        gate_cov = None if step is None else step[0] + max(self.corrector.odometry_scale, 1.0) * step[1]
+        reg = self.corrector.register(self.G.take(idx), L, predicted, prior_cov, widen, gate_cov)
+        if reg is None:
+            return predicted, np.asarray(prior_cov, float), None, False
+        pairs = (idx[reg.gi], reg.li)
+        if not test:
+            return reg.pose, reg.cov, pairs, True
+        carried, step_cov = step if step is not None else (np.asarray(prior_cov, float), np.zeros((3, 3)))
+        new, cov, applied = self.corrector.decide(reg, predicted, carried, step_cov)
+        if applied and points is not None and self.p.support_distance > 0:
             margin = 0.01 * len(points)  # refused only if clearly worse than the prediction
-            if self.support(points, predicted, idx) > self.support(points, pose, idx) + margin:
-                return predicted, np.asarray(prior_cov, float), None
-        return pose, cov, pairs
+            if self.support(points, predicted, idx) > self.support(points, new, idx) + margin:
+                return predicted, np.asarray(prior_cov, float), pairs, False
+        return new, cov, pairs, applied
 
     # ------------------------------------------------------------------ fusion (3.1.4, 3.20-3.21)
 

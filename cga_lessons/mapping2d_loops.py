@@ -223,7 +223,7 @@ def find_loop(builder, k, poses, L, points, fov, window):
     if len(old) < p.loop_min_lines:
         return None
     hyp_cov = np.diag([p.loop_shift_tol**2, p.loop_shift_tol**2, p.loop_angle_tol**2])
-    q, cov, pairs = b.correct(L, pose, hyp_cov, old, widen=False)
+    q, cov, pairs, _ = b.correct(L, pose, hyp_cov, old, widen=False, test=False)
     if pairs is not None:
         found = _verify(b, k, poses, points, old, [(b.support(points, q, old), q, cov, pairs)])
         if found is not None:
@@ -240,7 +240,7 @@ def find_loop(builder, k, poses, L, points, fov, window):
         tried.append(h)
         _, phi, t = h
         start = np.array([pose[0] + t[0], pose[1] + t[1], pose[2] + phi])
-        q, cov, pairs = b.correct(L, start, hyp_cov, old, widen=False)
+        q, cov, pairs, _ = b.correct(L, start, hyp_cov, old, widen=False, test=False)
         if pairs is not None:
             results.append((b.support(points, q, old), q, cov, pairs))
         if len(tried) >= 2:

@@ -141,7 +141,8 @@ def test_correct_recovers_a_known_pose_and_gates_a_wrong_pair():
     room = load_scene("room")
     truth = room.trajectory
     res = build_map(simulate_scans(room, truth), truth, loop_closure=False)  # noise-free: the four walls
-    b = MapBuilder(PlainGeometry(), MapParams(), max_range=5.0)
+    exact = MapParams(registration_xy=0.0, registration_theta=0.0)  # a simulated scan: no registration error
+    b = MapBuilder(PlainGeometry(), exact, max_range=5.0)
     b.path = [0.0]
     b.add_lines(SegmentSet.from_segments(res.segments), 0)
     ranges, angles = simulate_scans(room, truth[20][None], np.random.default_rng(5))[0]
@@ -155,13 +156,14 @@ def test_correct_recovers_a_known_pose_and_gates_a_wrong_pair():
     predicted = compose(truth[20], [0.04, -0.03, 0.015])
     prior = np.diag([0.05**2, 0.05**2, 0.02**2])
     idx = np.arange(len(b.G))
-    pose, cov, pairs = b.correct(L, predicted, prior, idx)
+    pose, cov, pairs, applied = b.correct(L, predicted, prior, idx)
+    assert applied
     err = relative(truth[20], pose)
     assert np.hypot(err[0], err[1]) < 0.01 and abs(err[2]) < np.radians(0.1)
     assert 0 not in pairs[1] and len(pairs[1]) == 2  # the wrong pair fell out at the gate
     assert np.all(np.linalg.eigvalsh(cov) < np.linalg.eigvalsh(prior).max())
-    b.p = MapParams(gate=1e6)  # without the gate the wrong pair drags the pose off
-    pose_ungated, _, _ = b.correct(L, predicted, prior, idx)
+    b.p = b.corrector.params = MapParams(gate=1e6, registration_xy=0.0, registration_theta=0.0)  # without the gate the wrong pair drags the pose off
+    pose_ungated, _, _, _ = b.correct(L, predicted, prior, idx)
     assert abs(relative(truth[20], pose_ungated)[2]) > np.radians(1.0)
 
 
