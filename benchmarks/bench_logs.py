@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import json
 import math
 import multiprocessing
 import sys
@@ -188,7 +189,11 @@ def parse_args(argv=None):
     ap.add_argument("--seeds", help="comma-separated non-negative integers (default 0,1,2,3)")
     ap.add_argument("--workers", type=int, default=2, help="processes (default 2: the machine has two cores)")
     ap.add_argument("--no-reloc", action="store_true", help="skip the relocalization table (bench_reloc_logs.py)")
+    ap.add_argument("--json", metavar="PATH", help="also write the rows as JSON (refuses to overwrite; see --force)")
+    ap.add_argument("--force", action="store_true", help="overwrite the --json file")
     args = ap.parse_args(argv)
+    if args.json and Path(args.json).exists() and not args.force:
+        ap.error(f"--json: {args.json} exists (add --force to overwrite it)")
     logs = list(LOGS) if args.logs is None else [s.strip() for s in args.logs.split(",") if s.strip()]
     unknown = [s for s in logs if s not in LOGS]
     if unknown or not logs:
@@ -206,11 +211,19 @@ def parse_args(argv=None):
         logs = ["intel"] if args.logs is None else logs
         seeds = [0] if args.seeds is None else seeds
         limit = 300
-    return logs, seeds, limit, args.workers, args.quick or args.logs is not None, not args.no_reloc
+    return logs, seeds, limit, args.workers, args.quick or args.logs is not None, not args.no_reloc, args.json
+
+
+def write_json(path, rows, meta):
+    """The rows and how they were made, written whole (a temporary file renamed: never a partial file)."""
+    path = Path(path)
+    tmp = path.with_name(path.name + ".tmp")
+    tmp.write_text(json.dumps({"meta": meta, "rows": rows}, indent=1, default=float) + "\n", encoding="utf-8")
+    tmp.replace(path)
 
 
 def main(argv=None) -> int:
-    logs, seeds, limit, workers, chosen, reloc = parse_args(argv)
+    logs, seeds, limit, workers, chosen, reloc, json_path = parse_args(argv)
     scope = "all scans" if limit is None else f"first {limit} scans"
     print(
         f"six-log benchmark: {', '.join(logs)}; seeds {', '.join(map(str, seeds))}; {scope}; readings up to "
@@ -240,6 +253,12 @@ def main(argv=None) -> int:
             print(f"  {name:12} median over seeds: ratio {ratio:6.1f}x, corrected {rmse:.3f} m, map {map_cm:.1f} cm")
     if not all(r["evo_agrees"] for r in rows):
         print("  evo's RPE differs from trajectories.relative_pose_error in some rows (marked !)")
+    if json_path:
+        meta = dict(logs=logs, seeds=seeds, limit=limit, max_range=MAX_RANGE, workers=workers,
+                    targets=dict(ratio=TARGET_RATIO, ratio_intel=TARGET_RATIO_INTEL, map_cm=TARGET_MAP_CM,
+                                 held_cm=TARGET_HELD_CM, ms=TARGET_MS))  # fmt: skip
+        write_json(json_path, [dict(r, verdict=verdict(r)) for r in rows], meta)
+        print(f"  wrote {json_path}")
     return run_reloc(logs if chosen else None) if reloc else 0
 
 

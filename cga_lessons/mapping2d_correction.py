@@ -188,7 +188,7 @@ class ScanCorrector:
         out[2] = _wrap(out[2])
         return out
 
-    def register(self, ref: SegmentSet, L: SegmentSet, predicted, prior_cov, widen=True, gate_cov=None) -> Registration | None:
+    def register(self, ref: SegmentSet, L: SegmentSet, predicted, prior_cov, widen=True, gate_cov=None):
         """Register the scan's segments ``L`` (laser frame) on the reference segments ``ref`` (3.5-3.12).
 
         Each round finds the thesis's correspondences at the current pose,
@@ -204,7 +204,10 @@ class ScanCorrector:
         the covariance widened there: the odometry's model covariance, when the
         prior has learnt a better odometry.
 
-        Returns None when no pair corresponds.
+        Returns
+        -------
+        Registration or None
+            None when no pair corresponds.
         """
         p = self.params
         predicted = np.array(predicted, float)

@@ -63,8 +63,13 @@ class PoseGraph:
         x = np.asarray(poses, float)
         return relative_pose(np.array(self.z), relative_pose(x[self.i], x[self.j]))
 
-    def optimize(self, poses, iterations: int = 10, robust: float = 3.0, tol: float = 1e-4):
-        """Gauss-Newton relaxation of ``poses`` (T, 3); the first pose stays fixed.
+    def optimize(self, poses, iterations: int = 10, robust: float = 3.0, tol: float = 1e-4, first_free: int = 1):
+        """Gauss-Newton relaxation of ``poses`` (T, 3); the poses before ``first_free`` stay fixed.
+
+        With ``first_free`` the earliest pose a new revisit ties to, only the
+        part of the chain the revisit can move is relaxed (edges into the
+        fixed poses hold it in place), so the cost of a closure grows with
+        the loop's length, not with the whole log's.
 
         Returns
         -------
@@ -72,11 +77,14 @@ class PoseGraph:
         """
         x = np.array(poses, float)
         T = len(x)
-        if len(self.i) == 0 or T < 2:
+        f = max(int(first_free), 1)
+        if len(self.i) == 0 or T < 2 or f >= T:
             return x
         ei, ej = np.array(self.i), np.array(self.j)
-        Z, Om = np.array(self.z), np.array(self.info)
-        loop = np.array(self.is_loop)
+        sel = np.maximum(ei, ej) >= f  # the edges that touch a free pose
+        ei, ej = ei[sel], ej[sel]
+        Z, Om = np.array(self.z)[sel], np.array(self.info)[sel]
+        loop = np.array(self.is_loop)[sel]
         cz, sz = np.cos(Z[:, 2]), np.sin(Z[:, 2])
         RzT = np.stack([np.stack([cz, sz], -1), np.stack([-sz, cz], -1)], -2)
         for _ in range(iterations):
@@ -104,12 +112,14 @@ class PoseGraph:
             idx = np.concatenate([3 * ei[:, None] + np.arange(3), 3 * ej[:, None] + np.arange(3)], axis=1)  # (E, 6)
             rows = np.repeat(idx, 6, axis=1).ravel()
             cols = np.tile(idx, (1, 6)).ravel()
-            H = sp.csr_matrix((Hb.ravel(), (rows, cols)), shape=(3 * T, 3 * T))
-            g = np.zeros(3 * T)
-            np.add.at(g, idx.ravel(), gb.ravel())
-            H = H[3:, 3:]  # the first pose is fixed
-            dx = spla.spsolve(H.tocsc(), -g[3:])
-            x[1:] += dx.reshape(-1, 3)
+            keep = (rows >= 3 * f) & (cols >= 3 * f)  # the fixed poses are no unknowns
+            n = 3 * (T - f)
+            H = sp.csc_matrix((Hb.ravel()[keep], (rows[keep] - 3 * f, cols[keep] - 3 * f)), shape=(n, n))
+            free = idx.ravel() >= 3 * f
+            g = np.zeros(n)
+            np.add.at(g, idx.ravel()[free] - 3 * f, gb.ravel()[free])
+            dx = spla.spsolve(H, -g)
+            x[f:] += dx.reshape(-1, 3)
             x[:, 2] = np.mod(x[:, 2] + np.pi, 2 * np.pi) - np.pi
             if np.max(np.abs(dx)) < tol:
                 break

@@ -276,7 +276,8 @@ def apply_loop(builder, graph, poses, k, loops):
         moved |= bool(np.hypot(*d[:2]) > 0.5 * p.loop_shift_tol or abs(d[2]) > 0.5 * p.loop_angle_tol)
     if not moved:
         return poses[: k + 1]  # already in place: the edges wait for the next relaxation
-    new = graph.optimize(poses[: k + 1], robust=p.gate)
+    first = min(loop["anchor"] for _, loop in loops)
+    new = graph.optimize(poses[: k + 1], robust=p.gate, first_free=first)
     builder.refit(new)
     builder.remove_duplicates()
     return new
@@ -318,6 +319,25 @@ class LoopCloser:
         self.graph.add(k - 1, k, relative_pose(poses[k - 1], poses[k]), cov)
         self.var_xy[k], self.var_theta[k] = max(cov[0, 0], cov[1, 1]), cov[2, 2]
 
+    def plausible(self, loop, poses, k, window) -> bool:
+        """Is the correction a revisit asks of pose ``k`` within what the chain since its anchor allows?
+
+        The correction's chi-square, against the chain's uncertainty
+        (:func:`~cga_lessons.mapping2d_graph.chain_uncertainty`) plus the
+        revisit's own covariance, must lie within the 0.999 quantile of the
+        chi-square law of 3 degrees of freedom (16.3).  Revisits found by
+        :func:`find_loop` already lie within the search window; this guards
+        the pose graph against any other (its robust cost alone cannot refuse
+        a wrong revisit that the chain's floors make look possible).
+        """
+        d = relative_pose(poses[k], loop["pose"])
+        sigma_xy, sigma_theta = window(loop["anchor"])
+        cov = loop["cov"]
+        chi2 = (d[0] ** 2 + d[1] ** 2) / (sigma_xy**2 + max(cov[0, 0], cov[1, 1])) + d[2] ** 2 / (
+            sigma_theta**2 + cov[2, 2]
+        )
+        return bool(chi2 <= 16.27)
+
     def search(self, builder, k, poses, L, points, fov):
         """Search for a revisit at scan ``k``; returns the relaxed poses[:k+1] and the pose covariance, or None."""
         p = self.p
@@ -336,6 +356,8 @@ class LoopCloser:
             if self.pending is not None:
                 self.next_search = path
             return None
+        if not self.plausible(loop, poses, k, window):
+            return None  # farther than the chain can have drifted: a place that only looks alike
         fix = chain_correction(loop["pose"], poses[k])
         if self.pending is None or not corrections_agree(self.pending[2], fix, p):
             self.pending = (k, loop, fix, path)

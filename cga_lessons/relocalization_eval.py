@@ -24,7 +24,9 @@ import numpy as np
 
 from .algebra import InvalidInputError
 from .laser import Scene, simulate_scan
-from .relocalization import pose_error, prepare_map, relocalize
+from .relocalization import ReferenceMap, pose_error, prepare_map, relocalize
+from .relocalization_coverage import build_coverage
+from .relocalization_logmap import line_map_from_scans
 
 __all__ = [
     "POSITION_TOLERANCE",
@@ -34,6 +36,8 @@ __all__ = [
     "Evaluation",
     "evaluate_poses",
     "map_from_log",
+    "reference_from_log",
+    "held_out_map_indices",
     "evaluate_log",
 ]
 
@@ -289,24 +293,69 @@ def map_from_log(log, indices, *, max_range: float = 8.0) -> list:
     return res.segments
 
 
-def evaluate_log(log, test_indices, *, exclude: int = 2, map_step: int = 2, max_range: float = 8.0, **relocalize_kw):
+def reference_from_log(
+    log, indices, *, max_range: float = 8.0, coverage: bool = True, builder: bool = False
+) -> ReferenceMap:
+    """The map of the scans ``indices`` of a log at their logged poses, prepared for relocalization.
+
+    The lines come from :func:`cga_lessons.relocalization_logmap.line_map_from_scans`
+    (each scan's segments at its pose, merged per wall), or with ``builder``
+    from :func:`map_from_log` (chapter 3's builder with its corrections off).
+    With ``coverage`` the map also carries the coverage grid of the same scans
+    (:func:`cga_lessons.relocalization_coverage.build_coverage`), so that
+    beams ending where those scans never looked do not count.
+    """
+    idx = np.asarray(indices, int)
+    if idx.size == 0 or idx.min() < 0 or idx.max() >= len(log):
+        raise InvalidInputError(f"reference_from_log: indices must be non-empty and within 0..{len(log) - 1}")
+    scans, poses = [log.scans[i] for i in idx], log.poses[idx]
+    if builder:
+        segs = np.array([[s.start, s.end] for s in map_from_log(log, idx, max_range=max_range)], float)
+    else:
+        segs = line_map_from_scans(scans, poses, max_range=max_range)
+    cov = build_coverage(scans, poses, max_range=max_range, segments=segs) if coverage else None
+    return prepare_map(segs.reshape(-1, 2, 2), cov)
+
+
+def held_out_map_indices(n: int, test_indices, exclude: int, map_step: int) -> np.ndarray:
+    """The scans of a log of ``n`` scans the map is built from: every ``map_step``-th of those more than
+    ``exclude`` scans away from every test scan."""
+    keep = np.ones(n, bool)
+    for k in np.asarray(test_indices, int).ravel():
+        keep[max(0, k - exclude) : k + exclude + 1] = False
+    return np.flatnonzero(keep)[::map_step]
+
+
+def evaluate_log(
+    log,
+    test_indices,
+    *,
+    exclude: int = 2,
+    map_step: int = 2,
+    max_range: float = 8.0,
+    coverage: bool = True,
+    **relocalize_kw,
+):
     """Relocalize held-out scans of a log against the map built from the rest of it.
 
     The map uses every ``map_step``-th scan that is more than ``exclude``
-    scans away from every test scan; the truth is the logged pose.
+    scans away from every test scan; the truth is the logged pose.  With
+    ``coverage`` the map carries the coverage grid of its scans
+    (:func:`reference_from_log`).
 
     Returns
     -------
     evaluation : Evaluation
         (``witness`` is not computed: there is no simulator.)
-    map_segments : list of Segment
+    map_segments : ndarray, shape (M, 2, 2)
     """
     test = np.asarray(test_indices, int)
-    keep = np.ones(len(log), bool)
-    for k in test:
-        keep[max(0, k - exclude) : k + exclude + 1] = False
-    segs = map_from_log(log, np.flatnonzero(keep)[::map_step], max_range=max_range)
-    ref = prepare_map(segs)
+    if test.size == 0 or test.min() < 0 or test.max() >= len(log):
+        raise InvalidInputError(f"evaluate_log: test_indices must be non-empty and within 0..{len(log) - 1}")
+    ref = reference_from_log(
+        log, held_out_map_indices(len(log), test, exclude, map_step), max_range=max_range, coverage=coverage
+    )
+    segs = ref.segments
     results, secs = [], []
     for k in test:
         t0 = time.perf_counter()

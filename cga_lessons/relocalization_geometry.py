@@ -80,13 +80,27 @@ class ReferenceMap:
     def __len__(self):
         return len(self.segments)
 
+    @property
+    def coverage(self):
+        """The map's coverage grid (:class:`~cga_lessons.relocalization_coverage.Coverage`) or None."""
+        return self.lines.coverage
 
-def prepare_map(map_segments) -> ReferenceMap:
-    """Check and prepare a map (Segments or a (K, 2, 2) array) for :func:`relocalize`."""
-    if isinstance(map_segments, ReferenceMap):
+
+def prepare_map(map_segments, coverage=None) -> ReferenceMap:
+    """Check and prepare a map (Segments or a (K, 2, 2) array) for :func:`relocalize`.
+
+    ``coverage`` (a :class:`~cga_lessons.relocalization_coverage.Coverage` of
+    the scans the map was built from) makes the beam check count only beams
+    that end where the map knows something; without it every beam counts.
+    """
+    if isinstance(map_segments, ReferenceMap) and coverage is None:
         return map_segments
+    if isinstance(map_segments, ReferenceMap):
+        map_segments = map_segments.segments
+    if coverage is not None and not hasattr(coverage, "classify"):
+        raise InvalidInputError(f"prepare_map: coverage must be a Coverage, got {type(coverage).__name__}")
     arr = as_segment_array(map_segments, "relocalize", "map_segments")
-    return ReferenceMap(arr, MapLines(arr))
+    return ReferenceMap(arr, MapLines(arr, coverage))
 
 
 def check_scan(scan, func="relocalize"):
@@ -156,9 +170,12 @@ class MapLines:
         ``normal`` is the direction turned by -90 degrees (either face).
     length, offset, angle : ndarray, shape (M,)
         ``offset = normal . start``; ``angle`` is the direction's angle modulo pi.
+    coverage : Coverage or None
+        What the map knows (:mod:`cga_lessons.relocalization_coverage`).
     """
 
     segments: np.ndarray
+    coverage: object = None
 
     def __post_init__(self):
         s = self.segments

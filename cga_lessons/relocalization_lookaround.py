@@ -26,7 +26,14 @@ import numpy as np
 from .algebra import InvalidInputError
 from .laser import OdometryModel, Scene, compose, relative, simulate_odometry, simulate_scan, wrap_angle
 from .relocalization import pose_error, prepare_map
-from .relocalization_eval import HEADING_TOLERANCE, POSITION_TOLERANCE, Evaluation, map_from_log, scan_agreement
+from .relocalization_eval import (
+    HEADING_TOLERANCE,
+    POSITION_TOLERANCE,
+    Evaluation,
+    held_out_map_indices,
+    reference_from_log,
+    scan_agreement,
+)
 from .relocalization_sequence import relocalize_sequence
 
 __all__ = ["look_around", "evaluate_look_around", "evaluate_log_sequences"]
@@ -165,22 +172,28 @@ def evaluate_log_sequences(
     exclude: int = 2,
     map_step: int = 2,
     max_range: float = 8.0,
+    odometry=None,
+    coverage: bool = True,
     **relocalizer_kw,
 ):
-    """Relocalize short runs of a log's scans, with its logged odometry, against the map of the rest of it.
+    """Relocalize short runs of a log's scans, with its odometry, against the map of the rest of it.
 
     Run ``i`` uses the scans ``starts[i] + stride * (0, 1, ..., length - 1)``
     (the robot driving on, not turning); the map is built as in
     :func:`cga_lessons.relocalization_eval.evaluate_log` from every
     ``map_step``-th scan more than ``exclude`` scans away from every scan of
-    every run; the truth is the logged (corrected) pose of each run's last scan.
+    every run (with its coverage grid when ``coverage``, see
+    :func:`cga_lessons.relocalization_eval.reference_from_log`); the truth is
+    the logged (corrected) pose of each run's last scan.  ``odometry`` (T, 3)
+    replaces the logged odometry (the corrected logs log the poses there: pass
+    :func:`cga_lessons.laser.simulate_odometry` of the truth).
 
     Returns
     -------
     evaluation : Evaluation
         (``witness`` is not computed: there is no simulator.)
     n_scans : ndarray of int
-    map_segments : list of Segment
+    map_segments : ndarray, shape (M, 2, 2)
     """
     starts = np.asarray(starts, int)
     if int(length) < 1 or int(stride) < 1:
@@ -190,17 +203,16 @@ def evaluate_log_sequences(
         raise InvalidInputError(
             f"evaluate_log_sequences: runs {runs.min()}..{runs.max()} outside the log (0..{len(log) - 1})"
         )
-    keep = np.ones(len(log), bool)
-    for k in runs.ravel():
-        keep[max(0, k - exclude) : k + exclude + 1] = False
-    segs = map_from_log(log, np.flatnonzero(keep)[::map_step], max_range=max_range)
-    ref = prepare_map(segs)
+    odo = log.odometry if odometry is None else np.asarray(odometry, float)
+    if odo.shape != (len(log), 3):
+        raise InvalidInputError(f"evaluate_log_sequences: odometry must have shape ({len(log)}, 3), got {odo.shape}")
+    idx = held_out_map_indices(len(log), runs, exclude, map_step)
+    ref = reference_from_log(log, idx, max_range=max_range, coverage=coverage)
+    segs = ref.segments
     rows = []
     for run in runs:
         t0 = time.perf_counter()
-        r = relocalize_sequence(
-            ref, [log.scans[k] for k in run], log.odometry[run], max_range=max_range, **relocalizer_kw
-        )
+        r = relocalize_sequence(ref, [log.scans[k] for k in run], odo[run], max_range=max_range, **relocalizer_kw)
         rows.append(_row(r, log.poses[run[r.n_scans - 1]], np.nan, time.perf_counter() - t0))
     ev, n = _evaluation(rows)
     return ev, n, segs

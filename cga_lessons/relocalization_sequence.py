@@ -18,8 +18,8 @@ of hypotheses, each a chain of laser poses, one per scan:
 3. a chain's score is the beam score of
    :func:`~cga_lessons.relocalization_verify.score_poses` summed over all its
    scans: ``(inliers - violations) / returned beams``;
-4. the answer is *ambiguous* while a clearly different chain scores at least
-   ``ambiguity_ratio`` of the best, or while the best chain moved rigidly by
+4. the answer is *ambiguous* while a clearly different chain ties with the
+   best (:func:`~cga_lessons.relocalization_verify.tie_bar`), or while the best chain moved rigidly by
    ``distinct_position`` along its least constrained direction (or turned by
    ``distinct_heading`` about its last pose) still does; that is the rule of a
    single relocalization, applied to all the scans together.
@@ -36,9 +36,9 @@ import numpy as np
 
 from .algebra import InvalidInputError
 from .laser import compose, relative
-from .relocalization import RelocParams, noise_scaled, relocalize, resolve_params
+from .relocalization import RelocParams, combined_noise, noise_scaled, relocalize, resolve_params
 from .relocalization_geometry import Observation, check_scan, estimate_range_noise, prepare_map
-from .relocalization_verify import Candidate, distinct, pose_information, refine_if_better, score_poses
+from .relocalization_verify import Candidate, distinct, pose_information, refine_if_better, score_poses, tie_bar
 
 __all__ = ["Relocalizer", "SequenceRelocalization", "relocalize_sequence"]
 
@@ -161,7 +161,7 @@ class Relocalizer:
         if odo.shape != (3,) or not np.all(np.isfinite(odo)):
             raise InvalidInputError(f"Relocalizer.add: odometry must be a finite (x, y, theta), got {odo!r}")
         noise = estimate_range_noise(np.where(ranges < self.max_range, ranges, np.inf))
-        params = noise_scaled(self.params, noise)
+        params = noise_scaled(self.params, combined_noise(noise, self.ref))
         obs = Observation.from_scan(ranges, angles, self.max_range)
         k = len(self.obs)
         self.obs.append(obs)
@@ -246,8 +246,8 @@ class Relocalizer:
         """New chains from poses at scan ``k``, carried back through the odometry to every earlier scan."""
         n = len(poses)
         chain = np.zeros((k + 1, n, 3))
-        inl = np.zeros((k + 1, n), int)
-        vio = np.zeros((k + 1, n), int)
+        inl = np.zeros((k + 1, n))
+        vio = np.zeros((k + 1, n))
         chain[k], inl[k], vio[k] = self._fit(k, poses)
         for j in range(k - 1, -1, -1):
             back = compose(chain[j + 1], relative(self.odometry[j + 1], self.odometry[j]))
@@ -276,7 +276,7 @@ class Relocalizer:
 
     def _candidate(self, ch) -> Candidate:
         pose, score = np.array(ch.poses[-1]), ch.score(self.returned)
-        return Candidate(pose, score, int(ch.inliers.sum()), int(ch.violations.sum()))
+        return Candidate(pose, score, float(ch.inliers.sum()), float(ch.violations.sum()))
 
     def _weak_direction(self, ch) -> np.ndarray:
         """The unit position direction (2,) that the chain's scans constrain least.
@@ -298,7 +298,7 @@ class Relocalizer:
     def _summed(self, poses):
         """Inliers and violations summed over the scans, for one chain of poses (n_scans, 3)."""
         inl, vio = self._per_scan(poses)
-        return int(inl.sum()), int(vio.sum())
+        return float(inl.sum()), float(vio.sum())
 
     def _polish(self, ch, rounds: int = 5):
         """Slide the whole chain along its least constrained direction while the summed score grows.
@@ -309,13 +309,13 @@ class Relocalizer:
         """
         weak = self._weak_direction(ch)
         poses = np.array(ch.poses)
-        cur = int(ch.inliers.sum() - ch.violations.sum())
+        cur = float(ch.inliers.sum() - ch.violations.sum())
         coarse = True
         for _ in range(rounds):
             steps = [-0.2, -0.1, -0.05, 0.05, 0.1, 0.2] if coarse else [-0.02, 0.02]
             trials = [(poses + np.array([st * weak[0], st * weak[1], 0.0])) for st in steps]
             per_scan = [self._per_scan(t) for t in trials]
-            net = [int(i.sum() - v.sum()) for i, v in per_scan]
+            net = [float(i.sum() - v.sum()) for i, v in per_scan]
             k = int(np.argmax(net))
             if net[k] > cur:
                 poses, cur = trials[k], net[k]
@@ -328,7 +328,7 @@ class Relocalizer:
 
     def _per_scan(self, poses):
         out = [self._score(j, q[None]) for j, q in enumerate(poses)]
-        return np.array([int(o[1][0]) for o in out]), np.array([int(o[2][0]) for o in out])
+        return np.array([float(o[1][0]) for o in out]), np.array([float(o[2][0]) for o in out])
 
     def _decide(self, best, cands):
         """``(status, message, probe)``: the rule of :func:`~cga_lessons.relocalization_verify.decide` on the
@@ -336,11 +336,12 @@ class Relocalizer:
         p = self.params
         if cands[0].score < p.min_score:
             return "failed", f"best score {cands[0].score:.3f} below min_score {p.min_score}", None
-        rivals = [c for c in cands[1:] if c.score >= p.ambiguity_ratio * cands[0].score]
+        bar = tie_bar(cands[0].score, p)
+        rivals = [c for c in cands[1:] if c.score >= bar]
         if rivals:
             return (
                 "ambiguous",
-                f"{len(rivals)} clearly different pose(s) score >= {p.ambiguity_ratio:.0%} of the best "
+                f"{len(rivals)} clearly different pose(s) score >= {bar:.3f}, tied with the best "
                 f"after {len(self.obs)} scan(s)",
                 None,
             )
@@ -354,12 +355,12 @@ class Relocalizer:
             scores.append((inl - vio) / self.returned.sum())
             details.append((_rigid(last, last[:2], mx, my, ma), inl, vio))
         kbest = int(np.argmax(scores))
-        if scores[kbest] >= p.ambiguity_ratio * cands[0].score:
+        if scores[kbest] >= bar:
             pose, inl, vio = details[kbest]
             return (
                 "ambiguous",
                 f"the poses moved by {p.distinct_position} m along ({weak[0]:.2f}, {weak[1]:.2f}) or turned by "
-                f"{np.degrees(p.distinct_heading):.1f} deg score >= {p.ambiguity_ratio:.0%} of them: "
+                f"{np.degrees(p.distinct_heading):.1f} deg tie with them (score >= {bar:.3f}): "
                 f"{len(self.obs)} scan(s) do not fix the pose",
                 Candidate(pose, float(scores[kbest]), inl, vio),
             )

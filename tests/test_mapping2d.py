@@ -162,7 +162,8 @@ def test_correct_recovers_a_known_pose_and_gates_a_wrong_pair():
     assert np.hypot(err[0], err[1]) < 0.01 and abs(err[2]) < np.radians(0.1)
     assert 0 not in pairs[1] and len(pairs[1]) == 2  # the wrong pair fell out at the gate
     assert np.all(np.linalg.eigvalsh(cov) < np.linalg.eigvalsh(prior).max())
-    b.p = b.corrector.params = MapParams(gate=1e6, registration_xy=0.0, registration_theta=0.0)  # without the gate the wrong pair drags the pose off
+    # without the gate the wrong pair drags the pose off
+    b.p = b.corrector.params = MapParams(gate=1e6, registration_xy=0.0, registration_theta=0.0)
     pose_ungated, _, _, _ = b.correct(L, predicted, prior, idx)
     assert abs(relative(truth[20], pose_ungated)[2]) > np.radians(1.0)
 

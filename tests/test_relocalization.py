@@ -332,7 +332,7 @@ def test_relocalize_intel_log_against_the_rest_of_it():
     assert np.median(ev.position_error[ev.status == "ok"]) < 0.1
     # the map lies in the frame of the logged poses: at the truth most of a scan lies on it
     obs = Observation.from_scan(*log.scans[test[0]], 8.0)
-    M = MapLines(np.array([[g.start, g.end] for g in segs]))
+    M = MapLines(np.asarray(segs))
     assert score_pose(M, obs, log.poses[test[0]], 0.06, 0.08)[0] > 0.5
 
 

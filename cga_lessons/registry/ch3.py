@@ -9,6 +9,8 @@ K = "cga_lessons.mapping2d_corrections"
 C = "cga_lessons.mapping2d_conformal"
 TL = "tests/test_lines.py"
 TM = "tests/test_mapping2d.py"
+E = "cga_lessons.mapping2d_estimation"
+TE = "tests/test_mapping2d_estimation.py"
 
 ENTRIES = [
     Entry(
@@ -60,7 +62,10 @@ ENTRIES = [
         label="3.6",
         title="theta = theta_o + theta_corr",
         status="numeric",
-        implementation=f"{M}.build_map, cga_lessons.mapping2d_builder.MapBuilder.correct",
+        implementation=(
+            f"{M}.build_map, cga_lessons.mapping2d_builder.MapBuilder.correct, "
+            "cga_lessons.mapping2d_correction.ScanCorrector.register"
+        ),
         test=(
             f"{TM}::test_build_map_noise_free_recovers_truth_and_walls, {TM}::test_build_map_office_meets_the_targets, "
             f"{TM}::test_correct_recovers_a_known_pose_and_gates_a_wrong_pair"
@@ -70,7 +75,10 @@ ENTRIES = [
         label="3.7",
         title="T = T_o + T_corr",
         status="numeric",
-        implementation=f"{M}.build_map, cga_lessons.mapping2d_builder.MapBuilder.correct",
+        implementation=(
+            f"{M}.build_map, cga_lessons.mapping2d_builder.MapBuilder.correct, "
+            "cga_lessons.mapping2d_correction.ScanCorrector.register"
+        ),
         test=(
             f"{TM}::test_build_map_noise_free_recovers_truth_and_walls, {TM}::test_build_map_office_meets_the_targets, "
             f"{TM}::test_correct_recovers_a_known_pose_and_gates_a_wrong_pair"
@@ -80,8 +88,11 @@ ENTRIES = [
         label="3.8",
         title="theta_corr = mean of diffTheta over the correspondences",
         status="numeric",
-        implementation=f"{K}.theta_correction, {K}.pose_correction",
-        test=f"{TM}::test_theta_correction_3_8_is_the_mean, {TM}::test_pose_correction_is_3_8_and_3_12_solved_together",
+        implementation=f"{K}.theta_correction, {K}.pose_correction, {E}.Measurements.from_pairs, {E}.estimate_correction",
+        test=(
+            f"{TM}::test_theta_correction_3_8_is_the_mean, {TM}::test_pose_correction_is_3_8_and_3_12_solved_together, "
+            f"{TE}::test_estimate_correction_recovers_a_known_offset_and_its_test_obeys_the_chi_square_law"
+        ),
     ),
     Entry(
         label="3.9",
@@ -101,15 +112,21 @@ ENTRIES = [
         label="3.11",
         title="rho_G - ((p_L'c + t) . n) = 0",
         status="numeric",
-        implementation=f"{K}.translation_correction, {K}.pose_correction",
-        test=f"{TM}::test_translation_correction_3_9_to_3_12, {TM}::test_pose_correction_is_3_8_and_3_12_solved_together",
+        implementation=f"{K}.translation_correction, {K}.pose_correction, {E}.Measurements.from_pairs, {E}.estimate_correction",
+        test=(
+            f"{TM}::test_translation_correction_3_9_to_3_12, {TM}::test_pose_correction_is_3_8_and_3_12_solved_together, "
+            f"{TE}::test_estimate_correction_recovers_a_known_offset_and_its_test_obeys_the_chi_square_law"
+        ),
     ),
     Entry(
         label="3.12",
         title="least squares sum (rho_G - rho_T)^2",
         status="numeric",
-        implementation=f"{K}.translation_correction, {K}.pose_correction",
-        test=f"{TM}::test_translation_correction_3_9_to_3_12, {TM}::test_pose_correction_is_3_8_and_3_12_solved_together",
+        implementation=f"{K}.translation_correction, {K}.pose_correction, {E}.Measurements.from_pairs, {E}.estimate_correction",
+        test=(
+            f"{TM}::test_translation_correction_3_9_to_3_12, {TM}::test_pose_correction_is_3_8_and_3_12_solved_together, "
+            f"{TE}::test_estimate_correction_recovers_a_known_offset_and_its_test_obeys_the_chi_square_law"
+        ),
     ),
     Entry(
         label="3.13",
