@@ -155,8 +155,9 @@ class InnovationModel:
     Fed perfect odometry (the CARMEN corrected logs, whose odometry repeats
     their poses) ``q`` falls to ``q_min`` and the corrections stop moving the
     poses, whatever the registration's own error; fed odometry that drifts as
-    its model says, ``q`` stays near 1.  Of the values the data allow the
-    smallest ``q`` is taken (:meth:`_estimate`).
+    its model says, ``q`` stays near 1.  (Measured on the six bundled logs,
+    seeds 0 and 1: the maximum-likelihood ``q`` moved the logs' own poses less
+    and corrected drift better than the smallest ``q`` within one sigma.)
 
     Parameters
     ----------
@@ -228,18 +229,9 @@ class InnovationModel:
         return (logdet + np.einsum("kni,ni->kn", x, G)).sum(axis=1)
 
     def _estimate(self):
-        """``(q, c)``: the smallest ``q`` within the likelihood's one-sigma interval, with its best ``c``.
-
-        Where ``q B`` is small beside the rest, the likelihood is flat in ``q``
-        and its maximum is decided by noise; the smallest ``q`` the data allow
-        is then the one that moves a good odometry least.  Where ``q B``
-        dominates (a drifting odometry) the interval is narrow and the choice
-        changes the corrections by a few per cent.
-        """
-        lq, lc = np.linspace(*self.q_bounds, 19), np.linspace(*self.c_bounds, 11)  # steps of 10^(1/3), 10^(1/2)
+        """``(q, c)`` of largest likelihood on the grid (steps of 10^(1/3) in ``q``, 10^(1/2) in ``c``)."""
+        lq, lc = np.linspace(*self.q_bounds, 19), np.linspace(*self.c_bounds, 11)
         Q, Cg = np.meshgrid(lq, lc, indexing="ij")
-        nll = self._nll(Q.ravel(), Cg.ravel()).reshape(Q.shape)
-        profile = nll.min(axis=1)  # over c, for each q
-        i = int(np.flatnonzero(profile <= profile.min() + 1.0)[0])  # -2 log L within 1: one sigma
-        j = int(np.argmin(nll[i]))
-        return float(np.exp(lq[i])), float(np.exp(lc[j]))
+        nll = self._nll(Q.ravel(), Cg.ravel())
+        best = int(np.argmin(nll))
+        return float(np.exp(Q.ravel()[best])), float(np.exp(Cg.ravel()[best]))
