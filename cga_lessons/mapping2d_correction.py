@@ -27,6 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .laser import wrap_angle
 from .lines import diff_theta
 from .mapping2d_corrections import line_variances
 from .mapping2d_estimation import Correction, Measurements, estimate_correction
@@ -59,10 +60,6 @@ class Registration:
     li: np.ndarray
     estimate: Correction
     measurements: Measurements
-
-
-def _wrap(a):
-    return np.mod(a + np.pi, 2 * np.pi) - np.pi
 
 
 class ScanCorrector:
@@ -167,7 +164,7 @@ class ScanCorrector:
 
     def _estimate(self, meas, floors, predicted, pose, prior_cov):
         back = np.asarray(predicted, float) - pose  # the correction that returns to the prediction
-        back[2] = _wrap(back[2])
+        back[2] = wrap_angle(back[2])
         return estimate_correction(
             meas.with_floors(floors),
             prior_cov,
@@ -185,7 +182,7 @@ class ScanCorrector:
         d[:2] = np.clip(d[:2], -p.t_xi, p.t_xi)
         d[2] = np.clip(d[2], -p.theta_max, p.theta_max)
         out = np.asarray(pose, float) + d  # (3.6), (3.7)
-        out[2] = _wrap(out[2])
+        out[2] = wrap_angle(out[2])
         return out
 
     def register(self, ref: SegmentSet, L: SegmentSet, predicted, prior_cov, widen=True, gate_cov=None):
