@@ -40,13 +40,11 @@ from cga_lessons.relocalization_eval import evaluate_log
 from cga_lessons.relocalization_lookaround import evaluate_log_sequences
 
 LOGS = ("intel", "aces", "csail", "freiburg-101", "seattle", "orebro")
-SHARED = Path("/work/shared/data/carmen")
 EVERY, FIRST, RUN = 7, 3, 3
 
 
 def log_path(name):
-    local = data_path("carmen", f"{name}-corrected.log.gz")
-    return local if local.is_file() else SHARED / f"{name}-corrected.log.gz"
+    return data_path("carmen", f"{name}-corrected.log.gz")
 
 
 def protocol(sparse):
