@@ -166,13 +166,14 @@ class MapParams:
         and length of a segment it gives the variance of its angle and offset.
         None (default): estimated from each scan, the median scatter of its
         segments' points about their lines
-        (:func:`~cga_lessons.mapping2d_estimation.scan_range_noise`; the logs
+        (:func:`~cga_lessons.mapping2d_noise.scan_range_noise`; the logs
         differ, 0.7 cm median on Intel, 1.4 cm on ACES).
     significance : float
-        A correction is applied only when the F test of its innovation rejects
-        the prediction at this level
-        (:func:`~cga_lessons.mapping2d_estimation.estimate_correction`): 0.99
-        moves a right prediction in one scan of a hundred.
+        A correction is applied only when its normalised innovation (the
+        lines' estimate against the prediction, with both covariances) lies
+        within this quantile of the chi-square law
+        (:func:`~cga_lessons.mapping2d_estimation.estimate_correction`): 0.999
+        refuses a right correction once in a thousand scans.
     robust_kernel : float
         Huber constant (in scaled standard deviations) of the robust least
         squares of each correction.
