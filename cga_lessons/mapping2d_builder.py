@@ -14,18 +14,30 @@ and the scan it came from).  For each scan it
   at the gate; the result is checked against the whole scan;
 * fuses the local map into ``G`` (:meth:`MapBuilder.fuse`, 3.20-3.21) and
   records the observations;
-* on request refits every map line from its observations at new poses
+* on request refits the map lines from their observations at new poses
   (:meth:`MapBuilder.refit`, after a loop closure) and merges duplicates
   (:meth:`MapBuilder.remove_duplicates`).
+
+None of this scans the whole map or the whole log per scan: the lines are
+kept in a spatial index (:class:`~cga_lessons.mapping2d_index.SegmentIndex`)
+that :meth:`MapBuilder.near` and the duplicate search query, the duplicate
+search looks only at the lines changed since its last run, and a refit reads
+only the observations of the lines whose observing poses moved
+(:class:`~cga_lessons.mapping2d_observations.Observations`).  The index and
+the duplicate search are exact (the map is the one a search of every line
+gives, to the last bit); the refit is exact with ``refit_tolerance`` 0.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from .algebra import InvalidInputError
 from .lines import line_from_sums
 from .mapping2d_correction import ScanCorrector
-from .mapping2d_geometry import SegmentSet, _close_angle_pairs, _compose, correspondences
+from .mapping2d_geometry import SegmentSet, _compose, correspondences
+from .mapping2d_index import SegmentIndex, duplicate_pairs, sphere_boxes
+from .mapping2d_observations import Growing, Observations, PathLog, refit_lines
 
 __all__ = ["MapBuilder"]
 
@@ -41,64 +53,168 @@ class MapBuilder:
         Laser pose on the robot.
     max_range : float
         The laser's reach (m): how far old lines are looked for when closing loops.
+    index_cell : float, optional
+        Cell side (m) of the spatial index of the lines
+        (:class:`~cga_lessons.mapping2d_index.SegmentIndex`; default there).
+    refit_tolerance : (float, float), optional
+        ``(m, rad)``: a refit after a loop closure (:meth:`refit`) refits the
+        lines seen from the poses that moved by more than this since those
+        lines were last placed, and the lines fused or merged since the last
+        refit; each map line thus stays within this of its refit from every
+        observation.  ``(0, 0)``: every line whose poses moved at all, the
+        map of a refit of every line to the last bit.  Default: the class
+        attribute :attr:`REFIT_TOLERANCE`.
+
+    Attributes
+    ----------
+    REFIT_TOLERANCE : (float, float)
+        ``(0.005, 0.001)``: 5 mm and 1 mrad (8 mm at the 8 m reach of the
+        logs' readings), well below the maps' median error (3-6 cm on Intel,
+        ACES and CSAIL).  A chosen bound, not a tuned one: its effect on the
+        poses and maps is measured by ``benchmarks/bench_growth.py`` and
+        ``benchmarks/bench_logs.py`` against ``(0, 0)``.
+    INDEX_MIN_LINES : int
+        Below this many lines :meth:`near` and the duplicate search look at
+        every line (vectorised): on the Intel map tiled 1, 4, 16 and 64
+        times (1,111 to 71,104 lines) a neighbourhood query through the index
+        took about the same time at every size, the search of every line
+        grew with the map and cost the same at about 3,000 lines.
     """
 
-    def __init__(self, geometry, params, mount=(0.0, 0.0, 0.0), max_range=np.inf):
+    REFIT_TOLERANCE = (0.005, 0.001)
+    INDEX_MIN_LINES = 2000
+    BOX_PAD = 1e-6  # (m) the index's boxes are this much larger: rounding never hides a line at a box's edge
+
+    def __init__(self, geometry, params, mount=(0.0, 0.0, 0.0), max_range=np.inf, *, index_cell=None,
+                 refit_tolerance=None):  # fmt: skip
         self.geo = geometry
         self.p = params
         self.mount = np.asarray(mount, float).reshape(3)
         self.max_range = float(max_range)
-        self.G = SegmentSet.empty()
-        self.gid = np.zeros(0, int)  # a stable id per map line
+        tol = self.REFIT_TOLERANCE if refit_tolerance is None else refit_tolerance
+        tol = tuple(float(t) for t in np.asarray(tol, float).reshape(-1))
+        if len(tol) != 2 or not all(t >= 0 for t in tol):
+            raise InvalidInputError(f"MapBuilder: refit_tolerance must be two numbers >= 0 (m, rad), got {tol}")
+        self.refit_tolerance = tol
+        self.index = SegmentIndex() if index_cell is None else SegmentIndex(index_cell)
+        self._G = SegmentSet.empty()
+        self.gid = np.zeros(0, int)  # a stable id per map line, ascending along the rows
         self.last = np.zeros(0, int)  # the last scan that saw it
         self._next_id = 0
-        self._root = np.zeros(0, int)  # line id -> id of the line it now belongs to (after merges)
-        self._obs = []  # per scan: its local segments (laser frame)
-        self._obs_scan = np.zeros(0, int)  # per observation: the scan ...
-        self._obs_id = np.zeros(0, int)  # ... and the id of the line it was fused into
+        self._root = Growing((), int)  # line id -> id of the line it was merged into (itself while in the map)
+        self.obs = Observations()  # per scan: its local segments (laser frame), and the line each went into
+        self._placed = Growing((3,))  # per scan: the pose with which its observations were last placed
+        self._dirty: set[int] = set()  # lines changed since the last duplicate search
+        self._unfit: set[int] = set()  # lines fused or merged since the last refit
         self.path = []  # distance travelled up to each scan (m)
         self.corrector = ScanCorrector(geometry, params, self.mount)
+
+    # ------------------------------------------------------------------ the map and its index
+
+    @property
+    def G(self) -> SegmentSet:
+        """The map lines (global frame), one row per id of :attr:`gid`."""
+        return self._G
+
+    @G.setter
+    def G(self, segs: SegmentSet):
+        if len(segs) != len(self.gid):
+            raise InvalidInputError(f"MapBuilder.G: {len(segs)} segments for {len(self.gid)} line ids")
+        self._G = segs
+        self.index.clear()
+        self._touch(np.arange(len(segs)))
+
+    @property
+    def path(self) -> PathLog:
+        """Distance travelled (m) up to each scan: append one value per scan."""
+        return self._path
+
+    @path.setter
+    def path(self, values):
+        self._path = PathLog(values)
+
+    def _rows(self, ids) -> np.ndarray:
+        """Rows of the lines ``ids`` (current ids, ascending in, ascending out)."""
+        return np.searchsorted(self.gid, np.asarray(ids, int))
+
+    def rows_of(self, ids) -> np.ndarray:
+        """Rows (ascending, unique) of those of the line ids ``ids`` that are in the map."""
+        ids = np.unique(np.asarray(ids, int))
+        rows = np.minimum(np.searchsorted(self.gid, ids), max(len(self.gid) - 1, 0))
+        return rows[self.gid[rows] == ids] if len(self.gid) else np.zeros(0, int)
+
+    def _touch(self, rows, fitted=False):
+        """Lines ``rows`` changed: re-index them; the duplicate search (and, unless ``fitted``, the refit) sees them."""
+        rows = np.asarray(rows, int)
+        if len(rows) == 0:
+            return
+        ids = self.gid[rows]
+        self.index.update(ids, *sphere_boxes(self._G.start[rows], self._G.end[rows], self.BOX_PAD))
+        self._dirty.update(ids.tolist())
+        if not fitted:
+            self._unfit.update(ids.tolist())
 
     # ------------------------------------------------------------------ map queries
 
     def resolve(self, ids):
         """Current ids of lines, following merges."""
-        return self._root[np.asarray(ids, int)]
+        root = self._root.view
+        ids = np.asarray(ids, int)
+        r = root[ids]
+        while True:
+            nxt = root[r]
+            if np.array_equal(nxt, r):
+                root[ids] = r  # shortcut the chains of merges
+                return r
+            r = nxt
 
     def observers(self, lines):
         """How many of the map lines ``lines`` (indices) each scan observed, shape (scans,)."""
-        mine = np.isin(self._root[self._obs_id], self.gid[lines])
-        return np.bincount(self._obs_scan[mine], minlength=len(self._obs))
+        scans, counts = self.obs.scan_counts(self.gid[lines])
+        out = np.zeros(self.obs.n_scans, int)
+        out[scans] = counts
+        return out
 
     def segment_distance(self, centre, idx=None):
         """Distance (m) from ``centre`` to each map segment (or to those in ``idx``)."""
-        G = self.G if idx is None else self.G.take(idx)
+        G = self._G if idx is None else self._G.take(idx)
         if len(G) == 0:
             return np.zeros(0)
         v = G.end - G.start
         t = np.clip(np.einsum("ij,ij->i", centre - G.start, v) / np.einsum("ij,ij->i", v, v), 0, 1)
         return np.hypot(*(G.start + t[:, None] * v - centre).T)
 
-    def active(self, k):
-        """Mask of the map lines seen within the last ``active_path`` metres of travel before scan ``k``."""
+    def active(self, k, rows=None):
+        """Mask of the map lines (or of ``rows``) seen within the last ``active_path`` metres of travel before scan
+        ``k``."""
+        n = len(self._G) if rows is None else len(rows)
         if self.p.active_path <= 0 or len(self.path) == 0:
-            return np.ones(len(self.G), bool)
-        path = np.asarray(self.path)
-        return path[min(k, len(path) - 1)] - path[self.last] <= self.p.active_path
+            return np.ones(n, bool)
+        path = self.path.array
+        last = self.last if rows is None else self.last[rows]
+        return path[min(k, len(path) - 1)] - path[last] <= self.p.active_path
 
     def near(self, centre, k=None, radius=None, active=True):
-        """Indices of map lines within ``radius`` (default ``neighbourhood``) of ``centre``.
+        """Indices of map lines within ``radius`` (default ``neighbourhood``) of ``centre``, ascending.
 
         With ``k`` given, only the lines active at scan ``k`` (``active=True``)
-        or only the others (``active=False``).
+        or only the others (``active=False``).  The spatial index gives the
+        lines whose boxes meet the square of side ``2 radius`` about
+        ``centre``; their distances are then computed exactly.
         """
-        if len(self.G) == 0:
+        if len(self._G) == 0:
             return np.zeros(0, int)
         radius = self.p.neighbourhood if radius is None else radius
-        ok = self.segment_distance(np.asarray(centre, float)) < radius
+        centre = np.asarray(centre, float)
+        if len(self._G) < self.INDEX_MIN_LINES:
+            rows = np.arange(len(self._G))
+        else:
+            reach = radius + self.BOX_PAD
+            rows = self._rows(self.index.query(centre - reach, centre + reach))
+        ok = self.segment_distance(centre, rows) < radius
         if k is not None:
-            ok &= self.active(k) if active else ~self.active(k)
-        return np.flatnonzero(ok)
+            ok &= self.active(k, rows) if active else ~self.active(k, rows)
+        return rows[ok]
 
     def support(self, points, pose, idx):
         """How well the scan's points (laser frame) at ``pose`` lie on the map segments ``idx``.
@@ -113,7 +229,7 @@ class MapBuilder:
         lp = _compose(pose, self.mount)
         c, s_ = np.cos(lp[2]), np.sin(lp[2])
         q = points @ np.array([[c, s_], [-s_, c]]) + lp[:2]
-        a, v = self.G.start[idx], self.G.end[idx] - self.G.start[idx]
+        a, v = self._G.start[idx], self._G.end[idx] - self._G.start[idx]
         rel = q[:, None, :] - a[None]
         t = np.clip(np.einsum("pwi,wi->pw", rel, v) / np.einsum("wi,wi->w", v, v), 0.0, 1.0)
         d = np.hypot(*(rel - t[..., None] * v[None]).transpose(2, 0, 1)).min(axis=1)
@@ -147,7 +263,7 @@ class MapBuilder:
         """
         predicted = np.array(pose, float)
         gate_cov = None if step is None else step[0] + max(self.corrector.odometry_scale, 1.0) * step[1]
-        reg = self.corrector.register(self.G.take(idx), L, predicted, prior_cov, widen, gate_cov)
+        reg = self.corrector.register(self._G.take(idx), L, predicted, prior_cov, widen, gate_cov)
         if reg is None:
             return predicted, np.asarray(prior_cov, float), None, False
         pairs = (idx[reg.gi], reg.li)
@@ -167,10 +283,11 @@ class MapBuilder:
         """Append segments (global frame) to the map as new lines last seen at scan ``k``; returns their ids."""
         ids = np.arange(self._next_id, self._next_id + len(segs))
         self._next_id += len(segs)
-        self._root = np.concatenate([self._root, ids])
-        self.G = SegmentSet.concat([self.G, segs])
+        self._root.extend(ids)
+        self._G = SegmentSet.concat([self._G, segs])
         self.gid = np.concatenate([self.gid, ids])
         self.last = np.concatenate([self.last, np.full(len(segs), k, int)])
+        self._touch(np.arange(len(self._G) - len(segs), len(self._G)))
         return ids
 
     def fuse(self, L, pose, k):
@@ -182,7 +299,7 @@ class MapBuilder:
         """
         Lw = self.geo.to_global(L, pose, self.mount)
         idx = self.near(pose[:2], k)
-        C, _, _ = correspondences(self.G.take(idx), Lw, pose[:2], self.p, self.geo)
+        C, _, _ = correspondences(self._G.take(idx), Lw, pose[:2], self.p, self.geo)
         gl = np.flatnonzero(C >= 0)
         pairs = (idx[gl], C[gl])
         ids = np.full(len(L), -1, int)
@@ -190,12 +307,14 @@ class MapBuilder:
             self._merge_into(g, Lw.start[j], Lw.end[j], Lw.sums[j], Lw.edge[j])
             self.last[g] = k
             ids[j] = self.gid[g]
+        self._touch(pairs[0])
         new = np.flatnonzero(ids < 0)
         if len(new):
             ids[new] = self.add_lines(Lw.take(new), k)
-        self._obs.append(L)
-        self._obs_scan = np.concatenate([self._obs_scan, np.full(len(L), k, int)])
-        self._obs_id = np.concatenate([self._obs_id, ids])
+        self.obs.add(L, k, ids)
+        if k >= len(self._placed):
+            self._placed.extend(np.zeros((k + 1 - len(self._placed), 3)))
+        self._placed.view[k] = pose
 
     def _merge_into(self, g, ls, le, lsums, ledge):
         """Fuse one segment into map line ``g`` (sections 3.1.4, 3.2.4).
@@ -208,7 +327,7 @@ class MapBuilder:
         seen near a map end that was not one replaces it.  The line is
         refitted from all the points gathered.
         """
-        G, geo = self.G, self.geo
+        G, geo = self._G, self.geo
         s, e, replaced, g_longer, same = geo.fuse_ends(G.start[g], G.end[g], ls, le)
         if (e - s) @ (G.end[g] - G.start[g]) < 0:  # back to the global segment's sense
             s, e = e, s
@@ -241,82 +360,83 @@ class MapBuilder:
         Two map segments are duplicates when their oriented angles differ by
         less than ``dup_angle``, their spheres meet or nest (3.19), and the
         centre of the shorter lies within ``dup_distance`` of the longer's line
-        (2.130).  Longer segments absorb shorter ones; repeated until nothing
-        changes.
+        (2.130).  Longer segments absorb shorter ones (the longest first);
+        repeated until nothing changes.  Lines that did not change since the
+        last check cannot have become duplicates of each other, so only the
+        pairs with a changed line are tested, found in the spatial index
+        (spheres that meet have boxes that meet): the pairs, and so the
+        merges, of a test of every pair.
         """
-        p = self.p
-        while len(self.G) > 1:
-            G = self.G
-            _, th = self.geo.hough(G, np.zeros(2))
-            a, b = _close_angle_pairs(th, p.dup_angle)
-            length = G.length
-            swap = (length[b] > length[a]) | ((length[b] == length[a]) & (b < a))
-            a, b = np.where(swap, b, a), np.where(swap, a, b)  # a: the longer
-            A, B = G.take(a), G.take(b)
-            dup = self.geo.overlap_rows(A, B, 0.0) & (self.geo.centre_line_distance_rows(B, A) < p.dup_distance)
-            a, b = a[dup], b[dup]
+        changed = np.array(sorted(self._dirty), int)
+        while len(changed) and len(self._G) > 1:
+            index = self.index if len(self._G) >= self.INDEX_MIN_LINES else None
+            a, b = duplicate_pairs(self._G, self.gid, index, self._rows(changed), self.geo, self.p, self.BOX_PAD)
             if len(a) == 0:
                 break
+            G = self._G
             alive = np.ones(len(G), bool)
-            for i in np.lexsort((b, a, -length[a])):
+            into = []
+            for i in np.lexsort((b, a, -G.take(a).length)):
                 if alive[a[i]] and alive[b[i]]:
                     self._merge_into(a[i], G.start[b[i]], G.end[b[i]], G.sums[b[i]], G.edge[b[i]])
                     self.last[a[i]] = max(self.last[a[i]], self.last[b[i]])
-                    self._root[self._root == self.gid[b[i]]] = self.gid[a[i]]
+                    self._root.view[self.gid[b[i]]] = self.gid[a[i]]
+                    self.obs.merge(self.gid[a[i]], self.gid[b[i]])
                     alive[b[i]] = False
+                    into.append(a[i])
+            gone = self.gid[~alive]
+            self.index.remove(gone)
+            self._dirty.difference_update(gone.tolist())
+            self._unfit.difference_update(gone.tolist())
+            changed = np.unique(self.gid[into])
             keep = np.flatnonzero(alive)
-            self.G, self.gid, self.last = G.take(keep), self.gid[keep], self.last[keep]
+            self._G, self.gid, self.last = G.take(keep), self.gid[keep], self.last[keep]
+            self._touch(self._rows(changed))
+        self._dirty.clear()
 
     # ------------------------------------------------------------------ refit from the observations
 
     def observations(self):
         """All observations: (local segments (m rows, laser frame), scan index (m,), current line id (m,))."""
-        return SegmentSet.concat(self._obs), self._obs_scan, self.resolve(self._obs_id)
+        return self.obs.all(), self.obs.scan.view.copy(), self.resolve(self.obs.line.view)
 
-    def refit(self, poses):
-        """Rebuild every map line from its observations placed with ``poses`` (T, 3).
+    def refit(self, poses, first=0):
+        """Rebuild the map lines from their observations placed with ``poses`` (T, 3).
 
         The sums of all the points a line gathered give its least-squares line;
         its ends are the outermost ends of its observations along it, except
         where observations saw a real edge: then the mean of the edge
-        sightings near the outermost one (section 3.1.4's fusion, done at once).
-        """
-        L, scan, ids = self.observations()
-        if len(L) == 0 or len(self.G) == 0:
-            return
-        W = self.geo.to_global_rows(L, np.asarray(poses, float)[scan], self.mount)
-        order = np.argsort(self.gid)
-        row = order[np.searchsorted(self.gid, ids, sorter=order)]
-        n = len(self.G)
-        sums = np.zeros((n, 6))
-        np.add.at(sums, row, W.sums)
-        c = sums[:, 1:3] / sums[:, :1]
-        sxx = sums[:, 3] - sums[:, 0] * c[:, 0] ** 2
-        sxy = sums[:, 4] - sums[:, 0] * c[:, 0] * c[:, 1]
-        syy = sums[:, 5] - sums[:, 0] * c[:, 1] ** 2
-        ang = 0.5 * np.arctan2(2 * sxy, sxx - syy)
-        d = np.column_stack([np.cos(ang), np.sin(ang)])
-        flip = np.einsum("ij,ij->i", d, self.G.end - self.G.start) < 0
-        d[flip] *= -1
-        same = np.einsum("ij,ij->i", W.end - W.start, d[row]) >= 0
-        ps = np.einsum("ij,ij->i", W.start - c[row], d[row])
-        pe = np.einsum("ij,ij->i", W.end - c[row], d[row])
-        lo, hi = np.where(same, ps, pe), np.where(same, pe, ps)
-        e_lo = np.where(same, W.edge[:, 0], W.edge[:, 1]) > 0
-        e_hi = np.where(same, W.edge[:, 1], W.edge[:, 0]) > 0
-        ends = np.zeros((n, 2))
-        counts = np.zeros((n, 2), int)
-        for side, (pos, edge, sign) in enumerate(((lo, e_lo, -1.0), (hi, e_hi, 1.0))):
-            extreme = np.full(n, -np.inf)
-            np.maximum.at(extreme, row, sign * pos)
-            outer_edge = np.full(n, -np.inf)
-            np.maximum.at(outer_edge, row[edge], sign * pos[edge])
-            near = edge & (sign * pos > outer_edge[row] - self.p.edge_match)
-            cnt = np.bincount(row[near], minlength=n)
-            tot = np.bincount(row[near], weights=pos[near], minlength=n)
-            has = cnt > 0
-            ends[:, side] = sign * extreme
-            ends[has, side] = tot[has] / cnt[has]
-            counts[:, side] = cnt
-        self.G = SegmentSet(c + d * ends[:, :1], c + d * ends[:, 1:], sums, counts)
+        sightings near the outermost one (section 3.1.4's fusion, done at
+        once: :func:`~cga_lessons.mapping2d_observations.refit_lines`).
 
+        Only the lines it would change are refitted: those seen from a pose
+        that moved by more than ``refit_tolerance`` since they were last
+        placed, and those fused or merged since the last refit.  ``first``:
+        the poses before it are known not to have moved (they are not
+        compared).
+        """
+        poses = np.asarray(poses, float)
+        if len(self.obs) == 0 or len(self._G) == 0:
+            return
+        n = min(len(poses), len(self._placed))
+        first = max(0, min(int(first), n))
+        was = self._placed.view[first:n]
+        d = poses[first:n] - was
+        turn = np.abs(np.mod(d[:, 2] + np.pi, 2 * np.pi) - np.pi)
+        tol_xy, tol_th = self.refit_tolerance
+        moved = first + np.flatnonzero((np.hypot(d[:, 0], d[:, 1]) > tol_xy) | (turn > tol_th))
+        lines = np.union1d(self.obs.lines_of_scans(moved, self.resolve), np.array(sorted(self._unfit), int))
+        self._placed.view[moved] = poses[moved]
+        self._unfit.clear()
+        if len(lines) == 0:
+            return
+        rows = self._rows(lines)
+        obs = self.obs.rows_of_lines(lines)
+        W = self.geo.to_global_rows(self.obs.take(obs), poses[self.obs.scan.view[obs]], self.mount)
+        line_of = np.searchsorted(lines, self.resolve(self.obs.line.view[obs]))
+        new = refit_lines(self.geo, self.mount, self._G.take(rows), line_of, W, self.p.edge_match)
+        G = self._G
+        self._G = SegmentSet(G.start.copy(), G.end.copy(), G.sums.copy(), G.edge.copy())
+        self._G.start[rows], self._G.end[rows], self._G.sums[rows], self._G.edge[rows] = (
+            new.start, new.end, new.sums, new.edge)  # fmt: skip
+        self._touch(rows, fitted=True)

@@ -38,6 +38,7 @@ from .mapping2d_graph import PoseGraph, chain_uncertainty, relative_pose
 __all__ = [
     "visible_lines",
     "loop_hypotheses",
+    "angle_density",
     "anchor_scan",
     "find_loop",
     "apply_loop",
@@ -76,7 +77,7 @@ def loop_hypotheses(geometry, Q, O, centre, max_angle, max_shift, params, n_rota
         return []
     a, wa = dth[cand], w[cand]
     tol = p.loop_angle_tol
-    dens = np.exp(-0.5 * ((a[:, None] - a[None, :]) / tol) ** 2) @ wa
+    dens = angle_density(a, wa, tol)
     rotations = []
     for i in np.argsort(-dens, kind="stable"):
         if all(abs(a[i] - r) > 2 * tol for r in rotations):
@@ -116,13 +117,50 @@ def loop_hypotheses(geometry, Q, O, centre, max_angle, max_shift, params, n_rota
         moved = mq_rot[None, :, :] + t[:, None, :]
         gap = np.hypot(*(moved - mo[oj][None]).transpose(2, 0, 1))
         fits = (res < p.loop_shift_tol) & (gap <= 0.5 * (lq[qi] + lo[oj])[None, :] + p.overlap_margin)
-        per_q = np.zeros((len(t), len(Q)))  # each query line counts once, with its best partner
-        np.maximum.at(per_q, (np.arange(len(t))[:, None], qi[None, :]), np.where(fits, lq[qi][None, :], 0.0))
+        # each query line counts once (its length), if any of its partners fits
+        order = np.argsort(qi, kind="stable")
+        uq, first = np.unique(qi[order], return_index=True)
+        per_q = np.zeros((len(t), len(Q)))
+        per_q[:, uq] = np.logical_or.reduceat(fits[:, order], first, axis=1) * lq[uq]
         score = per_q.sum(axis=1)
         for h in np.argsort(-score, kind="stable")[:3]:
             out.append((float(score[h]), phi, t[h]))
     out.sort(key=lambda h: -h[0])
     return out
+
+
+EXACT_DENSITY_MAX = 512  # vote sizes up to which the angle density is summed pair by pair
+
+
+def angle_density(a, w, tol, exact_max=None):
+    """The rotation vote: ``sum_j w_j exp(-(a_i - a_j)^2 / (2 tol^2))`` at each angle ``a_i`` (radians).
+
+    Up to ``exact_max`` angles (default :data:`EXACT_DENSITY_MAX`, 512) the
+    sum is taken over every pair.  Beyond, the weights are spread linearly
+    on a grid of step ``tol / 16``, smoothed by the kernel (cut at 8
+    ``tol``, where it is below 1e-13) and read back by linear
+    interpolation: time proportional to the angles instead of their square
+    (a revisit in a building mapped three times over votes with 2,000-3,000
+    angles: 0.2-0.4 s a search pair by pair), within about 1e-3 of the
+    largest value of the sum pair by pair (measured on those votes; the
+    error of linear binning and interpolation is of order
+    ``(step / tol)^2 / 8``).
+    """
+    a = np.asarray(a, float)
+    w = np.asarray(w, float)
+    exact_max = EXACT_DENSITY_MAX if exact_max is None else exact_max
+    if len(a) <= exact_max:
+        return np.exp(-0.5 * ((a[:, None] - a[None, :]) / tol) ** 2) @ w
+    h, reach = tol / 16.0, 128
+    lo = a.min() - (reach + 1) * h
+    pos = (a - lo) / h
+    i0 = np.floor(pos).astype(int)
+    f = pos - i0
+    m = int(i0.max()) + reach + 2
+    grid = np.bincount(i0, w * (1 - f), minlength=m) + np.bincount(i0 + 1, w * f, minlength=m)
+    kernel = np.exp(-0.5 * (np.arange(-reach, reach + 1) / 16.0) ** 2)
+    smooth = np.convolve(grid, kernel, mode="same")
+    return smooth[i0] * (1 - f) + smooth[i0 + 1] * f
 
 
 def _distinct(h, others, shift, angle):
@@ -171,8 +209,9 @@ def _verify(b, k, poses, points, old, results):
 def anchor_scan(builder, lines, pose, poses):
     """The earlier scan a revisit is tied to: of the scans that saw most of the matched ``lines``, the one
     nearest to ``pose`` (its view is the most alike); ``poses`` are the poses so far."""
-    count = builder.observers(lines)[: len(poses)]
-    best = np.flatnonzero(count == count.max())
+    scans, count = builder.obs.scan_counts(builder.gid[lines])
+    count, scans = count[scans < len(poses)], scans[scans < len(poses)]
+    best = scans[count == count.max()] if len(count) else np.arange(len(poses))
     d = np.hypot(poses[best, 0] - pose[0], poses[best, 1] - pose[1])
     return int(best[np.argmin(d)])
 
@@ -271,7 +310,7 @@ def apply_loop(builder, graph, poses, k, loops):
         z = relative_pose(poses[j], loop["pose"])
         cov = loop["cov"] + np.diag([p.graph_sigma_xy**2, p.graph_sigma_xy**2, p.graph_sigma_theta**2])
         graph.add(j, s, z, cov, loop=True)
-        builder.last[np.isin(builder.gid, builder.resolve(loop["ids"]))] = k  # the old lines are seen again
+        builder.last[builder.rows_of(builder.resolve(loop["ids"]))] = k  # the old lines are seen again
         d = relative_pose(poses[s], loop["pose"])
         moved |= bool(np.hypot(*d[:2]) > 0.5 * p.loop_shift_tol or abs(d[2]) > 0.5 * p.loop_angle_tol)
     if not moved:
