@@ -230,10 +230,12 @@ class MapBuilder:
         c, s_ = np.cos(lp[2]), np.sin(lp[2])
         q = points @ np.array([[c, s_], [-s_, c]]) + lp[:2]
         a, v = self._G.start[idx], self._G.end[idx] - self._G.start[idx]
-        rel = q[:, None, :] - a[None]
-        t = np.clip(np.einsum("pwi,wi->pw", rel, v) / np.einsum("wi,wi->w", v, v), 0.0, 1.0)
-        d = np.hypot(*(rel - t[..., None] * v[None]).transpose(2, 0, 1)).min(axis=1)
-        return float(np.sum(np.maximum(0.0, 1.0 - (d / self.p.support_distance) ** 2)))
+        rx, ry = q[:, 0, None] - a[None, :, 0], q[:, 1, None] - a[None, :, 1]  # (points, lines)
+        t = np.clip((rx * v[:, 0] + ry * v[:, 1]) / (v[:, 0] ** 2 + v[:, 1] ** 2), 0.0, 1.0)
+        rx -= t * v[:, 0]
+        ry -= t * v[:, 1]
+        d2 = (rx * rx + ry * ry).min(axis=1)  # squared distance to the nearest segment
+        return float(np.sum(np.maximum(0.0, 1.0 - d2 / self.p.support_distance**2)))
 
     # ------------------------------------------------------------------ correction (3.6-3.12)
 
