@@ -267,6 +267,19 @@ def test_loop_closure_finds_the_room_again_after_a_blind_stretch():
     assert np.median(map_errors(res.segments, room.walls)) < 0.015
 
 
+def test_a_revisit_beyond_the_lasers_reach_of_the_drifted_pose_is_closed():
+    # ACES: the robot returns to its start after 170 m; the drifting odometry puts it 21-27 m off by then and the
+    # corrected chain about 5 m and 15 degrees off, farther than the old lines the drifted pose can see (8 m).
+    # The search then takes the old lines of its whole 3-sigma window; the log's own poses are the truth.
+    log = read_carmen_log(data_path("carmen", "aces-corrected.log.gz"))
+    truth = log.poses[:262]
+    odo = simulate_odometry(log.poses, np.random.default_rng(3))[:262]
+    res = build_map(log.scans[:262], odo, max_range=8.0)
+    assert any(j < 20 and 240 <= k for j, k in res.loops)  # the start, found again
+    assert np.hypot(*(res.poses[-1, :2] - truth[-1, :2])) < 0.1
+    assert np.hypot(*(odo[-1, :2] - truth[-1, :2])) > 10.0
+
+
 def test_intel_log_whole_run_beats_odometry_tenfold():
     log = read_carmen_log(data_path("carmen", "intel-corrected.log.gz"))
     truth = log.poses
