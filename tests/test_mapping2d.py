@@ -31,7 +31,7 @@ from cga_lessons.mapping2d import (
     theta_correction,
     translation_correction,
 )
-from cga_lessons.mapping2d_loops import loop_hypotheses
+from cga_lessons.mapping2d_hypotheses import loop_hypotheses
 
 
 def _set(*pairs):
