@@ -22,7 +22,9 @@ of hypotheses, each a chain of laser poses, one per scan:
    best (:func:`~cga_lessons.relocalization_verify.tie_bar`), or while the best chain moved rigidly by
    ``distinct_position`` along its least constrained direction (or turned by
    ``distinct_heading`` about its last pose) still does; that is the rule of a
-   single relocalization, applied to all the scans together.
+   single relocalization, applied to all the scans together; and while the
+   best chain's steps depart from the odometry's beyond what its drift model
+   allows (a chain that slid from candidate to candidate along a corridor).
 
 Identical rooms stay ambiguous however often the robot looks around in one of
 them, and are reported so (notebook 09 shows both cases).
@@ -35,12 +37,14 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .algebra import InvalidInputError
-from .laser import compose, relative
+from .laser import OdometryModel, compose, relative
 from .relocalization import RelocParams, combined_noise, noise_scaled, relocalize, resolve_params
 from .relocalization_geometry import Observation, check_scan, estimate_range_noise, prepare_map
+from .relocalization_odometry import odometry_misfit
 from .relocalization_verify import Candidate, distinct, pose_information, refine_if_better, score_poses, tie_bar
 
 __all__ = ["Relocalizer", "SequenceRelocalization", "relocalize_sequence"]
+
 
 
 @dataclass
@@ -104,6 +108,10 @@ class Relocalizer:
         At most this many chains are kept (the best by score).
     keep_ratio : float
         Chains scoring below this fraction of the best are dropped.
+    odometry_model : OdometryModel, optional
+        How far the odometry may drift between two scans (default: the
+        project's drift model); a best chain that moves against the odometry
+        beyond it is reported ambiguous.
 
     Examples
     --------
@@ -128,6 +136,7 @@ class Relocalizer:
         params: RelocParams | None = None,
         max_chains: int = 64,
         keep_ratio: float = 0.7,
+        odometry_model: OdometryModel | None = None,
         **overrides,
     ):
         self.params = resolve_params(params, overrides, "Relocalizer")
@@ -141,6 +150,7 @@ class Relocalizer:
         self.max_range = float(max_range)
         self.max_chains = int(max_chains)
         self.keep_ratio = float(keep_ratio)
+        self.odometry_model = OdometryModel() if odometry_model is None else odometry_model
         self.obs: list[Observation] = []
         self.odometry: list[np.ndarray] = []
         self.returned = np.zeros(0, int)
@@ -336,6 +346,9 @@ class Relocalizer:
         p = self.params
         if cands[0].score < p.min_score:
             return "failed", f"best score {cands[0].score:.3f} below min_score {p.min_score}", None
+        bad = odometry_misfit(best.poses, self.odometry, self.odometry_model)
+        if bad is not None:
+            return "ambiguous", f"the best chain of poses moves against the odometry at scan {bad}", None
         bar = tie_bar(cands[0].score, p)
         rivals = [c for c in cands[1:] if c.score >= bar]
         if rivals:

@@ -8,11 +8,22 @@ odometry model's own increments, and the symmetry of a scene (identical rooms
 import numpy as np
 import pytest
 
+from cga_lessons import data_path
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.laser import OdometryModel, Scene, compose, invert, load_scene, simulate_scan
+from cga_lessons.laser import (
+    OdometryModel,
+    Scene,
+    compose,
+    invert,
+    load_scene,
+    read_carmen_log,
+    simulate_odometry,
+    simulate_scan,
+)
 from cga_lessons.relocalization import pose_error, relocalize
-from cga_lessons.relocalization_eval import random_free_poses
+from cga_lessons.relocalization_eval import held_out_map_indices, random_free_poses, reference_from_log
 from cga_lessons.relocalization_lookaround import evaluate_look_around, look_around
+from cga_lessons.relocalization_odometry import ODOMETRY_GATE, REGISTRATION_XY, odometry_misfit
 from cga_lessons.relocalization_sequence import Relocalizer, relocalize_sequence
 
 
@@ -129,3 +140,37 @@ def test_sequence_bad_input_raises(hall, call, match):
 def test_look_around_bad_input_raises(office):
     with pytest.raises(InvalidInputError, match="looks"):
         look_around(office, [3.0, 2.5, 0.0], np.random.default_rng(0), looks=0)
+
+
+def test_odometry_misfit_closed_forms():
+    odo = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.5]])
+    assert odometry_misfit(odo + [3.0, -1.0, 0.0], odo) is None  # the same steps anywhere: no misfit
+    m = OdometryModel()
+    v_xy = m.sigma_xy**2 * 1.0 + 2 * REGISTRATION_XY**2  # the variance of a 1 m step's position, by the model
+    for k, expect in ((0.99, None), (1.01, 1)):  # a sideways slip just inside / outside the 99.9 % bound
+        chain = odo.copy()
+        chain[1:, 1] += k * np.sqrt(ODOMETRY_GATE * v_xy)
+        assert odometry_misfit(chain, odo) == expect
+    with pytest.raises(InvalidInputError, match="odometry_misfit"):
+        odometry_misfit(odo[:2], odo)
+
+
+def test_a_run_that_moves_against_its_odometry_is_not_a_confident_answer():
+    """Intel, every 7th scan held out as in the benchmark: the run 890-892 with drifting odometry (seed 0).
+
+    Its best chain slides 1.6 m from the true pose between scans where the odometry says it drove straight on;
+    with the odometry's check the answer is ambiguous, without it (a model that allows any drift) it is
+    confidently wrong.
+    """
+    log = read_carmen_log(data_path("carmen", "intel-corrected.log.gz"))
+    odo = simulate_odometry(log.poses, np.random.default_rng(0))
+    held = np.arange(3, len(log), 7)
+    runs = (held - 2)[:, None] + np.arange(3)[None, :]
+    ref = reference_from_log(log, held_out_map_indices(len(log), runs, 0, 1), max_range=8.0)
+    run = np.array([890, 891, 892])
+    scans = [log.scans[k] for k in run]
+    checked = relocalize_sequence(ref, scans, odo[run], max_range=8.0)
+    loose = relocalize_sequence(ref, scans, odo[run], max_range=8.0,
+                                odometry_model=OdometryModel(sigma_xy=10.0, sigma_heading=10.0))  # fmt: skip
+    assert loose.status == "ok" and pose_error(loose.pose, log.poses[892])[0] > 1.0
+    assert checked.status == "ambiguous" and "odometry" in checked.message
