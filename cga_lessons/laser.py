@@ -361,6 +361,22 @@ class OdometryModel:
         noisy[:, 2] += self.heading_bias * d + rng.normal(size=n) * sd
         return noisy
 
+    def step_covariance(self, increment) -> np.ndarray:
+        """Covariance (3, 3) of the reported increment ``(dx, dy, dtheta)`` of one step under this model.
+
+        Position variance ``sigma_xy^2 d`` per axis; heading variance
+        ``sigma_heading^2 d + sigma_turn^2 |dtheta| + (heading_bias d)^2``, the
+        steady drift counted as one more error of the step.
+
+        >>> np.round(np.diag(OdometryModel().step_covariance([1.0, 0.0, 0.0])), 6).tolist()
+        [0.0004, 0.0004, 0.000125]
+        """
+        inc = np.asarray(increment, float).reshape(3)
+        d = float(np.hypot(inc[0], inc[1]))
+        v_xy = self.sigma_xy**2 * d
+        v_th = self.sigma_heading**2 * d + self.sigma_turn**2 * abs(inc[2]) + (self.heading_bias * d) ** 2
+        return np.diag([v_xy, v_xy, v_th])
+
 
 def simulate_odometry(trajectory, rng, model: OdometryModel | None = None) -> np.ndarray:
     """Drifting odometry along a ground-truth trajectory, by :class:`OdometryModel`.

@@ -169,11 +169,8 @@ class MapBuilder:
             r = nxt
 
     def observers(self, lines):
-        """How many of the map lines ``lines`` (indices) each scan observed, shape (scans,)."""
-        scans, counts = self.obs.scan_counts(self.gid[lines])
-        out = np.zeros(self.obs.n_scans, int)
-        out[scans] = counts
-        return out
+        """The scans that observed the map lines ``lines`` (indices) and how many of them each saw: two arrays."""
+        return self.obs.scan_counts(self.gid[lines])
 
     def segment_distance(self, centre, idx=None):
         """Distance (m) from ``centre`` to each map segment (or to those in ``idx``)."""

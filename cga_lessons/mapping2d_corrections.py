@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from .algebra import InvalidInputError
+from .laser import OdometryModel
 from .mapping2d_geometry import SegmentSet
 
 __all__ = [
@@ -218,8 +219,5 @@ def odometry_covariance(increment, params) -> np.ndarray:
     + (odo_heading_bias d)^2`` (the bias counted as one more error), as in
     :class:`cga_lessons.laser.OdometryModel`.
     """
-    d = float(np.hypot(increment[0], increment[1]))
-    v_xy = params.odo_sigma_xy**2 * d + 1e-8
-    v_th = params.odo_sigma_heading**2 * d + params.odo_sigma_turn**2 * abs(increment[2])
-    v_th += (params.odo_heading_bias * d) ** 2 + 1e-10
-    return np.diag([v_xy, v_xy, v_th])
+    model = OdometryModel(params.odo_sigma_xy, params.odo_sigma_heading, params.odo_sigma_turn, params.odo_heading_bias)
+    return model.step_covariance(increment) + np.diag([1e-8, 1e-8, 1e-10])

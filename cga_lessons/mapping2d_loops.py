@@ -93,7 +93,7 @@ def _verify(b, k, poses, points, old, results):
 def anchor_scan(builder, lines, pose, poses):
     """The earlier scan a revisit is tied to: of the scans that saw most of the matched ``lines``, the one
     nearest to ``pose`` (its view is the most alike); ``poses`` are the poses so far."""
-    scans, count = builder.obs.scan_counts(builder.gid[lines])
+    scans, count = builder.observers(lines)
     count, scans = count[scans < len(poses)], scans[scans < len(poses)]
     best = scans[count == count.max()] if len(count) else np.arange(len(poses))
     d = np.hypot(poses[best, 0] - pose[0], poses[best, 1] - pose[1])

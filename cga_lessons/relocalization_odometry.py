@@ -42,11 +42,10 @@ def odometry_misfit(poses, odometry, model: OdometryModel | None = None) -> int 
         The drift model (default :class:`~cga_lessons.laser.OdometryModel`).
 
     A step's departure ``e`` (the chain's step against the odometry increment
-    ``u``, in the frame of the moved pose) has, by the drift model over the
-    increment's length ``d`` and turn, variances ``sigma_xy^2 d`` per axis and
-    ``sigma_heading^2 d + sigma_turn^2 |turn| + (heading_bias d)^2``, plus twice
-    the registration error; the step fails when its chi-square exceeds
-    :data:`ODOMETRY_GATE`.
+    ``u``, in the frame of the moved pose) has the drift model's covariance of
+    that increment (:meth:`~cga_lessons.laser.OdometryModel.step_covariance`)
+    plus twice the registration error; the step fails when its chi-square
+    exceeds :data:`ODOMETRY_GATE`.
 
     >>> odo = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]])
     >>> odometry_misfit(odo + [0.0, 0.02, 0.0], odo) is None  # the same steps, shifted: no misfit
@@ -65,10 +64,8 @@ def odometry_misfit(poses, odometry, model: OdometryModel | None = None) -> int 
     for j in range(1, len(P)):
         u = relative(O[j - 1], O[j])
         e = relative(compose(P[j - 1], u), P[j])
-        d = float(np.hypot(u[0], u[1]))
-        v_xy = m.sigma_xy**2 * d + 2 * REGISTRATION_XY**2
-        v_th = m.sigma_heading**2 * d + m.sigma_turn**2 * abs(u[2]) + (m.heading_bias * d) ** 2
-        v_th += 2 * REGISTRATION_THETA**2
+        v = np.diag(m.step_covariance(u))
+        v_xy, v_th = v[0] + 2 * REGISTRATION_XY**2, v[2] + 2 * REGISTRATION_THETA**2
         if (e[0] ** 2 + e[1] ** 2) / v_xy + wrap_angle(e[2]) ** 2 / v_th > ODOMETRY_GATE:
             return j
     return None
