@@ -138,8 +138,16 @@ def main(n: int = 100_000, seed: int = 0, rounds: int = 25):
     )
 
     nb = 3  # calls per round of each batch case (steady state, not the cache left by the previous case)
+
+    def floor_round_trip():  # from Euclidean points to Euclidean points, with the perspective division
+        h = np.hstack([pts, np.ones((n, 1))]) @ H.T
+        return h[:, :3] / h[:, 3:]
+
+    checks["round trip down(apply(M, up(P)))"] = dev(cga.down(cga.apply(M, cga.up(pts))))
     batch = {
         "numpy 4x4 homogeneous (floor)": (lambda: (homog @ H.T)[:, :3], nb),
+        "round trip: numpy [x 1] @ H^T, divide (floor)": (floor_round_trip, nb),
+        "round trip: cga.down(cga.apply(M, cga.up(P)))": (lambda: cga.down(cga.apply(M, cga.up(pts))), nb),
         "cga.apply_to_points(M, x)  [3x4 affine]": (lambda: cga.apply_to_points(M, pts), nb),
         "cga.apply(M, X)  [conformal, 5x5]": (lambda: cga.apply(M, X), nb),
         "M >> X  [conformal, 5x5]": (lambda: M >> X, nb),
@@ -155,6 +163,8 @@ def main(n: int = 100_000, seed: int = 0, rounds: int = 25):
         "cga.apply(M, X)": (lambda: cga.apply(M, X1), reps),
         "M * X * ~M  [general products]": (lambda: M * X1 * ~M, reps),
         "cga.apply_to_points(M, x)": (lambda: cga.apply_to_points(M, p1), reps),
+        "round trip: numpy H @ [x 1], divide (floor)": (lambda: (lambda h: h[:3] / h[3])(H @ np.append(p1, 1.0)), reps),
+        "round trip: cga.down(cga.apply(M, cga.up(x)))": (lambda: cga.down(cga.apply(M, cga.up(p1))), reps),
         "M >> X, a new motor every call": (lambda: next(cycle) >> X1, reps),
     }
 
@@ -167,6 +177,26 @@ def main(n: int = 100_000, seed: int = 0, rounds: int = 25):
         w = ky[:, 4] - ky[:, 3]
         checks["kingdon M >> X"] = dev(ky[:, :3] / w[:, None])
         batch["kingdon M >> X  [array coefficients]"] = (lambda: km >> kx, nb)
+
+        def kingdon_round_trip(P=pts):  # the null vector from the arrays, the sandwich, the division
+            x2 = 0.5 * np.einsum("ij,ij->i", P, P)
+            X = K.vector(e1=P[:, 0], e2=P[:, 1], e3=P[:, 2], e4=x2 - 0.5, e5=x2 + 0.5)
+            Y = km >> X
+            w = Y.e5 - Y.e4
+            return np.stack([Y.e1 / w, Y.e2 / w, Y.e3 / w], axis=-1)
+
+        checks["kingdon round trip"] = dev(kingdon_round_trip())
+        batch["round trip: kingdon point, M >> X, divide"] = (kingdon_round_trip, nb)
+
+        def kingdon_round_trip_one(p=p1):  # one point: float coefficients
+            x, y, z = (float(v) for v in p)
+            x2 = 0.5 * (x * x + y * y + z * z)
+            Y = km >> K.vector(e1=x, e2=y, e3=z, e4=x2 - 0.5, e5=x2 + 0.5)
+            w = Y.e5 - Y.e4
+            return np.array([Y.e1 / w, Y.e2 / w, Y.e3 / w])
+
+        checks["kingdon round trip, one point"] = float(np.max(np.abs(kingdon_round_trip_one() - truth[0])))
+        single["round trip: kingdon point, M >> X, divide"] = (kingdon_round_trip_one, reps)
         batch["kingdon M >> L  [lines]"] = (lambda: km >> kl, nb)
         single["kingdon M >> X"] = (lambda: km >> kx1, reps)
     c = clifford_setup(M)
@@ -210,6 +240,16 @@ def main(n: int = 100_000, seed: int = 0, rounds: int = 25):
         floor_t = res_s["numpy 4x4 @ homogeneous point (floor)"][0]
         print(f"         one point <= 20 us: {name}: median {t * 1e6:.1f} us, best {tb * 1e6:.1f} us, "
               f"{r:.1f} x the floor's median {floor_t * 1e6:.2f} us = {r * floor_t * 1e6:.1f} us")
+    rt = (res_b["round trip: cga.down(cga.apply(M, cga.up(P)))"][2]
+          / res_b["round trip: numpy [x 1] @ H^T, divide (floor)"][2])
+    print(f"         round trip down(apply(M, up(P))) <= 1.5x its floor (median ratios): {rt:.2f}x")
+    kr = res_b.get("round trip: kingdon point, M >> X, divide")
+    if kr is not None:
+        print(f"         round trip >= 2x faster than kingdon's (median ratios): "
+              f"{kr[2] / res_b['round trip: cga.down(cga.apply(M, cga.up(P)))'][2]:.1f}x")
+        one = res_s["round trip: cga.down(cga.apply(M, cga.up(x)))"][2]
+        print(f"         one point, round trip, at most half of kingdon's time: ours / kingdon "
+              f"{one / res_s['round trip: kingdon point, M >> X, divide'][2]:.2f}")
     ks = res_s.get("kingdon M >> X")
     if ks is not None:
         print(f"         kingdon's M >> X on one point: median {ks[0] * 1e6:.1f} us, best {ks[1] * 1e6:.1f} us "

@@ -3,7 +3,9 @@
 ``from cga_lessons import conformal as cga`` gives the basis and constants and
 up/down (:mod:`cga_lessons.model`, 2.52-2.67, 2.111-2.114), the entities of
 table 2.1 and their properties (:mod:`cga_lessons.entities`, section 2.4) and
-the versors of table 2.2 (:mod:`cga_lessons.versors`, 2.82-2.110, 2.135-2.145).
+the versors of table 2.2 (:mod:`cga_lessons.versors`, 2.82-2.110, 2.135-2.145),
+and beyond the thesis the logarithm, roots and interpolation of motors and the
+dilator (:mod:`cga_lessons.versor_log`).
 
 Basis vectors ``e1 e2 e3`` (Euclidean), ``ep`` (e+, squares to +1) and ``em``
 (e-, squares to -1), (2.52).  The null basis (2.53), with the thesis's signs::
@@ -27,6 +29,8 @@ from .entities import __all__ as _entities_all
 from .model import *  # noqa: F403
 from .model import __all__ as _model_all
 from .model import point_weight  # noqa: F401
+from .versor_log import *  # noqa: F403
+from .versor_log import __all__ as _versor_log_all
 from .versors import *  # noqa: F403
 from .versors import __all__ as _versors_all
 
@@ -35,4 +39,5 @@ __all__ = (
     + ["point_weight", "Multivector", "exp", "GeometryError", "DegenerateGeometryError", "InvalidInputError"]
     + list(_entities_all)
     + list(_versors_all)
+    + list(_versor_log_all)
 )

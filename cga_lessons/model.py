@@ -188,15 +188,21 @@ def up(x) -> Multivector:
         x2 = a0 * a0 + a1 * a1 + a2 * a2  # the order of np.sum: the same bits
         coeffs = {1: a0, 2: a1, 4: a2, 8: 0.5 * (x2 - 1.0), 16: 0.5 * (x2 + 1.0)}
         return Multivector(G41, {k: v for k, v in coeffs.items() if v != 0})
-    x2 = np.sum(arr * arr, axis=-1)
     # The five coefficient arrays are the rows of one (5, N) block, so that a versor applied to the batch
-    # (versors.apply) multiplies the block without copying it.
+    # (versors.apply) multiplies the block without copying it.  x^2 is summed over the block's contiguous
+    # rows (x1 x1 + x2 x2) + x3 x3, the order of the single point's sum: the same bits.
     block = np.empty((5, arr.shape[0]))
     block[:3] = arr.T
+    x2, tmp = block[4], block[3]
+    np.multiply(block[0], block[0], out=x2)
+    np.multiply(block[1], block[1], out=tmp)
+    x2 += tmp
+    np.multiply(block[2], block[2], out=tmp)
+    x2 += tmp
     np.subtract(x2, 1.0, out=block[3])
     block[3] *= 0.5
-    np.add(x2, 1.0, out=block[4])
-    block[4] *= 0.5
+    x2 += 1.0
+    x2 *= 0.5
     return Multivector(G41, {1: block[0], 2: block[1], 4: block[2], 8: block[3], 16: block[4]})
 
 
@@ -262,6 +268,10 @@ def down(X: Multivector):
     """
     if not isinstance(X, Multivector):
         raise InvalidInputError(f"down: expected a conformal point (Multivector), got {type(X).__name__}")
+    if _is_real_single(X):
+        return _down_one(X)
+    if X.shape and not _any_sym(X):
+        return _down_batch(X)
     if not _any_sym(X):
         scale = max((_absmax(v) for v in X._c.values()), default=0.0)
         bad = [
@@ -279,6 +289,57 @@ def down(X: Multivector):
         c = exact_constants()
         return euclidean(((Xn ^ c["E"]) * c["E"]).simplify())
     return euclidean((Xn ^ E) * E)
+
+
+def _down_one(X: Multivector) -> np.ndarray:
+    """:func:`down` of one point with real coefficients, in plain floats (the checks of :func:`_down_batch`)."""
+    c = X._c
+    other = [b for b in c if G41.grades[b] != 1]
+    if other:
+        scale = max(abs(float(v)) for v in c.values())
+        bad = [G41.blade_names[b] for b in other if abs(float(c[b])) > 1e-9 * max(scale, 1e-300)]
+        if bad:
+            raise InvalidInputError(f"down: a conformal point is a vector (grade 1), got blades {bad}")
+    xp, xm = float(c.get(8, 0.0)), float(c.get(16, 0.0))
+    w = xm - xp  # -e . X, (2.111)
+    if not abs(w) > 1e-14 * (abs(xm) + abs(xp)):  # also false for a NaN weight
+        raise DegenerateGeometryError("down: X . e = 0, the input is at infinity (or a plane), not a finite point")
+    out = [float(c.get(1, 0.0)) / w, float(c.get(2, 0.0)) / w, float(c.get(4, 0.0)) / w]
+    if not all(map(math.isfinite, out)):
+        raise InvalidInputError("down: X has NaN or inf coefficients")
+    return np.array(out)
+
+
+def _down_batch(X: Multivector) -> np.ndarray:
+    """:func:`down` of a batch of points in one pass over its five coefficient arrays.
+
+    The weight ``-e . X = X_- - X_+`` (2.111) and the Euclidean part
+    ``x_i / w`` (2.114) are read off the coefficients directly; the checks
+    are those of the general path: only grade 1 (other grades within 1e-9 of
+    the largest coefficient), a weight clear of zero (beyond 1e-14 of
+    ``|X_-| + |X_+|``, the terms it is the difference of), a finite result.
+    """
+    c, n = X._c, X.shape
+    other = [b for b in c if G41.grades[b] != 1]
+    if other:
+        scale = max(_absmax(v) for v in c.values())
+        bad = [G41.blade_names[b] for b in other if _absmax(c[b]) > 1e-9 * max(scale, 1e-300)]
+        if bad:
+            raise InvalidInputError(f"down: a conformal point is a vector (grade 1), got blades {bad}")
+    zero = np.zeros(n)
+    x1, x2, x3, xp, xm = (np.broadcast_to(c.get(b, zero), n) for b in (1, 2, 4, 8, 16))
+    w = xm - xp  # -e . X, (2.111)
+    ref = np.abs(xm)
+    ref += np.abs(xp)
+    if not np.all(np.abs(w) > 1e-14 * ref):  # relative to the terms it cancels; also false for a NaN weight
+        raise DegenerateGeometryError("down: X . e = 0, the input is at infinity (or a plane), not a finite point")
+    out = np.empty(n + (3,))
+    np.divide(x1, w, out=out[..., 0])
+    np.divide(x2, w, out=out[..., 1])
+    np.divide(x3, w, out=out[..., 2])
+    if not _all_finite(out):
+        raise InvalidInputError("down: X has NaN or inf coefficients")
+    return out
 
 
 def is_scalar_like(v) -> bool:

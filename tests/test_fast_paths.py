@@ -375,3 +375,49 @@ def test_products_of_many_blade_sets_stay_correct_when_the_caches_fill():
         assert len(alg._product_cache) <= 8
     finally:
         alg._CACHE_LIMIT = old
+
+
+def test_batched_down_is_the_single_point_route_and_the_affine_map():
+    """The one-pass ``down`` of a batch (2.111, 2.114) against the single-point route and the 4x4 matrix."""
+    rng = np.random.default_rng(31)
+    pts = rng.normal(scale=20.0, size=(500, 3))
+    M = cga.motor(rng.normal(size=3), 1.1, rng.normal(size=3))
+    got = cga.down(cga.apply(M, cga.up(pts)))
+    H = cga.motor_to_matrix(M)
+    np.testing.assert_allclose(got, pts @ H[:3, :3].T + H[:3, 3], rtol=0, atol=1e-11 * 400)
+    Y = cga.apply(M, cga.up(pts))
+    for i in (0, 17, 499):
+        np.testing.assert_allclose(got[i], cga.down(Y.batch_item(i)), rtol=1e-14, atol=1e-13)
+    grid = Multivector(G41, {b: v.reshape(4, 5) for b, v in cga.up(pts[:20]).coeffs.items()})  # any batch shape
+    np.testing.assert_allclose(cga.down(grid), pts[:20].reshape(4, 5, 3), atol=1e-12)
+    scaled = Multivector(G41, {b: 3.0 * v for b, v in cga.up(pts[:5]).coeffs.items()})  # weights other than 1
+    np.testing.assert_allclose(cga.down(scaled), pts[:5], atol=1e-12)
+
+
+def test_batched_down_refuses_what_is_not_a_finite_point():
+    pts = np.array([[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]])
+    X = cga.up(pts)
+    at_infinity = Multivector(G41, {1: np.ones(2), 8: np.ones(2), 16: np.array([1.0, 2.0])})  # first one: X . e = 0
+    with pytest.raises(cga.DegenerateGeometryError, match="down: X . e = 0"):
+        cga.down(at_infinity)
+    with pytest.raises(cga.InvalidInputError, match="down: a conformal point is a vector"):
+        cga.down(X + cga.e1 * cga.e2 * np.ones(2))
+    with pytest.raises(cga.GeometryError, match="down:"):
+        cga.down(Multivector(G41, {**X.coeffs, 1: np.array([np.nan, 1.0])}))
+    with pytest.raises(cga.GeometryError, match="down:"):
+        cga.down(Multivector(G41, {**X.coeffs, 16: np.array([np.inf, 1.0])}))
+
+
+def test_single_point_down_agrees_with_the_batch_and_refuses_the_same_inputs():
+    rng = np.random.default_rng(32)
+    pts = rng.normal(scale=50.0, size=(20, 3))
+    X = cga.apply(cga.motor(rng.normal(size=3), 0.4, rng.normal(size=3)), cga.up(pts))
+    batch = cga.down(X)
+    for i in range(20):
+        np.testing.assert_allclose(cga.down(X.batch_item(i)), batch[i], rtol=1e-15, atol=0)
+    with pytest.raises(cga.DegenerateGeometryError, match="down: X . e = 0"):
+        cga.down(cga.einf + cga.e1)
+    with pytest.raises(cga.InvalidInputError, match="down: a conformal point is a vector"):
+        cga.down(cga.up([1.0, 2.0, 3.0]) + cga.e1 * cga.e2)
+    with pytest.raises(cga.GeometryError, match="down:"):
+        cga.down(cga.up([1.0, 2.0, 3.0]) + float("nan") * cga.e1)
