@@ -5,7 +5,9 @@ up/down (:mod:`cga_lessons.model`, 2.52-2.67, 2.111-2.114), the entities of
 table 2.1 and their properties (:mod:`cga_lessons.entities`, section 2.4) and
 the versors of table 2.2 (:mod:`cga_lessons.versors`, 2.82-2.110, 2.135-2.145),
 and beyond the thesis the logarithm, roots and interpolation of motors and the
-dilator (:mod:`cga_lessons.versor_log`).
+dilator (:mod:`cga_lessons.versor_log`), contractions, duals, meet and join,
+projections and the classification of blades (:mod:`cga_lessons.blades`,
+:mod:`cga_lessons.blades_classify`).
 
 Basis vectors ``e1 e2 e3`` (Euclidean), ``ep`` (e+, squares to +1) and ``em``
 (e-, squares to -1), (2.52).  The null basis (2.53), with the thesis's signs::
@@ -24,6 +26,10 @@ Basis vectors ``e1 e2 e3`` (Euclidean), ``ep`` (e+, squares to +1) and ``em``
 """
 
 from .algebra import DegenerateGeometryError, GeometryError, InvalidInputError, Multivector, exp  # noqa: F401
+from .blades import *  # noqa: F403
+from .blades import __all__ as _blades_all
+from .blades_classify import *  # noqa: F403
+from .blades_classify import __all__ as _blades_classify_all
 from .entities import *  # noqa: F403
 from .entities import __all__ as _entities_all
 from .model import *  # noqa: F403
@@ -40,4 +46,6 @@ __all__ = (
     + list(_entities_all)
     + list(_versors_all)
     + list(_versor_log_all)
+    + list(_blades_all)
+    + list(_blades_classify_all)
 )

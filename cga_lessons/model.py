@@ -243,7 +243,7 @@ def euclidean(X: Multivector):
     if _any_sym(X):
         import sympy
 
-        return sympy.Matrix([X[1], X[2], X[4]])
+        return sympy.Matrix([X._c.get(b, sympy.Integer(0)) for b in (1, 2, 4)])  # exact zeros, not 0.0
     shape = X.shape
     out = np.zeros(shape + (3,))
     for i, b in enumerate((1, 2, 4)):

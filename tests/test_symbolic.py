@@ -12,6 +12,7 @@ from functools import cache
 import pytest
 import sympy as sp
 
+from cga_lessons import conformal as cga
 from cga_lessons import symbolic
 from cga_lessons.equations import REGISTRY, check_registry
 from cga_lessons.model import up
@@ -195,3 +196,11 @@ def test_registry_entries():
     for err in symbolic.ERRATA:
         if err.label in OWN_LABELS:
             assert REGISTRY[err.label].status == "erratum"
+
+
+def test_down_of_a_symbolic_point_is_exact():
+    """(2.114) on SymPy coefficients: missing components are the integer 0, never the float 0.0."""
+    x = sp.Symbol("x", real=True)
+    got = cga.down(cga.up([x, 0, 0]))
+    assert got == sp.Matrix([x, 0, 0])
+    assert not any(isinstance(v, sp.Float) for v in got.atoms(sp.Number))
