@@ -7,7 +7,8 @@ the versors of table 2.2 (:mod:`cga_lessons.versors`, 2.82-2.110, 2.135-2.145),
 and beyond the thesis the logarithm, roots and interpolation of motors and the
 dilator (:mod:`cga_lessons.versor_log`), contractions, duals, meet and join,
 projections and the classification of blades (:mod:`cga_lessons.blades`,
-:mod:`cga_lessons.blades_classify`).
+:mod:`cga_lessons.blades_classify`), motors estimated from corresponding points
+or lines, their mean, and quaternions (:mod:`cga_lessons.motor_estimation`).
 
 Basis vectors ``e1 e2 e3`` (Euclidean), ``ep`` (e+, squares to +1) and ``em``
 (e-, squares to -1), (2.52).  The null basis (2.53), with the thesis's signs::
@@ -35,6 +36,8 @@ from .entities import __all__ as _entities_all
 from .model import *  # noqa: F403
 from .model import __all__ as _model_all
 from .model import point_weight  # noqa: F401
+from .motor_estimation import *  # noqa: F403
+from .motor_estimation import __all__ as _motor_estimation_all
 from .versor_log import *  # noqa: F403
 from .versor_log import __all__ as _versor_log_all
 from .versors import *  # noqa: F403
@@ -48,4 +51,5 @@ __all__ = (
     + list(_versor_log_all)
     + list(_blades_all)
     + list(_blades_classify_all)
+    + list(_motor_estimation_all)
 )

@@ -70,6 +70,8 @@ class Multivector(_NormsAndInverse, _Display):
             b, s = self.algebra.parse_blade(name)
         else:
             b, s = int(name), 1
+            if not 0 <= b < self.algebra.dim:
+                raise IndexError(f"blade bitmap {b} outside 0..{self.algebra.dim - 1}")
         v = self._c.get(b, 0.0)
         return v if s == 1 else -v
 
@@ -100,6 +102,13 @@ class Multivector(_NormsAndInverse, _Display):
         if not shape:
             raise TypeError("a single multivector has no len(); use .shape for batches")
         return shape[0]
+
+    def __iter__(self):
+        """The items of a batch, one multivector each; a single multivector is not iterable."""
+        shape = self.shape
+        if not shape:
+            raise TypeError("a single multivector is not iterable; use .items() for its blades")
+        return (self.batch_item(i) for i in range(shape[0]))
 
     def __getattr__(self, name):
         # blade access as attributes is deliberately not offered: X["e12"] is explicit.

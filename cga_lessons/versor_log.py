@@ -44,7 +44,7 @@ from .algebra import DegenerateGeometryError, InvalidInputError, Multivector
 from .model import G41, IE, E, einf, vector
 from .versors import decompose_motor, rotor, translator
 
-__all__ = ["motor_log", "rotor_log", "motor_interpolate", "versor_sqrt", "versor_root", "dilator"]
+__all__ = ["motor_log", "rotor_log", "screw_parameters", "motor_interpolate", "versor_sqrt", "versor_root", "dilator"]
 
 _TOL = 1e-9  # relative tolerance of the checks that a multivector is a unit motor
 # Below this |sin(theta/2)| a rotor with negative scalar part is taken as -1 exactly (axis then along t).
@@ -198,6 +198,36 @@ def motor_log(M: Multivector) -> Multivector:
     M = _unit_motor(M, "motor_log")
     half, n, t, s, _ = _screw(M, exact=False)
     return _log_from_screw(half, n, t, s)
+
+
+def screw_parameters(M: Multivector):
+    """The screw of a unit motor: ``(angle, axis, point, distance)`` with ``cga.screw(axis, point, angle, distance)``
+    the same motion, Chasles' theorem read off (2.110).
+
+    ``angle`` in [0, pi] about the unit ``axis`` (the rotor part, 2.135-2.137),
+    ``point`` the point of the screw axis nearest the origin, and ``distance``
+    the slide along the axis (``t . axis`` of the translation 2.144).  The axis
+    point solves ``c - Rot(angle) c = t_perp``: ``c = (t_perp + cot(angle/2) axis x t_perp)/2``.
+    A pure translation has no axis: raises :class:`DegenerateGeometryError`
+    (its screw is at infinity; use the translation of ``decompose_motor``).
+
+    >>> import numpy as np
+    >>> from cga_lessons import conformal as cga
+    >>> M = cga.screw([0, 0, 1], [1.0, 2.0, 0.0], np.pi / 2, 0.5)
+    >>> angle, axis, point, distance = screw_parameters(M)
+    >>> round(angle, 6), axis.round(6), point.round(6), round(distance, 6)
+    (1.570796, array([0., 0., 1.]), array([1., 2., 0.]), 0.5)
+    """
+    M = _unit_motor(M, "screw_parameters")
+    half, n, t, s, _ = _screw(M, exact=False)
+    if s <= _SNAP:
+        raise DegenerateGeometryError(
+            "screw_parameters: M: no rotation, a pure translation has its screw axis at infinity"
+        )
+    t_par = float(t @ n)
+    t_perp = t - t_par * n
+    c = 0.5 * (t_perp + (math.cos(half) / s) * np.cross(n, t_perp))
+    return 2.0 * half, n + 0.0, c + 0.0, t_par  # + 0.0: no negative zeros
 
 
 def rotor_log(R: Multivector) -> Multivector:

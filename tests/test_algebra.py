@@ -304,3 +304,18 @@ def test_sympy_expression_times_multivector():
 def test_batch_scalar_part_keeps_its_shape():
     X = G41.vector(np.ones((4, 5)))
     assert np.array_equal((X | G41.blade("e12")).scalar(), np.zeros(4))
+
+
+def test_a_multivector_iterates_over_its_batch_and_never_forever():
+    """list() of a single multivector raises (it used to loop for ever through __getitem__); a batch gives its items."""
+    import numpy as np
+
+    from cga_lessons import conformal as cga
+
+    with pytest.raises(TypeError, match="not iterable"):
+        list(cga.up([1.0, 2.0, 3.0]))
+    pts = np.arange(12.0).reshape(4, 3)
+    items = list(cga.up(pts))
+    assert len(items) == 4 and all(cga.down(X).tolist() == p.tolist() for X, p in zip(items, pts))
+    with pytest.raises(IndexError, match="outside 0..31"):
+        cga.e1[32]

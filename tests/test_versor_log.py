@@ -344,3 +344,21 @@ def test_sympy_motor_is_refused():
     R = cga.rotor([0, 0, 1], a)
     with pytest.raises(InvalidInputError, match=r"^motor_log: M: numeric coefficients only"):
         motor_log(R)
+
+
+def test_screw_parameters_invert_the_screw_of_2_110():
+    """screw_parameters(screw(axis, point, angle, d)) gives the same screw back: the closed form of (2.110)."""
+    rng = np.random.default_rng(110)
+    for _ in range(200):
+        axis = rng.normal(size=3)
+        axis /= np.linalg.norm(axis)
+        point = rng.normal(scale=5.0, size=3)
+        angle, d = rng.uniform(0.01, np.pi - 0.01), rng.normal()
+        a, n, c, dist = cga.screw_parameters(cga.screw(axis, point, angle, d))
+        assert a == pytest.approx(angle, abs=1e-9)
+        np.testing.assert_allclose(n, axis, atol=1e-9)
+        assert dist == pytest.approx(d, abs=1e-9)
+        foot = point - (point @ axis) * axis  # the axis point nearest the origin
+        np.testing.assert_allclose(c, foot, atol=1e-8)
+    with pytest.raises(cga.DegenerateGeometryError, match="screw_parameters: M: no rotation"):
+        cga.screw_parameters(cga.translator([1.0, 2.0, 3.0]))
