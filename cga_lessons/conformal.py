@@ -8,7 +8,8 @@ and beyond the thesis the logarithm, roots and interpolation of motors and the
 dilator (:mod:`cga_lessons.versor_log`), contractions, duals, meet and join,
 projections and the classification of blades (:mod:`cga_lessons.blades`,
 :mod:`cga_lessons.blades_classify`), motors estimated from corresponding points
-or lines, their mean, and quaternions (:mod:`cga_lessons.motor_estimation`).
+or lines, their mean, and quaternions (:mod:`cga_lessons.motor_estimation`),
+and the motor between two objects (:mod:`cga_lessons.object_motors`).
 
 Basis vectors ``e1 e2 e3`` (Euclidean), ``ep`` (e+, squares to +1) and ``em``
 (e-, squares to -1), (2.52).  The null basis (2.53), with the thesis's signs::
@@ -38,6 +39,7 @@ from .model import __all__ as _model_all
 from .model import point_weight  # noqa: F401
 from .motor_estimation import *  # noqa: F403
 from .motor_estimation import __all__ as _motor_estimation_all
+from .object_motors import motor_between  # noqa: F401
 from .versor_log import *  # noqa: F403
 from .versor_log import __all__ as _versor_log_all
 from .versors import *  # noqa: F403
@@ -52,4 +54,5 @@ __all__ = (
     + list(_blades_all)
     + list(_blades_classify_all)
     + list(_motor_estimation_all)
+    + ["motor_between"]
 )
