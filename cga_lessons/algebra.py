@@ -84,7 +84,7 @@ from .algebra_coefficients import (  # noqa: F401
     _is_zero,
 )
 from .algebra_errors import DegenerateGeometryError, GeometryError, InvalidInputError
-from .algebra_exp import _cosh_sinhc, _exp_series, _exp_simple, _sympy, exp  # noqa: F401
+from .algebra_exp import exp  # noqa: F401
 from .algebra_products import _CHUNK, _compile_product, _ProductTerms, _run_product  # noqa: F401
 from .algebra_versors import _stack_rows, _VersorMatrices  # noqa: F401
 from .multivector import Multivector, _mv, _mv_pruned, commutator  # noqa: F401

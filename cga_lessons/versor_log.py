@@ -84,10 +84,12 @@ def _unit_motor(M, func: str, name: str = "M") -> Multivector:
             f"{where} not a motor: it does not commute with e (|M e - e M| = {comm:.3g}), so it moves the point "
             "at infinity (a dilation, transversion or other conformal versor)"
         )
+    # M ~M = R ~R for M = T R: its scalar is the rotor part's squared norm, read from the blades free of e+ and e-
+    # (the full product would sum the translation's coefficients squared, which cancel to eps |t|^2, not to 0).
+    n2 = sum(v * v for b, v in M.coeffs.items() if not b & 0b11000)
     MM = M * ~M
-    n2 = float(MM.scalar())
     rest = max([0.0] + [abs(v) for b, v in MM.coeffs.items() if b != 0])
-    if abs(n2 - 1.0) > _TOL or rest > _TOL * scale:
+    if abs(n2 - 1.0) > _TOL or rest > _TOL * scale * scale:
         raise InvalidInputError(
             f"{where} not a unit motor: M ~M = {n2:.6g} (other grades up to {rest:.3g}), expected 1; "
             "a scaled motor must be normalised explicitly, M / M.norm()"

@@ -362,3 +362,19 @@ def test_screw_parameters_invert_the_screw_of_2_110():
         np.testing.assert_allclose(c, foot, atol=1e-8)
     with pytest.raises(cga.DegenerateGeometryError, match="screw_parameters: M: no rotation"):
         cga.screw_parameters(cga.translator([1.0, 2.0, 3.0]))
+
+
+def test_motor_log_accepts_unit_motors_with_long_translations():
+    """The unit check reads |R|^2 from the rotor part: M ~M summed in full cancels |t|^2 terms and rejected these."""
+    rng = np.random.default_rng(7)
+    for scale in (1e4, 1e6, 1e7):
+        for _ in range(20):
+            axis = rng.normal(size=3)
+            angle, t = rng.uniform(0.1, 3.0), rng.normal(size=3) * scale
+            B = cga.motor_log(cga.motor(axis, angle, t))  # raised "not a unit motor" for two thirds of these
+            assert cga.exp(B).isclose(cga.motor(axis, angle, t), rtol=1e-9) or cga.exp(B).isclose(
+                -cga.motor(axis, angle, t), rtol=1e-9
+            )
+            a, n, _, _ = cga.screw_parameters(cga.motor(axis, angle, t))
+            assert a == pytest.approx(angle, abs=1e-9)
+            np.testing.assert_allclose(n, axis / np.linalg.norm(axis), atol=1e-9)
