@@ -291,6 +291,12 @@ def down(X: Multivector):
     return euclidean((Xn ^ E) * E)
 
 
+#: A weight ``X_- - X_+`` within this many float epsilons of ``|X_-| + |X_+|`` is round-off, not a point: each of
+#: the two terms carries half an ulp (eps/2 of its size), so a difference below a few eps of their sum is zero as far
+#: as the coefficients can tell.  (Points up to about 3e7 from the origin pass; 1e-14 refused them beyond 1e7.)
+_WEIGHT_ULPS = 4 * np.finfo(float).eps
+
+
 def _down_one(X: Multivector) -> np.ndarray:
     """:func:`down` of one point with real coefficients, in plain floats (the checks of :func:`_down_batch`)."""
     c = X._c
@@ -302,7 +308,7 @@ def _down_one(X: Multivector) -> np.ndarray:
             raise InvalidInputError(f"down: a conformal point is a vector (grade 1), got blades {bad}")
     xp, xm = float(c.get(8, 0.0)), float(c.get(16, 0.0))
     w = xm - xp  # -e . X, (2.111)
-    if not abs(w) > 1e-14 * (abs(xm) + abs(xp)):  # also false for a NaN weight
+    if not abs(w) > _WEIGHT_ULPS * (abs(xm) + abs(xp)):  # also false for a NaN weight
         raise DegenerateGeometryError("down: X . e = 0, the input is at infinity (or a plane), not a finite point")
     out = [float(c.get(1, 0.0)) / w, float(c.get(2, 0.0)) / w, float(c.get(4, 0.0)) / w]
     if not all(map(math.isfinite, out)):
@@ -316,8 +322,9 @@ def _down_batch(X: Multivector) -> np.ndarray:
     The weight ``-e . X = X_- - X_+`` (2.111) and the Euclidean part
     ``x_i / w`` (2.114) are read off the coefficients directly; the checks
     are those of the general path: only grade 1 (other grades within 1e-9 of
-    the largest coefficient), a weight clear of zero (beyond 1e-14 of
-    ``|X_-| + |X_+|``, the terms it is the difference of), a finite result.
+    the largest coefficient), a weight clear of zero (beyond a few float
+    epsilons of ``|X_-| + |X_+|``, the terms it is the difference of), a
+    finite result.
     """
     c, n = X._c, X.shape
     other = [b for b in c if G41.grades[b] != 1]
@@ -331,7 +338,7 @@ def _down_batch(X: Multivector) -> np.ndarray:
     w = xm - xp  # -e . X, (2.111)
     ref = np.abs(xm)
     ref += np.abs(xp)
-    if not np.all(np.abs(w) > 1e-14 * ref):  # relative to the terms it cancels; also false for a NaN weight
+    if not np.all(np.abs(w) > _WEIGHT_ULPS * ref):  # relative to the terms it cancels; also false for a NaN weight
         raise DegenerateGeometryError("down: X . e = 0, the input is at infinity (or a plane), not a finite point")
     out = np.empty(n + (3,))
     np.divide(x1, w, out=out[..., 0])

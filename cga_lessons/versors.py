@@ -9,13 +9,31 @@ Conventions (checked by the tests):
 * ``apply(V, X) = V X^ V^-1`` with X^ the grade involution when V is odd
   (2.82); for unit even versors (rotors, translators, motors) this is the
   sandwich ``V X ~V`` (2.98, 2.101, 2.103).
+* A multiple ``s M`` (s != 0) of a motor is a versor of the same motion,
+  ``(s M) X (s M)^-1 = M X M^-1``: :func:`apply`, :func:`apply_to_points`,
+  :func:`motor_to_matrix` and :func:`decompose_motor`'s t give it M's motion
+  (only ``V >> X = V X ~V`` scales, by s^2).
+* Angles and distances are finite real numbers (or SymPy expressions); a
+  NaN, inf, complex, bool, string or None raises
+  :class:`~cga_lessons.algebra.InvalidInputError` naming the function the
+  caller called and the argument, ``"motor: angle: ..."``.
 
 Applying one versor to a batch builds the matrix of its action on each grade
 once (a versor acts linearly on every grade) and multiplies, instead of
-looping over the batch; a conformal point cloud costs one 5x5 product.
+looping over the batch; a conformal point cloud costs one 5x5 product.  A
+motor's matrices are built in closed form from its rotation and translation
+(:meth:`~cga_lessons.algebra.Algebra.rigid_motion`), so that points far from
+the origin keep their precision (see :mod:`cga_lessons.algebra_versors`).
+
+The rigid-motion conversions (:func:`decompose_motor`, :func:`rotor_angle_axis`,
+:func:`motor_to_matrix`, :func:`matrix_to_motor`) live in
+:mod:`cga_lessons.versors_rigid` and are re-exported here.
 """
 
 from __future__ import annotations
+
+import math
+import numbers
 
 import numpy as np
 
@@ -28,7 +46,8 @@ from .algebra import (
     _is_sympy,
 )
 from .algebra import exp as _exp
-from .model import G41, IE, E, _any_sym, _check_points, down, einf, euclidean, exact_constants, up, vector
+from .model import G41, IE, E, _any_sym, _check_points, down, einf, exact_constants, up, vector
+from .versors_rigid import decompose_motor, matrix_to_motor, motor_to_matrix, rotor_angle_axis
 
 __all__ = [
     "apply",
@@ -114,29 +133,25 @@ def apply(V: Multivector, X: Multivector) -> Multivector:
     return _apply_sandwich(V, X)
 
 
-def motor_to_matrix(M: Multivector) -> np.ndarray:
-    """The 4x4 homogeneous matrix [[R, t], [0, 1]] of a motor (numeric)."""
-    R, t = decompose_motor(M)
-    Rm = np.column_stack([euclidean(_apply_sandwich(R, vector(col))) for col in np.eye(3)])
-    H = np.eye(4)
-    H[:3, :3] = Rm
-    H[:3, 3] = t
-    return H
-
-
 def apply_to_points(V: Multivector, x) -> np.ndarray:
     """Euclidean points moved by a motor (or any versor mapping points to points).
 
-    ``x`` has shape (3,) or (N, 3).  For a rigid motion this is the 3x4 affine
-    product ``y = R x + t`` read off the versor's 5x5 matrix (a motor keeps
-    X . e = -1), the cost of a plain homogeneous matrix.  Other versors
-    (inversions, dilations) and SymPy input go through the conformal point and
-    :func:`~cga_lessons.model.down`.
+    ``x`` has shape (3,) or (N, 3).  For a motor this is ``y = R x + t`` with
+    R and t read linearly off its coefficients
+    (:meth:`~cga_lessons.algebra.Algebra.rigid_motion`, 2.141-2.144): exact to
+    round-off at any distance, at the cost of a plain homogeneous matrix.  A
+    reflection in a plane uses the 3x4 affine part of its 5x5 matrix.  Other
+    versors (inversions, dilations) and SymPy input go through the conformal
+    point and :func:`~cga_lessons.model.down`.
     """
     arr, sym = _check_points(x, "apply_to_points")
+    if not isinstance(V, Multivector):
+        raise InvalidInputError(f"apply_to_points: V: expected a versor (Multivector), got {type(V).__name__}")
     if sym or _any_sym(V):
         return down(apply(V, up(arr)))
-    affine = _rigid_affine(V)
+    affine = G41.rigid_motion(V) if V.algebra is G41 else None
+    if affine is None:
+        affine = _rigid_affine(V)
     if affine is None:
         return down(apply(V, up(arr)))
     R, t = affine
@@ -153,7 +168,7 @@ _AFFINE_CACHE: dict = {}
 
 
 def _rigid_affine(V: Multivector):
-    """``(R, t)`` of a numeric versor acting on points as a rigid motion, else None.
+    """``(R, t)`` of a numeric versor (not a motor: a reflection) acting on points as an isometry, else None.
 
     With A the 5x5 matrix on e1 e2 e3 e+ e-, the Euclidean part of V up(x) is
     A[:3,:3] x + A[:3,3] (x^2-1)/2 + A[:3,4] (x^2+1)/2 with weight row
@@ -186,28 +201,112 @@ def _rigid_affine(V: Multivector):
 
 
 # ------------------------------------------------------------- constructors
-def translator(t) -> Multivector:
-    """Translator T = 1 + e t / 2 = exp(e t / 2), Eq. (2.100); moves by +t.
+def _real(x, func: str, name: str, *, array: bool = False):
+    """A finite real angle or distance: a float (a float array when ``array``), or a SymPy expression.
 
-    ``t`` has shape (3,) or (N, 3) (a batch of translators) or is symbolic.
+    Refuses bools, strings, None, complex numbers, NaN and inf (a SymPy
+    expression known to be non-real or infinite too) with "func: name: problem".
     """
-    tv = vector(t, "translator", "t")
+    if _is_sympy(x):
+        if x.is_real is False or x.is_finite is False or x.has(_sympy_nan()):
+            raise InvalidInputError(f"{func}: {name}: must be a finite real number, got {_short(x)}")
+        return x
+    if isinstance(x, (bool, np.bool_)):
+        raise InvalidInputError(f"{func}: {name}: must be a real number, got the bool {x!r}")
+    if isinstance(x, np.ndarray) and x.ndim == 0 and x.dtype.kind in "iuf":
+        x = x[()]  # a 0-d array: its number
+    if isinstance(x, numbers.Real):
+        try:
+            v = float(x)
+        except OverflowError:
+            v = math.inf
+        if not math.isfinite(v):
+            raise InvalidInputError(f"{func}: {name}: is NaN or inf ({_short(x)})")
+        return v
+    if array and isinstance(x, (np.ndarray, list, tuple)):
+        a = np.asarray(x) if not isinstance(x, np.ndarray) else x
+        if a.dtype.kind in "iuf" and a.ndim:
+            a = a.astype(float)
+            if not np.all(np.isfinite(a)):
+                raise InvalidInputError(f"{func}: {name}: contains NaN or inf")
+            return a
+    what = "a real number or an array of them" if array else "a real number"
+    raise InvalidInputError(f"{func}: {name}: must be {what}, got {_short(x)} ({type(x).__name__})")
+
+
+def _short(x) -> str:
+    r = repr(x)
+    return r if len(r) <= 40 else r[:37] + "..."
+
+
+def _sympy_nan():
+    import sympy
+
+    return sympy.nan
+
+
+def _exact(a):
+    """A Python/NumPy number as an exact SymPy number: integers stay integers, other floats become the
+    rational of their shortest decimal form (0.6 -> 3/5)."""
+    import sympy
+
+    if _is_sympy(a):
+        return a
+    a = float(a)
+    return sympy.Integer(int(a)) if a.is_integer() else sympy.nsimplify(a, rational=True)
+
+
+def _translator(t, func: str, name: str) -> Multivector:
+    tv = vector(t, func, name)
     c = _consts(tv)
     half = 0.5 if not _any_sym(tv) else exact_constants()["eo"]["e-"]  # 1/2, exact when symbolic
     return (c["einf"] * tv) * half + 1
 
 
-def _unit_axis(axis, func: str):
-    arr, sym = _check_points(axis, func, "axis")
+def translator(t) -> Multivector:
+    """Translator T = 1 + e t / 2 = exp(e t / 2), Eq. (2.100); moves by +t.
+
+    ``t`` has shape (3,) or (N, 3) (a batch of translators) or is symbolic.
+    """
+    return _translator(t, "translator", "t")
+
+
+def _unit_axis(axis, func: str, name: str = "axis", exact: bool = False):
+    """Unit axis (numeric, or SymPy when the axis is symbolic or ``exact``), from ``func``'s argument ``name``.
+
+    A numeric axis is scaled by its largest component before its norm is
+    taken, so that neither 1e200 nor 1e-200 over- or underflows.
+    """
+    arr, sym = _check_points(axis, func, name)
+    if sym or exact:
+        import sympy
+
+        if not sym:
+            if arr.ndim != 1:
+                raise InvalidInputError(f"{func}: {name}: one axis (shape (3,)) with a SymPy angle, got {arr.shape}")
+            arr = [_exact(a) for a in arr]
+        n = sympy.sqrt(sum(a**2 for a in arr))
+        if n == 0:
+            raise DegenerateGeometryError(f"{func}: {name}: the rotation axis is the zero vector")
+        return [sympy.simplify(a / n) for a in arr], True
+    big = np.max(np.abs(arr), axis=-1, keepdims=True)
+    if np.any(big == 0):
+        raise DegenerateGeometryError(f"{func}: {name}: the rotation axis is the zero vector")
+    arr = arr / big
+    return arr / np.linalg.norm(arr, axis=-1, keepdims=True), False
+
+
+def _rotor(axis, angle, func: str, axis_name: str) -> Multivector:
+    angle = _real(angle, func, "angle", array=True)
+    exact = _is_sympy(angle)
+    n, sym = _unit_axis(axis, func, axis_name, exact=exact)
     if sym:
         import sympy
 
-        n = sympy.sqrt(sum(a**2 for a in arr))
-        return [sympy.simplify(a / n) for a in arr], True
-    norm = np.linalg.norm(arr, axis=-1)
-    if np.any(norm <= 1e-300):
-        raise DegenerateGeometryError(f"{func}: the rotation axis is the zero vector")
-    return arr / (norm[..., None] if arr.ndim == 2 else norm), False
+        l = vector(n) * exact_constants()["IE"]
+        return l * (-sympy.sin(angle / 2)) + sympy.cos(angle / 2)
+    l = vector(n) * IE
+    return l * (-np.sin(angle / 2)) + np.cos(angle / 2)
 
 
 def rotor(axis, angle) -> Multivector:
@@ -216,20 +315,10 @@ def rotor(axis, angle) -> Multivector:
     ``l = n I_E`` is the unit bivector of the plane orthogonal to the axis n
     (so ``l = n1 e23 + n2 e31 + n3 e12``, 2.96).  Turns by +angle about n
     (right-hand rule).  ``axis`` (3,) or (N, 3); ``angle`` scalar or (N,).
+    A SymPy angle gives an exact rotor, a numeric axis then taken as exact
+    (``rotor([0, 0, 1], pi/2) = sqrt(2)/2 - sqrt(2)/2 e12``).
     """
-    n, sym = _unit_axis(axis, "rotor")
-    if sym or _is_sympy(angle):
-        import sympy
-
-        c = exact_constants()
-        l = vector(n) * c["IE"]
-        return l * (-sympy.sin(angle / 2)) + sympy.cos(angle / 2)
-    ang = np.asarray(angle, dtype=float)
-    if not np.all(np.isfinite(ang)):
-        raise InvalidInputError("rotor: angle contains NaN or inf")
-    l = vector(n) * IE
-    ang = float(ang) if ang.ndim == 0 else ang
-    return l * (-np.sin(ang / 2)) + np.cos(ang / 2)
+    return _rotor(axis, angle, "rotor", "axis")
 
 
 def rotor_about_line(L: Multivector, angle) -> Multivector:
@@ -242,6 +331,7 @@ def rotor_about_line(L: Multivector, angle) -> Multivector:
     """
     from .entities import _as_dual_line, normalize_line, standard_form
 
+    angle = _real(angle, "rotor_about_line", "angle", array=True)
     Ln = normalize_line(_as_dual_line(L, "rotor_about_line"))
     Lstd = standard_form(Ln)
     # The standard form L = L* Ic of the unit line is l + e (t . l) of (2.108).
@@ -253,7 +343,7 @@ def motor(rotation_axis, angle, translation) -> Multivector:
     """Motor M = T R, Eq. (2.102): rotation by +angle about the axis through
     the origin (right-hand rule), then translation.
     """
-    return translator(translation) * rotor(rotation_axis, angle)
+    return _translator(translation, "motor", "translation") * _rotor(rotation_axis, angle, "motor", "rotation_axis")
 
 
 def screw(axis, point, angle, distance) -> Multivector:
@@ -264,16 +354,31 @@ def screw(axis, point, angle, distance) -> Multivector:
     from the exponential of the screw bivector with
     ``m = t . l - (distance/angle) r`` (2.110).  Equal to ``T_dr R_L``.
     ``angle`` must be non-zero (a pure translation is :func:`translator`).
+    With a SymPy angle or distance the motor is built as that product,
+    ``T_dr T_p R ~T_p`` (2.104, 2.110), in closed form: exact and fast (the
+    exponential of a symbolic screw bivector needs SymPy to simplify square
+    roots of its square, which takes minutes).
     """
-    n, sym = _unit_axis(axis, "screw")
-    if not sym and not _is_sympy(angle) and abs(float(angle)) < 1e-300:
-        raise DegenerateGeometryError("screw: angle is 0; a pure slide is a translator")
-    c = exact_constants() if (sym or _is_sympy(angle)) else {"einf": einf, "IE": IE}
+    func = "screw"
+    angle = _real(angle, func, "angle")
+    distance = _real(distance, func, "distance")
+    pt, psym = _check_points(point, func, "point")
+    exact = _is_sympy(angle) or _is_sympy(distance) or psym
+    if angle == 0:
+        raise DegenerateGeometryError("screw: angle: is 0; a pure slide is a translator")
+    n, sym = _unit_axis(axis, func, "axis", exact=exact)
+    if sym:  # T_dr T_p R ~T_p, exact
+        if not psym:
+            if pt.ndim != 1:
+                raise InvalidInputError(f"{func}: point: one point (shape (3,)) when symbolic, got {pt.shape}")
+            pt = [_exact(a) for a in pt]
+        Tp = _translator(pt, func, "point")
+        Td = _translator([a * distance for a in n], func, "distance")
+        return Td * Tp * _rotor(n, angle, func, "axis") * ~Tp
     r = vector(n)
-    t = vector(point, "screw", "point")
-    l = r * c["IE"]
-    m = (t | l) - r * (distance / angle)
-    return _exp((l + c["einf"] * m) * (-angle / 2))
+    l = r * IE
+    m = (vector(pt, func, "point") | l) - r * (distance / angle)  # (2.110)
+    return _exp((l + einf * m) * (-angle / 2))
 
 
 def reflect_in_plane(P: Multivector, X: Multivector) -> Multivector:
@@ -303,83 +408,3 @@ def invert_in_sphere(S: Multivector, X: Multivector) -> Multivector:
     g = _grade_of(S, "invert_in_sphere", (1, 4))
     s = S if g == 1 else standard_form(S)
     return apply(s, X)
-
-
-# ------------------------------------------------------------- decomposition
-def rotor_angle_axis(R: Multivector):
-    """Angle and axis of a rotor, Eqs. (2.135)-(2.138).
-
-    ``c = (R + ~R)/2 = cos(angle/2)`` (2.135), ``angle = 2 acos(c)`` (2.136),
-    the bivector ``(R - ~R)/2`` (2.137) gives the axis.  A rotation about a
-    line off the origin (R_L) is first brought to the origin with
-    ``(R ^ E) E`` (2.138).  The angle is returned in [0, pi] with the axis
-    oriented to match (computed with atan2 for accuracy near 0 and pi).
-
-    Returns
-    -------
-    angle : float
-    axis : array (3,), unit (e3 by convention when the angle is 0)
-    """
-    if _any_sym(R):
-        raise InvalidInputError("rotor_angle_axis: numeric rotors only (the angle is defined up to sign)")
-    if R.shape:
-        raise InvalidInputError("rotor_angle_axis: one rotor at a time")
-    R0 = ((R ^ E) * E).grade(0, 2)  # (2.138): drop the e-parts of a general rotation
-    c = float(R0.scalar())  # (2.135)
-    B = ((R0 - ~R0) * 0.5).grade(2)  # (2.137): -sin(angle/2) n I_E
-    # n I_E = B / (-sin); n = -(B I_E^-1)/sin = (B I_E)/sin since I_E^-1 = -I_E
-    v = euclidean(B * IE)
-    s = float(np.linalg.norm(v))
-    angle = 2.0 * np.arctan2(s, c)  # (2.136) via atan2
-    if s < 1e-15:
-        return (0.0 if c > 0 else 2 * np.pi), np.array([0.0, 0.0, 1.0])
-    axis = v / s
-    if angle > np.pi:
-        angle, axis = 2 * np.pi - angle, -axis
-    return float(angle), axis
-
-
-def decompose_motor(M: Multivector):
-    """Rotor and translation of a motor M = T R, Eqs. (2.140)-(2.145).
-
-    ``R = (M ^ E) E`` (2.141), ``R' = (e- . M) I_E`` (2.142) and
-    ``t = 2 R' I_E ~R`` (2.144).  Works for numeric, batched and SymPy motors.
-
-    Returns
-    -------
-    R : Multivector, the rotor part (axis through the origin)
-    t : array (3,) or (N, 3) (a 3x1 SymPy matrix when symbolic)
-    """
-    c = exact_constants() if _any_sym(M) else {"E": E, "IE": IE, "em": G41.blade("e-")}
-    bad = [G41.blade_names[b] for b in M._c if G41.grades[b] % 2]
-    if bad:
-        raise InvalidInputError(f"decompose_motor: a motor is even; got odd blades {bad}")
-    R = ((M ^ c["E"]) * c["E"]).grade(0, 2)  # (2.141)
-    Rp = (c["em"] | M) * c["IE"]  # (2.142)
-    tv = (Rp * c["IE"] * ~R) * 2  # (2.144)
-    if _any_sym(M):
-        tv = tv.simplify()
-    t = euclidean(tv)
-    return R, t
-
-
-def matrix_to_motor(H) -> Multivector:
-    """Motor of a 4x4 homogeneous rigid transform [[R, t], [0, 1]] (numeric)."""
-    H = np.asarray(H, dtype=float)
-    if H.shape != (4, 4) or not np.all(np.isfinite(H)):
-        raise InvalidInputError(f"matrix_to_motor: H must be a finite 4x4 matrix, got shape {H.shape}")
-    Rm = H[:3, :3]
-    if not np.allclose(Rm @ Rm.T, np.eye(3), atol=1e-9) or np.linalg.det(Rm) < 0:
-        raise InvalidInputError("matrix_to_motor: the 3x3 block is not a rotation")
-    # axis-angle from the rotation matrix (robust via the skew part and trace)
-    angle = float(np.arccos(np.clip((np.trace(Rm) - 1) / 2, -1.0, 1.0)))
-    if angle < 1e-12:
-        axis = np.array([0.0, 0.0, 1.0])
-    elif np.pi - angle < 1e-6:
-        # near pi: axis from the largest column of (R + I)/2
-        S = (Rm + np.eye(3)) / 2
-        k = int(np.argmax(np.diag(S)))
-        axis = S[:, k] / np.sqrt(S[k, k])
-    else:
-        axis = np.array([Rm[2, 1] - Rm[1, 2], Rm[0, 2] - Rm[2, 0], Rm[1, 0] - Rm[0, 1]]) / (2 * np.sin(angle))
-    return motor(axis, angle, H[:3, 3])
