@@ -28,6 +28,7 @@ import numpy as np
 from . import entities_frame as _F
 from .algebra import DegenerateGeometryError, InvalidInputError, Multivector, _is_sympy
 from .model import (
+    G41,
     IE,
     E,
     Ic,
@@ -112,6 +113,17 @@ def _euclid_point(x, func: str):
     return None if pts is None else pts[0]
 
 
+def _exact_up(x) -> Multivector:
+    """up(x) of a point given with SymPy entries, every entry made exact (ints as integers, floats as the simplest
+    rational that rounds to them), so that one float among symbols does not turn the result into floats."""
+    import sympy
+
+    if isinstance(x, Multivector):
+        return up(x)  # up raises the usual error
+    vals = list(x) if not isinstance(x, sympy.MatrixBase) else [x[i] for i in range(len(x))]
+    return up([v if _is_sympy(v) else sympy.nsimplify(v, rational=True) for v in vals])
+
+
 # --------------------------------------------------------------- point pairs
 def point_pair(a, b) -> Multivector:
     """Point pair in dual form PP* = a ^ b of two conformal points, Eq. (2.68).
@@ -123,7 +135,7 @@ def point_pair(a, b) -> Multivector:
     """
     pts = _F.points("point_pair", "a, b", a, b)
     if pts is None:
-        return _require_nonzero(up(a) ^ up(b), "point_pair", "the two points coincide")
+        return _require_nonzero(_exact_up(a) ^ _exact_up(b), "point_pair", "the two points coincide")
     return _F.point_pair(*pts, "point_pair")
 
 
@@ -175,7 +187,19 @@ def point_pair_endpoints(PP: Multivector, min_separation: float | None = None):
         c = _c(B)
         root = sympy.sqrt(sympy.factor(sympy.simplify((B * B).scalar())))
         inv = (B | c["einf"]).inv()
-        return down((B - root) * inv), down((B + root) * inv)
+
+        def endpoint(X):  # (2.131) is a vector: the other grades vanish once simplified
+            X = X.simplify()
+            rest = [b for b, v in X.coeffs.items() if G41.grades[b] != 1 and sympy.simplify(v) != 0]
+            if rest:
+                raise DegenerateGeometryError(
+                    f"point_pair_endpoints: PP: (2.131) did not simplify to a vector (blades {rest}); "
+                    "is the pair real (PP^2 > 0)?"
+                )
+            p = down(X.grade(1))
+            return p if isinstance(p, sympy.MatrixBase) else sympy.Matrix([sympy.nsimplify(float(v)) for v in p])
+
+        return endpoint((B - root) * inv), endpoint((B + root) * inv)
     return _F.pair_points(B, min_separation, "point_pair_endpoints", "PP")
 
 
@@ -228,7 +252,7 @@ def sphere_from_points(a, b, c, d) -> Multivector:
     """
     pts = _F.points("sphere_from_points", "a, b, c, d", a, b, c, d)
     if pts is None:
-        S = up(a) ^ up(b) ^ up(c) ^ up(d)
+        S = _exact_up(a) ^ _exact_up(b) ^ _exact_up(c) ^ _exact_up(d)
         return _require_nonzero(S, "sphere_from_points", "the 4 points are coplanar, concyclic or coincident")
     return dual_form(_F.sphere_from_points(*pts, "sphere_from_points"))
 
@@ -319,7 +343,7 @@ def plane_from_points(a, b, c) -> Multivector:
     """
     pts = _F.points("plane_from_points", "a, b, c", a, b, c)
     if pts is None:
-        P = _c(up(a))["einf"] ^ up(a) ^ up(b) ^ up(c)
+        P = exact_constants()["einf"] ^ _exact_up(a) ^ _exact_up(b) ^ _exact_up(c)
         return _require_nonzero(P, "plane_from_points", "the 3 points are collinear")
     return _F.plane(*pts, "plane_from_points")
 
@@ -359,7 +383,8 @@ def line_from_points(a, b) -> Multivector:
     """
     pts = _F.points("line_from_points", "a, b", a, b)
     if pts is None:
-        return _require_nonzero(_c(up(a))["einf"] ^ up(a) ^ up(b), "line_from_points", "the two points coincide")
+        L = exact_constants()["einf"] ^ _exact_up(a) ^ _exact_up(b)
+        return _require_nonzero(L, "line_from_points", "the two points coincide")
     return _F.line(*pts, "line_from_points")
 
 
@@ -468,7 +493,12 @@ def circle_from_points(a, b, c) -> Multivector:
     """
     pts = _F.points("circle_from_points", "a, b, c", a, b, c)
     if pts is None:
-        return _require_nonzero(up(a) ^ up(b) ^ up(c), "circle_from_points", "the 3 points are collinear or coincide")
+        Z = _require_nonzero(
+            _exact_up(a) ^ _exact_up(b) ^ _exact_up(c), "circle_from_points", "the 3 points are collinear or coincide"
+        )
+        if not (Z ^ exact_constants()["einf"]).simplify().coeffs:  # z* ^ e = 0: a flat, the points are collinear
+            raise DegenerateGeometryError("circle_from_points: a, b, c: the 3 points are collinear (a line, no circle)")
+        return Z
     return _F.circle(*pts, "circle_from_points")
 
 

@@ -425,6 +425,11 @@ def build_map(
         raise InvalidInputError(f"build_map: method must be 'plain' or 'conformal', got {method!r}")
     mount = np.asarray(mount, float).reshape(3)
     ext = {"max_range": max_range, **(extraction or {})}
+    # Work near the origin: a log placed far away (map coordinates of 1e6 m) would leave the conformal entities
+    # of table 2.1 with ~eps |x|^2 of accuracy.  A multiple of 1024 m is subtracted exactly and added back
+    # exactly, so a log near the origin is computed bit for bit as before.
+    shift = np.round(odometry[0, :2] / 1024.0) * 1024.0
+    odometry = odometry - np.array([shift[0], shift[1], 0.0])
 
     b = MapBuilder(geometry, params, mount, max_range)
     T = len(scans)
@@ -479,4 +484,8 @@ def build_map(
             progress(k + 1, T)
     b.remove_duplicates()
     segments = b.G.to_segments()
+    if np.any(shift):
+        back = np.array([shift[0], shift[1], 0.0])
+        poses, predicted = poses + back, predicted + back
+        segments = [s.transformed(back) for s in segments]
     return MapResult(segments, poses, predicted, n_matches, corrected, geometry.name, history, loops.graph.loops)

@@ -421,3 +421,11 @@ def test_single_point_down_agrees_with_the_batch_and_refuses_the_same_inputs():
         cga.down(cga.up([1.0, 2.0, 3.0]) + cga.e1 * cga.e2)
     with pytest.raises(cga.GeometryError, match="down:"):
         cga.down(cga.up([1.0, 2.0, 3.0]) + float("nan") * cga.e1)
+
+
+def test_up_refuses_coordinates_whose_squares_overflow():
+    with pytest.raises(cga.InvalidInputError, match="up: x: coordinates up to 1e\\+200"):
+        cga.up([1e200, 0.0, 0.0])
+    with pytest.raises(cga.InvalidInputError, match="up: x:"):
+        cga.up(np.array([[1.0, 2.0, 3.0], [0.0, -1e160, 0.0]]))
+    np.testing.assert_allclose(cga.apply_to_points(cga.translator([1.0, 0.0, 0.0]), [1e200, 0.0, 0.0]), [1e200, 0, 0])

@@ -532,3 +532,17 @@ def test_plain_and_conformal_build_the_same_map():
     for s, t in zip(a.segments, b.segments):
         assert np.allclose(s.start, t.start, atol=1e-8) and np.allclose(s.end, t.end, atol=1e-8)
     assert np.array_equal(a.n_matches, b.n_matches) and np.array_equal(a.corrected, b.corrected)
+
+
+@pytest.mark.parametrize("method", ["plain", "conformal"])
+def test_a_log_placed_a_thousand_kilometres_away_maps_as_at_the_origin(method):
+    """The builder works near its first pose: map coordinates of 1e6 m (a UTM-like frame) give the same poses."""
+    log = read_carmen_log(data_path("carmen", "intel-corrected.log.gz"))
+    scans, truth = log.scans[:25], log.poses[:25]
+    far = truth + np.array([1e6, -2e6, 0.0])
+    near = build_map(scans, truth, method=method, max_range=8.0)
+    away = build_map(scans, far, method=method, max_range=8.0)
+    # the builder subtracts a multiple of 1024 m: the rest of the offset (576 m and 128 m here) leaves micrometres
+    np.testing.assert_allclose(away.poses - [1e6, -2e6, 0.0], near.poses, atol=1e-4)
+    assert len(away.segments) == len(near.segments)
+    np.testing.assert_allclose(away.segments[0].start - [1e6, -2e6], near.segments[0].start, atol=1e-4)

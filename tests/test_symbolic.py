@@ -204,3 +204,15 @@ def test_down_of_a_symbolic_point_is_exact():
     got = cga.down(cga.up([x, 0, 0]))
     assert got == sp.Matrix([x, 0, 0])
     assert not any(isinstance(v, sp.Float) for v in got.atoms(sp.Number))
+
+
+def test_symbolic_point_pairs_and_circles_stay_exact_and_refuse_collinear_points():
+    """(2.131) on SymPy pairs in general position, mixed integer/symbol input kept exact, (2.80) refusing a line."""
+    x, y = sp.symbols("x y", real=True)
+    p1, p2 = cga.point_pair_endpoints(cga.point_pair([x, y, 0], [x + 1, y, 0]))
+    assert {tuple(p1), tuple(p2)} == {(x, y, 0), (x + 1, y, 0)}
+    q1, q2 = cga.point_pair_endpoints(cga.point_pair([1, 2, 3], [sp.Integer(4), 5, 6]))
+    assert {tuple(q1), tuple(q2)} == {(1, 2, 3), (4, 5, 6)}
+    assert all(isinstance(v, sp.Integer) for v in tuple(q1) + tuple(q2))
+    with pytest.raises(cga.DegenerateGeometryError, match="circle_from_points: a, b, c: the 3 points are collinear"):
+        cga.circle_from_points([0, 0, 0], [1, 0, 0], [sp.Integer(2), 0, 0])
