@@ -193,13 +193,15 @@ def _cmd_lab(args) -> int:
     nbdir = Path(args.notebook_dir) if args.notebook_dir else _ROOT / "notebooks"
     if not nbdir.is_dir():
         raise CLIError(f"no notebooks folder at {nbdir} (run from a checkout of the course, or pass --notebook-dir)")
-    cmd = [sys.executable, "-m", "jupyterlab", f"--ServerApp.root_dir={nbdir}", "--ServerApp.ip=127.0.0.1"]
+    # The lab's root is the checkout (README.md, data/ and notebooks/ side by side), the notebooks' folder opened.
+    root = nbdir.parent if nbdir.name == "notebooks" else nbdir
+    cmd = [sys.executable, "-m", "jupyterlab", f"--ServerApp.root_dir={root}", "--ServerApp.ip=127.0.0.1"]
     if args.port:
         cmd.append(f"--ServerApp.port={args.port}")
     if args.no_browser:
         cmd.append("--no-browser")
     if (nbdir / "00_start_here.ipynb").is_file():
-        cmd.append("--LabApp.default_url=/lab/tree/00_start_here.ipynb")
+        cmd.append(f"--LabApp.default_url=/lab/tree/{(nbdir / '00_start_here.ipynb').relative_to(root).as_posix()}")
     if getattr(os, "geteuid", lambda: 1)() == 0:
         cmd.append("--allow-root")  # JupyterLab refuses to start as root without it
     if args.dry_run:

@@ -25,6 +25,10 @@ _ROOM = (6.0, 4.0)  # the room of chapter 3: inner faces x in [0, 6], y in [0, 4
 _POSE = np.array([1.0, 2.5, -0.7])
 
 
+#: An answer rounded to two decimals (metres, radians) is accepted as the exact one, and said to be rounded.
+_ROUNDED = 0.006
+
+
 def _same_pose(p, q, tol=1e-6) -> bool:
     return bool(np.all(np.abs(p[:2] - q[:2]) < tol) and abs(float(_wrap(p[2] - q[2]))) < tol)
 
@@ -42,18 +46,22 @@ def _ch5_1(answer):
     w, h = _ROOM
     c = np.array([w / 2, h / 2])
     truth = np.array([*(2 * c - _POSE[:2]), _POSE[2] + math.pi])  # the half turn about the centre
-    if _same_pose(p, truth):
+    exact = _same_pose(p, truth)
+    if exact or _same_pose(p, truth, tol=_ROUNDED):
+        rounded = "" if exact else (
+            f"To the rounding you gave: exactly ({truth[0]:g}, {truth[1]:g}, {truth[2]:.6f}), the heading plus pi. "
+        )
         return (
-            "A rectangle maps onto itself by a half turn about its centre: every beam from there sees the same "
-            "wall at the same range. No scan can tell the two poses apart; relocalize reports both."
+            f"{rounded}A rectangle maps onto itself by a half turn about its centre: every beam from there "
+            "sees the same wall at the same range. No scan can tell the two poses apart; relocalize reports both."
         )
     if _same_pose(p, _POSE):
         raise Wrong("that is the pose itself; the exercise asks for the other one.")
-    if np.allclose(p[:2], truth[:2], atol=1e-6):
-        if abs(float(_wrap(np.radians(p[2]) - truth[2]))) < 1e-6:
+    if np.allclose(p[:2], truth[:2], atol=_ROUNDED):
+        if abs(float(_wrap(np.radians(p[2]) - truth[2]))) < _ROUNDED:
             raise Wrong("the position is right; the heading looks like degrees: give radians.")
         raise Wrong("the position is right but the heading is not: the robot must turn with the room.")
-    if np.allclose(p[:2], _POSE[:2], atol=1e-6):
+    if np.allclose(p[:2], _POSE[:2], atol=_ROUNDED):
         raise Wrong("turning on the spot changes what the laser sees: the position must move too.")
     mirrors = [
         np.array([w - _POSE[0], _POSE[1], math.pi - _POSE[2]]),

@@ -81,7 +81,8 @@ def test_lab_dry_run_is_local_root_safe_and_opens_the_notebooks(monkeypatch, cap
     assert cmd[:3] == [sys.executable, "-m", "jupyterlab"]
     assert "--ServerApp.ip=127.0.0.1" in cmd and "--ServerApp.port=8899" in cmd and "--no-browser" in cmd
     root = [c.split("=", 1)[1] for c in cmd if c.startswith("--ServerApp.root_dir=")]
-    assert root == [str(ROOT / "notebooks")] and (ROOT / "notebooks" / "01_geometric_algebra.ipynb").is_file()
+    assert root == [str(ROOT)] and (ROOT / "README.md").is_file() and (ROOT / "data").is_dir()  # the lab's root
+    assert "--LabApp.default_url=/lab/tree/notebooks/00_start_here.ipynb" in cmd
     assert ("--allow-root" in cmd) == (euid == 0)
 
 

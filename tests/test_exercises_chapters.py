@@ -185,6 +185,7 @@ EQUIVALENT = [
     ("ch3.6", [[-3.0, 1.02], [-1.5, 1.02]]),
     ("ch4.3", _swapped_view().tolist()),
     ("ch5.1", [5.0, 1.5, -0.7 - math.pi]),
+    ("ch5.1", [5.0, 1.5, 2.44]),  # rounded to two decimals: right, and said to be rounded
 ]
 
 
@@ -192,6 +193,12 @@ EQUIVALENT = [
 def test_equivalent_forms_are_right(exercise_id, answer):
     result = exercises.evaluate(exercise_id, answer)
     assert result.verdict == "right", result.message
+
+
+def test_a_rounded_answer_is_right_and_told_the_exact_value():
+    message = exercises.evaluate("ch5.1", [5.0, 1.5, 2.44]).message
+    assert "To the rounding you gave: exactly (5, 1.5, 2.441593)" in message
+    assert "rounding" not in exercises.evaluate("ch5.1", [5.0, 1.5, -0.7 + math.pi]).message
 
 
 # --------------------------------------------------------------------------- wrong answers say what is off
