@@ -387,6 +387,15 @@ def readme_section(root: Path | None = None) -> str:
             lines.append(
                 f"| {_md(e.key)} | {_code(e.printed)} | {_code(e.correct)} | {_md(e.note)} | {_test_cell(e, root)} |"
             )
+        from .symbolic import ERRATA  # the tables' rows have no equation number, so no registry entry
+
+        node = "tests/test_symbolic.py::test_errata"
+        for err in ERRATA:
+            if err.label.startswith("table"):
+                test = _link(_code("test_errata"), _test_location(node, root))
+                lines.append(
+                    f"| {_md(err.label)} | {_code(err.printed)} | {_code(err.correct)} | {_md(err.note)} | {test} |"
+                )
     for p in parts:
         entries = ordered_entries(p)
         c = _part_counts(p)

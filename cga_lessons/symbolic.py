@@ -215,6 +215,25 @@ ERRATA: tuple[Erratum, ...] = (
         "e+ L also has 3- and 4-vector parts, and its vector part is -(a x r); with -e+ . L (2.129) holds.",
     ),
     Erratum(
+        "2.131",
+        "p_1,2 = (PP* +- sqrt(PP* PP*)) / (PP* . e)",
+        "p_1,2 = (PP* -+ sqrt(PP* PP*)) (PP* . e)^-1",
+        _S + "point_pair_extraction",
+        "2.131 p1 = (B + sqrt(BB)) / (B . e) = a (printed +- order)",
+        "2.131 p1 = (B - sqrt(BB)) (B . e)^-1 = a (corrected -+ order)",
+        "With the division on the right, p1 = a comes from the numerator B - sqrt(B B) of (2.132), as the text "
+        "says; the printed +- puts b first.",
+    ),
+    Erratum(
+        "2.139",
+        "R_L ~R_L = T R ~T ~T ~R  (first line)",
+        "R_L ~R_L = T R ~T T ~R ~T = 1",
+        _S + "rotors_and_motors",
+        "2.139 first line T R ~T ~T ~R = 1 (printed)",
+        "2.139 first line T R ~T T ~R ~T = 1 (corrected)",
+        "The reverse of T R ~T is T ~R ~T; the printed first line is not 1 when t != 0.",
+    ),
+    Erratum(
         "table 2.1",
         "plane: P = N I_E - d e, d = (a ^ b ^ c) I_E",
         "d = (a ^ b ^ c) I_E^-1 = a . (b x c)  (so d I_E = a ^ b ^ c as in 2.77)",

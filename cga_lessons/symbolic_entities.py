@@ -218,6 +218,9 @@ def point_pair_extraction() -> Derivation:
     d.add("2.131 p1 = (B - sqrt(BB)) (B . e)^-1 = a", "2.131", p1, A)
     d.add("2.131 p2 = (B + sqrt(BB)) (B . e)^-1 = b", "2.131", p2, B)
     d.add("2.131 left division swaps them: (B . e)^-1 (B - sqrt(BB)) = -b", "2.131", ring.divide(Be * num1, be2), -B)
+    d.add("2.131 p1 = (B + sqrt(BB)) / (B . e) = a (printed +- order)", "2.131", p2, A, expected=False,
+          note="with the right division the + sign gives b; p1 comes from the numerator (2.132), the - sign")
+    d.add("2.131 p1 = (B - sqrt(BB)) (B . e)^-1 = a (corrected -+ order)", "2.131", p1, A)
     mid = [(x + y) / 2 for x, y in zip(a_s, b_s)]
     T = PP ^ e
     S = ring.divide(PP * ~T, (T * ~T).scalar())  # PP* (PP* ^ e)^-1, (2.19)

@@ -321,6 +321,9 @@ def rotors_and_motors() -> Derivation:
     d.add("2.138 (R_L ^ E) E = R", "2.138", (RL ^ E) * E, R, rel=ring)
     d.add("2.139 T ~T = 1", "2.139", T * ~T, 1, rel=ring)
     d.add("2.139 R_L ~R_L = 1", "2.139", RL * ~RL, 1, rel=ring)
+    d.add("2.139 first line T R ~T ~T ~R = 1 (printed)", "2.139", T * R * ~T * ~T * ~R, 1, expected=False, rel=ring,
+          note="~(T R ~T) is T ~R ~T, not ~T ~R")
+    d.add("2.139 first line T R ~T T ~R ~T = 1 (corrected)", "2.139", T * R * ~T * T * ~R * ~T, 1, rel=ring)
     M = T * R
     d.values["M"] = ring.to_expr(M, back)
     d.add("2.140 M = T R = R + e t R / 2", "2.140", M, R + e * tv * R * half, rel=ring)

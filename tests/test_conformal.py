@@ -399,3 +399,65 @@ def test_circle_centre_sphere_eq_2_121():
     k, m = q.to_array(), es.to_array()
     i = int(np.argmax(np.abs(m)))
     assert not q.iszero() and np.allclose(k, m * (k[i] / m[i]), atol=1e-10)
+
+
+# ------------------------------------------------------------------ errata of section 2.3.5 and 2.4, decided
+
+
+def test_rotor_composition_order_eq_2_99_erratum():
+    """(2.99) sets R = R1 R2 and then applies (R2 R1): only R2 R1 applies R1 first (the matrix H2 H1)."""
+    R1, R2 = cga.rotor([0, 0, 1], np.pi / 2), cga.rotor([1, 0, 0], np.pi / 2)
+    x = cga.up([1.0, 0.0, 0.0])
+    first_r1 = cga.down(cga.apply(R2, cga.apply(R1, x)))  # turn by R1, then by R2: (1,0,0) -> (0,1,0) -> (0,0,1)
+    assert np.allclose(first_r1, [0.0, 0.0, 1.0])
+    assert np.allclose(cga.down(cga.apply(R2 * R1, x)), first_r1)  # corrected: R = R2 R1
+    assert not np.allclose(cga.down(cga.apply(R1 * R2, x)), first_r1)  # printed: R = R1 R2
+
+
+def test_rotation_about_a_line_applied_to_a_point_eq_2_105_erratum():
+    """(2.105) prints T R ~T x ~R ~T: one T is missing; T R ~T x T ~R ~T turns x about the line (2.104)."""
+    a, b, x = RNG.normal(size=(3, 3))
+    r = (b - a) / np.linalg.norm(b - a)
+    T, R, X = cga.translator(a), cga.rotor(r, 0.9), cga.up(x)
+    expected = rot_matrix(r, 0.9) @ (x - a) + a
+    corrected = T * R * ~T * X * T * ~R * ~T
+    printed = T * R * ~T * X * ~R * ~T
+    assert np.allclose(cga.down(corrected.grade(1)), expected)
+    assert not printed.grade(1).isclose(corrected.grade(1), atol=1e-6)
+
+
+def test_unit_norm_of_a_general_rotation_eq_2_139_erratum():
+    """(2.139)'s first line reverses T R ~T as ~T ~T ~R; the reverse is T ~R ~T, and only that product is 1."""
+    T, R = cga.translator(RNG.normal(size=3)), cga.rotor(RNG.normal(size=3), 1.3)
+    RL = T * R * ~T
+    assert (RL * ~RL).isclose(1.0, atol=1e-12)
+    assert (T * R * ~T * T * ~R * ~T).isclose(1.0, atol=1e-12)  # corrected first line
+    assert not (T * R * ~T * ~T * ~R).isclose(1.0, atol=1e-6)  # printed first line
+
+
+def test_sphere_of_a_circle_by_division_eq_2_124_holds_up_to_scale():
+    """(2.124) s_z* = z / P_z*: the quotient of the standard circle by its dual plane is the dual sphere of (2.123)
+    up to a scale (its sign depends on the side of the division; the grade-2 part is round-off)."""
+    Zd = cga.circle_from_points(*RNG.normal(size=(3, 3)))
+    z, Pz = cga.standard_form(Zd), Zd ^ cga.einf
+    s_dual = cga.dual_form(((cga.einf | z) * z).grade(1))  # (2.123), dualised
+    for q in (z * Pz.inv(), Pz.inv() * z):
+        assert q.grade(2).iszero(atol=1e-12)
+        k = float(q.grade(4).to_array() @ s_dual.to_array()) / float(s_dual.to_array() @ s_dual.to_array())
+        assert q.grade(4).isclose(s_dual * k, atol=1e-12) and abs(k) > 1e-6
+    right = float((z * Pz.inv()).grade(4).to_array() @ s_dual.to_array())
+    left = float((Pz.inv() * z).grade(4).to_array() @ s_dual.to_array())
+    assert right * left < 0  # the two divisions differ by the sign only
+
+
+def test_point_pair_endpoints_order_eq_2_131_erratum():
+    """(2.131) p_1,2 = (PP* +- sqrt) / (PP* . e): with the division on the right, p1 = a of PP* = a ^ b comes from
+    the numerator PP* - sqrt (2.132) as the text says, so the printed +- gives b first; the corrected form is -+."""
+    a, b = np.array([0.3, -1.0, 2.0]), np.array([1.5, 0.4, -0.2])
+    B = cga.up(a) ^ cga.up(b)
+    root = np.sqrt(float((B * B).scalar()))
+    inv = (B | cga.einf).inv()
+    plus, minus = cga.down(((B + root) * inv).grade(1)), cga.down(((B - root) * inv).grade(1))
+    assert np.allclose(minus, a) and np.allclose(plus, b)  # corrected -+ order: p1 = a first
+    p1, p2 = cga.point_pair_endpoints(B)
+    assert np.allclose(p1, a) and np.allclose(p2, b)

@@ -460,10 +460,16 @@ ENTRIES = [
     Entry(
         label="2.131",
         title="points of a point pair (B +- sqrt(B B)) / (B . e)",
-        status="symbolic",
+        status="erratum",
         implementation="cga_lessons.entities.point_pair_endpoints, cga_lessons.symbolic.point_pair_extraction",
-        test="tests/test_symbolic.py::test_point_pair_extraction",
-        note="division is right multiplication by (B . e)^-1; p1 = a comes from the numerator B - sqrt(B B) of (2.132) as the text says (the '+-' order of the formula would give p1 = b first); left division swaps the points",
+        test="tests/test_conformal.py::test_point_pair_endpoints_order_eq_2_131_erratum, "
+        "tests/test_symbolic.py::test_point_pair_extraction",
+        printed="p_1,2 = (PP* +- sqrt(PP* PP*)) / (PP* . e)",
+        correct="p_1,2 = (PP* -+ sqrt(PP* PP*)) (PP* . e)^-1",
+        note="Division is right multiplication by (PP* . e)^-1; p1 = a of PP* = a ^ b comes from the numerator "
+        "PP* - sqrt(PP* PP*) of (2.132), as the text says, so the printed +- gives b first (left division swaps "
+        "them back). The text after (2.133) calls PP* . e the plane 'tangent' to the line: it is the plane through "
+        "the midpoint perpendicular to the line.",
     ),
     Entry(
         label="2.132",
@@ -520,9 +526,14 @@ ENTRIES = [
     Entry(
         label="2.139",
         title="R_L ~R_L = 1",
-        status="symbolic",
+        status="erratum",
         implementation="cga_lessons.versors.rotor_about_line, cga_lessons.symbolic.rotors_and_motors",
-        test="tests/test_symbolic.py::test_rotors_and_motors",
+        test="tests/test_conformal.py::test_unit_norm_of_a_general_rotation_eq_2_139_erratum, "
+        "tests/test_symbolic.py::test_rotors_and_motors",
+        printed="R_L ~R_L = T R ~T ~T ~R  (first line)",
+        correct="R_L ~R_L = T R ~T T ~R ~T = 1",
+        note="The reverse of T R ~T is T ~R ~T; the printed first line is not 1 for a translation t != 0. The "
+        "following lines and the result, 1, are right.",
     ),
     Entry(
         label="2.140",
