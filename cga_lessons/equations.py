@@ -418,8 +418,19 @@ def readme_section(root: Path | None = None) -> str:
     return "\n".join(lines) + "\n"
 
 
-def text_table(todo_only: bool = False, width: int = 110) -> str:
-    """The registry as plain text for a terminal: one line per equation, grouped by part."""
+def text_table(todo_only: bool = False) -> str:
+    """The registry as plain text for a terminal, grouped by part, nothing cut short.
+
+    One line per equation (label, status, title), then indented lines with
+    the code that implements it, the test that verifies it and, for an
+    erratum, the printed and the correct form::
+
+      2.105              erratum    rotation about a line applied to a point
+          code: versors.rotor_about_line
+          test: tests/test_conformal.py::test_rotation_about_a_line_applied_to_a_point_eq_2_105_erratum
+          printed: x' = T R ~T x ~R ~T
+          correct: x' = T R ~T x T ~R ~T
+    """
     out = []
     for p in PARTS:
         entries = [e for e in ordered_entries(p) if not todo_only or e.status == "todo"]
@@ -428,10 +439,15 @@ def text_table(todo_only: bool = False, width: int = 110) -> str:
         name, what = PARTS[p]
         out.append(f"{name}: {what}")
         for e in entries:
-            code = (e.implementation or "").split(",")[0].strip().removeprefix("cga_lessons.")
-            title = e.title or "-"
-            line = f"  {e.key:<18} {e.status:<10} {title:<48.48} {code}"
-            out.append(line[:width].rstrip())
+            out.append(f"  {e.key:<18} {e.status:<10} {e.title or '-'}".rstrip())
+            code = ", ".join(c.strip().removeprefix("cga_lessons.") for c in (e.implementation or "").split(",") if c)
+            if code:
+                out.append(f"      code: {code}")
+            if e.test:
+                out.append(f"      test: {', '.join(t.strip() for t in e.test.split(','))}")
+            if e.status == "erratum":
+                out.append(f"      printed: {e.printed}")
+                out.append(f"      correct: {e.correct}")
         out.append("")
     out.append(coverage_summary())
     return "\n".join(out)

@@ -164,3 +164,13 @@ def test_python_dash_m_sees_the_same_registry():
     )
     assert done.returncode == 0, done.stderr
     assert done.stdout.strip().splitlines()[-1] == equations.coverage_summary()
+
+
+def test_text_table_keeps_names_tests_and_the_errata_forms_whole():
+    text = equations.text_table()
+    for e in equations.ordered_entries():
+        assert e.title in text
+        for t in (e.test or "").split(","):
+            assert t.strip() in text
+        if e.status == "erratum":
+            assert f"printed: {e.printed}" in text and f"correct: {e.correct}" in text
