@@ -111,11 +111,12 @@ def draw_hough(hough_sets, labels, ax=None, markers=("o", "x", "s"), colors=("ta
 
 
 def draw_correspondences(global_segs, local_segs, pairs, ax=None, **kw):
-    """Dashed links between the centres of corresponding global and local segments."""
+    """Dashed links between the centres of corresponding global and local segments, drawn above the segments
+    (zorder 8: the segments sit at 5-7) with a marker at each end, so that a short link stays visible."""
     ax = ax or new_axes(**kw)
     for g, k in pairs:
         a, b = global_segs[g].midpoint, local_segs[k].midpoint
-        ax.plot([a[0], b[0]], [a[1], b[1]], "k--", lw=1)
+        ax.plot([a[0], b[0]], [a[1], b[1]], "k--", lw=1.2, marker="o", ms=3, zorder=8)
     return ax
 
 
