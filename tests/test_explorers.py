@@ -1,0 +1,54 @@
+"""The notebooks' explorers: their logic, without a browser (the callbacks change the figure's data as asserted)."""
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+
+from cga_lessons.viz.explore_motion import ScrewExplorer  # noqa: E402
+
+
+def _axis_distance(points, point, direction):
+    d = direction / np.linalg.norm(direction)
+    rel = points - point
+    return np.linalg.norm(rel - np.outer(rel @ d, d), axis=1)
+
+
+@pytest.mark.parametrize("change", [{}, {"angle": -200.0, "pitch": -0.5, "azimuth": 100.0}, {"angle": 360.0},
+                                    {"angle": 0.0, "pitch": 1.0}, {"elevation": -30.0, "angle": 45.0}])
+def test_the_screw_explorer_moves_the_tool_along_the_true_helix(change):
+    ex = ScrewExplorer()
+    ex.update(**change)
+    p = ex.params
+    path = ex.tip_path()
+    np.testing.assert_allclose(path[-1], ex.expected_tip(), atol=1e-12)  # Rodrigues about the axis + slide
+    r = _axis_distance(path, np.asarray(p.point), p.axis())
+    np.testing.assert_allclose(r, r[0], atol=1e-12)  # a helix: constant distance to the axis
+    rise = (path - path[0]) @ p.axis()
+    np.testing.assert_allclose(rise, np.linspace(0, p.distance(), len(path)), atol=1e-12)  # uniform slide
+
+
+def test_update_redraws_the_lines_in_place():
+    ex = ScrewExplorer()
+    before = [np.array(line.get_data_3d()) for line in ex._tools[-1]]
+    helix_before = np.array(ex._helix.get_data_3d())
+    ex.update(angle=30.0)
+    after = [np.array(line.get_data_3d()) for line in ex._tools[-1]]
+    assert not all(np.allclose(a, b) for a, b in zip(before, after))
+    assert not np.allclose(np.array(ex._helix.get_data_3d()), helix_before)
+    assert "30 deg" in ex.ax.get_title()
+    first = [np.array(line.get_data_3d()) for line in ex._tools[0]]  # s = 0: the start pose does not move
+    ex.update(angle=-90.0, pitch=0.3)
+    np.testing.assert_allclose([np.array(line.get_data_3d()) for line in ex._tools[0]], first)
+
+
+def test_the_widget_drives_the_explorer():
+    pytest.importorskip("ipywidgets")
+    ex = ScrewExplorer()
+    w = ex.widget()
+    sliders = {c.description: c for c in w.children if hasattr(c, "description") and c.description}
+    assert {"azimuth", "elevation", "angle (deg)", "pitch (m)"} <= set(sliders)
+    sliders["angle (deg)"].value = 75.0
+    assert ex.params.angle == 75.0 and "75 deg" in ex.ax.get_title()
