@@ -52,3 +52,32 @@ def test_the_widget_drives_the_explorer():
     assert {"azimuth", "elevation", "angle (deg)", "pitch (m)"} <= set(sliders)
     sliders["angle (deg)"].value = 75.0
     assert ex.params.angle == 75.0 and "75 deg" in ex.ax.get_title()
+
+
+def test_the_pair_explorer_reads_the_true_points_back_and_marks_the_guard():
+    from cga_lessons.viz.explore_entities import PairExplorer, pair_readback
+
+    far = pair_readback(1e-2, 4.0)
+    np.testing.assert_allclose(far["p1"], far["a"], atol=1e-9)
+    np.testing.assert_allclose(far["p2"], far["b"], atol=1e-9)
+    assert far["guard"] == "accepted" and np.linalg.norm(far["a"] - far["b"]) == pytest.approx(1e-2)
+    assert pair_readback(1e-9, 4.0)["guard"] == "refused"
+    ex = PairExplorer(separation=1e-2, distance=4.0, grid=np.logspace(0, -9, 10))
+    marker = np.array(ex._marker.get_data())
+    ex.update(separation=1e-6, distance=16.0)
+    assert not np.allclose(np.array(ex._marker.get_data()), marker)
+    assert ex._marker.get_data()[0][0] == pytest.approx(1e-6)
+    assert "16 m" in ex.ax.get_title() and ex.result["guard"] in ex.ax.get_title()
+    refused_x = ex._refused.get_data()[0]
+    assert len(refused_x) and min(refused_x) == pytest.approx(1e-9)  # the smallest separations are refused
+
+
+def test_the_pair_widget_drives_the_explorer():
+    pytest.importorskip("ipywidgets")
+    from cga_lessons.viz.explore_entities import PairExplorer
+
+    ex = PairExplorer(grid=np.logspace(0, -9, 10))
+    w = ex.widget()
+    sliders = {c.description: c for c in w.children if getattr(c, "description", "")}
+    sliders["distance (m)"].value = 8.0
+    assert ex.distance == 8.0 and "8 m" in ex.ax.get_title()
