@@ -81,3 +81,23 @@ def test_the_pair_widget_drives_the_explorer():
     sliders = {c.description: c for c in w.children if getattr(c, "description", "")}
     sliders["distance (m)"].value = 8.0
     assert ex.distance == 8.0 and "8 m" in ex.ax.get_title()
+
+
+def test_turning_on_the_spot_moves_the_hough_points_along_theta_only():
+    """Section 5.1: a turn by delta shifts every local line's theta by -delta and keeps its rho (noise-free scan)."""
+    from cga_lessons.viz.explore_scan import HoughExplorer
+
+    ex = HoughExplorer(seed=None)
+    before = ex.hough.copy()
+    ex.update(theta_deg=np.degrees(ex.pose[2]) + 30.0)
+    after = ex.hough
+    shifted = np.column_stack([before[:, 0], np.mod(before[:, 1] - np.radians(30.0), 2 * np.pi)])
+    matched = 0
+    for rho, th in shifted:  # every line still in view after the turn lands where 5.1 says
+        d = np.hypot(after[:, 0] - rho, np.angle(np.exp(1j * (after[:, 1] - th))))
+        matched += bool(d.min() < 1e-6)
+    assert matched >= len(before) // 2 and matched >= 2
+    world = np.array(ex._segs.get_data())
+    ex.update(x=ex.pose[0] + 0.5)  # driving changes rho, and the drawing
+    assert not np.array_equal(np.array(ex._segs.get_data()), world, equal_nan=True)
+    assert "segments at" in ex.ax_world.get_title()
