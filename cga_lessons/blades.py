@@ -169,12 +169,7 @@ def right_contraction(A, B) -> Multivector:
     (1 e1, 0)
     """
     A, B = _check(A, "right_contraction", "A"), _check(B, "right_contraction", "B")
-    out = Multivector(G41, {})
-    for r in A.grades_present():
-        for s in B.grades_present():
-            if r >= s:
-                out = out + (A.grade(r) * B.grade(s)).grade(r - s)
-    return out
+    return ~left_contraction(~B, ~A)
 
 
 def scalar_product(A, B) -> float:
