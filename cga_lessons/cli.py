@@ -10,19 +10,22 @@ Subcommands::
     cga-lessons equations                 the equation registry as a table (--todo, --write-readme)
     cga-lessons export-html               the stored, executed notebooks as a static site, offline
 
-Every subcommand that writes files refuses to overwrite one unless ``--force``
-is given; missing or malformed inputs give a one-line error and exit status 1
-(2 for a wrong command line).  ``python -m cga_lessons`` runs the same program.
+Every subcommand that writes files checks every output path before any work
+and refuses to overwrite a file, or to write through a symbolic link, unless
+``--force`` is given (which replaces the link itself, never its target; a
+folder where a file goes is refused even then); it writes its files in a
+hidden temporary folder and moves them into place only when all of them are
+complete (:mod:`cga_lessons.cli_io`).  Missing or malformed inputs give a
+one-line error and exit status 1 (2 for a wrong command line).
+``python -m cga_lessons`` runs the same program.
 """
 
 from __future__ import annotations
 
 import argparse
 import csv
-import html
 import importlib
 import importlib.util
-import json
 import math
 import os
 import shlex
@@ -32,20 +35,12 @@ import time
 from pathlib import Path
 from types import SimpleNamespace
 
-__all__ = ["main", "build_parser", "CLIError", "read_segments_csv", "write_segments_csv"]
+from .cli_io import CLIError, StagedOutputs, check_output_dir, check_output_files  # CLIError lives beside the checks
+from .segments_csv import SEGMENT_COLUMNS, read_segments_csv, write_segments_csv
+
+__all__ = ["main", "build_parser", "CLIError", "SEGMENT_COLUMNS", "read_segments_csv", "write_segments_csv"]
 
 _ROOT = Path(__file__).resolve().parents[1]
-SEGMENT_COLUMNS = ("x_start", "y_start", "x_end", "y_end", "rho", "theta", "n_points", "start_is_edge", "end_is_edge")
-
-
-class CLIError(Exception):
-    """A problem the user can fix (a missing file, an output that exists); printed without a traceback."""
-
-
-def _refuse_overwrite(paths, force: bool):
-    existing = [str(p) for p in paths if Path(p).exists()]
-    if existing and not force:
-        raise CLIError(f"will not overwrite {', '.join(existing)} (pass --force to replace)")
 
 
 def _non_negative_int(text):
@@ -118,55 +113,6 @@ def _build_map_with_progress(scans, odometry, progress: Progress, **kwargs):
     return build_map(scans, odometry, progress=lambda k, total: progress.update(k), **kwargs)
 
 
-# --------------------------------------------------------------------------- segments as CSV
-
-
-def write_segments_csv(path, segments):
-    """Write segments (objects with ``start``, ``end``, ``rho``, ``theta``, ...) with the columns of
-    :data:`SEGMENT_COLUMNS`; metres and radians, ``rho``/``theta`` the Hough form (3.3) about the origin."""
-    with open(path, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(SEGMENT_COLUMNS)
-        for s in segments:
-            w.writerow(
-                [f"{v:.6f}" for v in (*s.start, *s.end, s.rho, s.theta)]
-                + [int(s.n_points), int(bool(s.start_is_edge)), int(bool(s.end_is_edge))]
-            )
-
-
-def read_segments_csv(path) -> list:
-    """Read a segments CSV written by ``map2d``: a list of :class:`cga_lessons.lines.Segment`.
-
-    Raises :class:`CLIError` naming the file and line when it is missing or malformed.
-    """
-    from .lines import Segment
-
-    path = Path(path)
-    if not path.is_file():
-        raise CLIError(f"no such map file {str(path)!r}")
-    out = []
-    with open(path, newline="") as f:
-        rows = csv.reader(f)
-        header = next(rows, None)
-        if header is None or [h.strip() for h in header[:4]] != list(SEGMENT_COLUMNS[:4]):
-            raise CLIError(f"{path}: not a segments CSV (the header must start with {', '.join(SEGMENT_COLUMNS[:4])})")
-        for lineno, row in enumerate(rows, start=2):
-            if not row:
-                continue
-            try:
-                x0, y0, x1, y1 = (float(v) for v in row[:4])
-                n = int(row[6]) if len(row) > 6 else 2
-                e0, e1 = (bool(int(row[i])) if len(row) > i else False for i in (7, 8))
-                if not all(math.isfinite(v) for v in (x0, y0, x1, y1)):
-                    raise ValueError("non-finite coordinate")
-                out.append(Segment([x0, y0], [x1, y1], max(n, 2), None, e0, e1))
-            except (ValueError, IndexError) as exc:
-                raise CLIError(f"{path}, line {lineno}: malformed segment row ({exc})") from None
-    if not out:
-        raise CLIError(f"{path}: the map holds no segment")
-    return out
-
-
 def _log_stem(path: Path) -> str:
     name = path.name
     for suffix in (".gz", ".log", ".txt"):
@@ -231,7 +177,8 @@ def _cmd_map2d(args) -> int:
     files = [out / f"{stem}_{name}" for name in names]
     if args.seed is not None and args.odometry != "simulated":
         raise CLIError(f"--seed applies to --odometry simulated only (not --odometry {args.odometry})")
-    _refuse_overwrite(files, args.force)  # before the (long) run, not after
+    check_output_dir(out)  # every output path before the (long) run, not after
+    check_output_files(files, overwrite=args.force, force_hint="--force")
     log = _read_log(log_path)
     n = len(log) if args.limit is None else min(args.limit, len(log))
     scans, truth = log.scans[:n], log.poses[:n]
@@ -258,21 +205,24 @@ def _cmd_map2d(args) -> int:
         raise CLIError(f"cannot build the map: {exc}") from None
     bar.close()
     elapsed = time.perf_counter() - t0
-    out.mkdir(parents=True, exist_ok=True)
     title = f"{log_path.name}: {n} scans, {len(result.segments)} segments"
-    _draw_map(files[0], result, truth, args.odometry, title, odometry=odometry)
-    write_segments_csv(files[1], result.segments)
-    with open(files[2], "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(["scan", "x", "y", "theta", "corrected", "n_matches"])
-        for k, (p, c, m) in enumerate(zip(result.poses, result.corrected, result.n_matches)):
-            w.writerow([k, f"{p[0]:.6f}", f"{p[1]:.6f}", f"{p[2]:.6f}", int(c), int(m)])
     stamps = np.asarray(log.timestamps[:n], float)
     by_index = not (np.all(np.isfinite(stamps)) and np.all(np.diff(stamps) > 0))
-    try:
-        write_tum(files[3], result.poses, np.arange(n, dtype=float) if by_index else stamps, overwrite=args.force)
-    except InvalidInputError as exc:
-        raise CLIError(str(exc)) from None
+    # all four files are written in a hidden folder and moved into place together, once all are complete
+    with StagedOutputs(out, [f.name for f in files], overwrite=args.force, force_hint="--force") as stage:
+        staged = [stage.path(f.name) for f in files]
+        _draw_map(staged[0], result, truth, args.odometry, title, odometry=odometry)
+        try:
+            write_segments_csv(staged[1], result.segments)
+            write_tum(staged[3], result.poses, np.arange(n, dtype=float) if by_index else stamps)
+        except InvalidInputError as exc:
+            raise CLIError(str(exc)) from None
+        with open(staged[2], "w", newline="", encoding="utf-8") as f:
+            w = csv.writer(f)
+            w.writerow(["scan", "x", "y", "theta", "corrected", "n_matches"])
+            for k, (p, c, m) in enumerate(zip(result.poses, result.corrected, result.n_matches)):
+                w.writerow([k, f"{p[0]:.6f}", f"{p[1]:.6f}", f"{p[2]:.6f}", int(c), int(m)])
+        stage.commit()
     print(
         f"map2d: {n} scans -> {len(result.segments)} segments, {int(np.sum(result.corrected))} poses corrected "
         f"({elapsed:.1f} s)"
@@ -402,89 +352,10 @@ def _cmd_equations(args) -> int:
     return eq.main(argv)
 
 
-_OFFLINE_TEMPLATE = """{%- extends 'index.html.j2' -%}
-{%- block html_head_js_requirejs -%}{%- endblock html_head_js_requirejs -%}
-{% block jupyter_widgets %}{% endblock jupyter_widgets %}
-{%- block html_head_js_mathjax -%}
-{%- if resources.mathjax_url -%}{{ mathjax(resources.mathjax_url) }}{%- endif -%}
-{%- endblock html_head_js_mathjax -%}
-{%- block html_head_js_mermaidjs -%}{%- endblock html_head_js_mermaidjs -%}
-"""
-
-
-def _notebook_title(nb, fallback: str) -> str:
-    for cell in nb.cells:
-        if cell.cell_type == "markdown":
-            for line in cell.source.splitlines():
-                if line.startswith("# "):
-                    return line[2:].strip()
-    return fallback
-
-
 def _cmd_export_html(args) -> int:
-    import nbformat
-    from jinja2 import DictLoader
-    from nbconvert import HTMLExporter
+    from .cli_export import export_html  # nbconvert and its template, loaded for this command only
 
-    nbdir = Path(args.notebook_dir) if args.notebook_dir else _ROOT / "notebooks"
-    if not nbdir.is_dir():
-        raise CLIError(f"no notebooks folder at {nbdir}")
-    paths = sorted(p for p in nbdir.glob("*.ipynb") if args.include_solutions or p.stem != "teacher_solutions")
-    if not paths:
-        raise CLIError(f"no notebooks (*.ipynb) in {nbdir}")
-    out = Path(args.out_dir)
-    targets = [out / f"{p.stem}.html" for p in paths] + [out / "index.html"]
-    _refuse_overwrite(targets, args.force)
-    exporter = HTMLExporter(
-        template_name="lab",
-        extra_loaders=[DictLoader({"cga_offline.html.j2": _OFFLINE_TEMPLATE})],
-        template_file="cga_offline.html.j2",
-        mathjax_url=args.mathjax_url or "",
-    )
-    pages = []
-    for p, target in zip(paths, targets):
-        try:
-            nb = nbformat.read(p, as_version=4)
-        except (OSError, ValueError, json.JSONDecodeError, nbformat.reader.NotJSONError) as exc:
-            raise CLIError(f"{p}: not a readable notebook ({exc})") from None
-        code = [c for c in nb.cells if c.cell_type == "code" and c.source.strip()]
-        if code and all(c.get("execution_count") is None and not c.get("outputs") for c in code):
-            print(f"export-html: warning: {p.name} has no stored outputs (it is exported as it is)", file=sys.stderr)
-        body, _ = exporter.from_notebook_node(nb, resources={"metadata": {"name": p.stem}})
-        out.mkdir(parents=True, exist_ok=True)
-        target.write_text(body, encoding="utf-8")
-        pages.append((target.name, _notebook_title(nb, p.stem)))
-        print(f"  wrote {target}")
-    targets[-1].write_text(_index_page(pages, bool(args.mathjax_url)), encoding="utf-8")
-    print(f"  wrote {targets[-1]}")
-    print(f"export-html: {len(pages)} notebooks; open {targets[-1]} in a browser (no network needed)")
-    return 0
-
-
-def _index_page(pages, mathjax: bool) -> str:
-    items = "\n".join(f'<li><a href="{html.escape(name)}">{html.escape(title)}</a></li>' for name, title in pages)
-    math_note = (
-        ""
-        if mathjax
-        else "<p><small>Formulas appear as LaTeX source: no MathJax is bundled. Rebuild with "
-        "<code>--mathjax-url</code> pointing at a local MathJax 2.7 copy to typeset them.</small></p>"
-    )
-    return f"""<!DOCTYPE html>
-<html lang="en">
-<head><meta charset="utf-8"><title>cga-lessons: the course</title>
-<style>body {{ font-family: sans-serif; max-width: 48em; margin: 2em auto; line-height: 1.5; }}</style>
-</head>
-<body>
-<h1>cga-lessons</h1>
-<p>Conformal geometric algebra for robot mapping, a runnable course after M. Bernal Mar&iacute;n's thesis (2007).
-These pages are the notebooks as executed and stored in the repository.</p>
-<ol>
-{items}
-</ol>
-{math_note}
-</body>
-</html>
-"""
+    return export_html(args)
 
 
 # --------------------------------------------------------------------------- the parser
@@ -592,7 +463,8 @@ def main(argv=None) -> int:
     try:
         return int(args.func(args) or 0)
     except CLIError as exc:
-        print(f"cga-lessons {args.command}: error: {exc}", file=sys.stderr)
+        message = " ".join(str(exc).split("\n"))  # one line, whatever the message holds
+        print(f"cga-lessons {args.command}: error: {message}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:
         print(f"cga-lessons {args.command}: interrupted", file=sys.stderr)
