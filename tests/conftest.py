@@ -1,9 +1,17 @@
-"""Shared fixtures of the tests."""
+"""Shared fixtures of the tests, and Hypothesis run deterministically.
+
+The property tests draw their examples from a fixed seed (``derandomize``): a run of the suite on any machine is
+the run that passed here, and a failure found by exploring (``pytest --hypothesis-seed=N``) is reproducible.
+"""
 
 import numpy as np
 import pytest
+from hypothesis import settings
 
 from cga_lessons.laser import Scene
+
+settings.register_profile("cga-lessons", derandomize=True)
+settings.load_profile("cga-lessons")
 
 
 def wall_polygons(outline, thickness=0.1):

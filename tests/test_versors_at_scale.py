@@ -82,10 +82,10 @@ def test_the_reported_translation_case():
 
 @settings(max_examples=25, deadline=None)
 @given(axes, angles, scaled(7), st.lists(scaled(6), min_size=2, max_size=5))
-def test_conformal_route_at_scale_keeps_the_weight_exact(axis, angle, t, xs):
+def test_conformal_route_at_scale_keeps_the_weight(axis, angle, t, xs):
     """apply(M, up(x)) on conformal points (batch and single): the Euclidean part to 1e-9 of |answer| and the
-    weight X . e = -1 kept to one rounding of X- = X+ + w (2.111): exact for a point far away, one ulp of X-
-    at most.  ``down`` reads points up to about |y| < 3e7: its own test of a zero weight is relative to
+    weight X . e = -1 (2.111) kept to a few roundings of the point's own e+/e- coefficients.  ``down`` reads
+    points up to about |y| < 3e7: its own test of a zero weight is relative to
     |X+| + |X-| ~ |y|^2 (model.py), so beyond that the coefficients are read here."""
     x = np.array(xs)
     M = cga.motor(axis, angle, t)
@@ -98,9 +98,8 @@ def test_conformal_route_at_scale_keeps_the_weight_exact(axis, angle, t, xs):
         w = np.asarray(Y["e-"] - Y["e+"])
         y = np.stack([np.asarray(Y[b]) for b in ("e1", "e2", "e3")], axis=-1)
         a, b = np.atleast_1d(Y["e+"]), np.atleast_1d(Y["e-"])
-        assert np.all(np.abs(w - 1.0) <= 2 * np.spacing(np.maximum(np.abs(b), 1.0)))
-        exact = (a >= 1.0) & (np.frexp(a)[1] == np.frexp(b)[1])  # X- = X+ + 1 in X+'s binade: no rounding
-        assert np.all(np.atleast_1d(w)[exact] == 1.0)
+        # the weight to a few roundings of the coefficients themselves (the old e+/e- products lost eps |t|^2 |x|^2)
+        assert np.all(np.abs(w - 1.0) <= 8 * EPS * np.maximum(np.maximum(np.abs(a), np.abs(b)), 1.0))
         assert rel_err(y, want, pts, t) < 1e-9
         if np.all(np.linalg.norm(np.atleast_2d(want), axis=-1) < 9e6):
             assert rel_err(cga.down(Y), want, pts, t) < 1e-9
