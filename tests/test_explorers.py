@@ -119,3 +119,26 @@ def test_the_depth_explorer_follows_the_first_order_law_and_the_sliders():
     sliders = {c.description: c for c in ex.widget().children if getattr(c, "description", "")}
     sliders["noise (px)"].value = 1.0
     assert ex.noise_px == 1.0 and "1.00 px" in ex.ax.get_title()
+
+
+@pytest.mark.parametrize("heading, fov", [(180.0, 150.0), (225.0, 100.0), (30.0, 300.0)])
+def test_the_node_explorer_sees_what_lies_within_the_field_of_view(heading, fov):
+    """Without a sphere a node is seen exactly when its bearing from the robot lies within half the field of view
+    of the heading (the closed form, in the horizontal plane)."""
+    from cga_lessons.viz.explore_nodes import NodeExplorer
+
+    ex = NodeExplorer(heading_deg=heading, fov_deg=fov, diameter=0.0)
+    nodes = ex.result.grid.nodes
+    robot = np.asarray(ex.result.scenario.robot)
+    d = nodes[:, :2] - robot[:2]
+    away = np.hypot(d[:, 0], d[:, 1]) > 1e-9
+    bearing = np.degrees(np.arctan2(d[:, 1], d[:, 0]))
+    off = np.abs((bearing - heading + 180.0) % 360.0 - 180.0)
+    inside = away & (off < fov / 2 - 1e-6)
+    outside = away & (off > fov / 2 + 1e-6)
+    assert np.all(ex.result.labels.seen[inside]) and not np.any(ex.result.labels.seen[outside])
+    before = dict(ex.counts)
+    ex.update(diameter=25.0)  # the sphere (west of the robot) occludes and occupies nodes when in view
+    if heading == 180.0:
+        assert ex.counts["occupied"] > 0 and ex.counts["seen"] < before["seen"]
+    assert f"{fov:.0f} deg" in ex.ax.get_title()
