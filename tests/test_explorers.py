@@ -142,3 +142,20 @@ def test_the_node_explorer_sees_what_lies_within_the_field_of_view(heading, fov)
     if heading == 180.0:
         assert ex.counts["occupied"] > 0 and ex.counts["seen"] < before["seen"]
     assert f"{fov:.0f} deg" in ex.ax.get_title()
+
+
+@pytest.mark.parametrize("x", [-3.7, -1.0, 0.0, 0.4, 2.5])
+def test_the_stereographic_explorer_puts_the_image_on_the_ray_and_the_circle(x):
+    """(2.48): the image lies on the unit circle and on the line from the pole e+ through x e1; up(x) is null with
+    X . e = -1 (2.61), on the parabola X_- = (X_1^2 + 1)/2 drawn beside."""
+    from cga_lessons.viz.explore_null_cone import StereographicExplorer
+
+    ex = StereographicExplorer(x=0.0)
+    ex.update(x)
+    a, b = ex.image
+    assert a * a + b * b == pytest.approx(1.0, abs=1e-12)
+    assert (a - 0.0) * (0.0 - 1.0) - (b - 1.0) * (x - 0.0) == pytest.approx(0.0, abs=1e-12)  # collinear with pole, x
+    assert ex.null_check == pytest.approx(0.0, abs=1e-12) and ex.weight == pytest.approx(-1.0, abs=1e-12)
+    px, py = ex._cone_pt.get_data()
+    assert px[0] == pytest.approx(x) and py[0] == pytest.approx((x * x + 1) / 2)
+    assert ex._img.get_data()[0][0] == pytest.approx(a)
