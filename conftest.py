@@ -11,3 +11,16 @@ from pathlib import Path
 _ROOT = str(Path(__file__).resolve().parent)
 _paths = [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p and p != _ROOT]
 os.environ["PYTHONPATH"] = os.pathsep.join([_ROOT, *_paths])
+
+
+import pytest  # noqa: E402
+
+
+@pytest.fixture(autouse=True)
+def _close_figures():
+    """Close the matplotlib figures a test or doctest opened (the explorers keep theirs open to redraw them)."""
+    yield
+    import sys
+
+    if "matplotlib.pyplot" in sys.modules:
+        sys.modules["matplotlib.pyplot"].close("all")
