@@ -32,12 +32,11 @@ from __future__ import annotations
 import numpy as np
 
 from .algebra import DegenerateGeometryError, InvalidInputError, Multivector
-from .model import G41, _check_points
+from .model import COORD_LIMIT, G41, _check_points
 
 EPS = float(np.finfo(float).eps)
 _VEC = [1, 2, 4]
 #: the coordinates of a point above this size have squares that overflow
-COORD_LIMIT = 1e153
 #: point_pair_endpoints refuses pairs whose separation the coefficients resolve worse than this, relative
 PAIR_RTOL = 1e-6
 

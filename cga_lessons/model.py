@@ -116,7 +116,7 @@ def exact_constants() -> dict:
 
 # ----------------------------------------------------------------- helpers
 #: Largest coordinate a conformal point can hold: up(x) stores x^2 / 2, which overflows a float beyond ~1.3e154.
-_COORD_LIMIT = 1e153
+COORD_LIMIT = 1e153
 
 def _check_points(x, func: str, name: str = "x"):
     """Validate Euclidean point(s): returns (array or list, symbolic flag).
@@ -181,9 +181,9 @@ def up(x) -> Multivector:
     (12.0, 13.0)
     """
     arr, sym = _check_points(x, "up")
-    if not sym and arr.size and float(np.max(np.abs(arr))) > _COORD_LIMIT:
+    if not sym and arr.size and float(np.max(np.abs(arr))) > COORD_LIMIT:
         raise InvalidInputError(
-            f"up: x: coordinates up to {float(np.max(np.abs(arr))):.3g}: beyond {_COORD_LIMIT:.0e} their squares "
+            f"up: x: coordinates up to {float(np.max(np.abs(arr))):.3g}: beyond {COORD_LIMIT:.0e} their squares "
             "(the e+ and e- coefficients of a conformal point, 2.62) overflow"
         )
     if sym:

@@ -22,10 +22,6 @@ SEGMENT_COLUMNS = ("x_start", "y_start", "x_end", "y_end", "rho", "theta", "n_po
 MAX_SEGMENT_POINTS = 10**9
 
 
-def _q(path) -> str:
-    return repr(str(path))
-
-
 def write_segments_csv(path, segments, *, overwrite: bool = False) -> Path:
     """Write segments (objects with ``start``, ``end``, ``rho``, ``theta``, ...) with the columns of
     :data:`SEGMENT_COLUMNS`; metres and radians, ``rho``/``theta`` the Hough form (3.3) about the origin.

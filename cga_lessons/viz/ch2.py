@@ -37,6 +37,7 @@ __all__ = [
     "fig_inversion_grid",
     "fig_two_reflections",
     "fig_screw_helix",
+    "set_equal_3d",
     "point_pair_accuracy",
     "fig_point_pair_accuracy",
 ]
@@ -312,7 +313,8 @@ def _orthonormal_pair(n):
     return u, np.cross(n, u)
 
 
-def _set_equal_3d(ax, pts, pad=0.3):
+def set_equal_3d(ax, pts, pad=0.3, labels=("$e_1$", "$e_2$", "$e_3$")):
+    """Equal scales on a 3D axes around the points ``pts`` (with a margin ``pad``), axes labelled ``labels``."""
     pts = np.asarray(pts, dtype=float).reshape(-1, 3)
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     c, r = (lo + hi) / 2, (hi - lo).max() / 2 + pad
@@ -320,9 +322,9 @@ def _set_equal_3d(ax, pts, pad=0.3):
     ax.set_ylim(c[1] - r, c[1] + r)
     ax.set_zlim(c[2] - r, c[2] + r)
     ax.set_box_aspect((1, 1, 1))
-    ax.set_xlabel("$e_1$")
-    ax.set_ylabel("$e_2$")
-    ax.set_zlabel("$e_3$")
+    ax.set_xlabel(labels[0])
+    ax.set_ylabel(labels[1])
+    ax.set_zlabel(labels[2])
 
 
 def fig_entities(points=None, point_pair=None, sphere=None, plane=None, line=None, circle=None, title=None):
@@ -375,7 +377,7 @@ def fig_entities(points=None, point_pair=None, sphere=None, plane=None, line=Non
         xyz = foot[:, None, None] + s * u[:, None, None] + t * v[:, None, None]
         ax.plot_surface(*xyz, color=_COLORS["plane"], alpha=0.2)
         ax.plot([], [], color=_COLORS["plane"], lw=6, alpha=0.4, label="plane")
-    _set_equal_3d(ax, np.vstack(extent) if extent else np.zeros((1, 3)))
+    set_equal_3d(ax, np.vstack(extent) if extent else np.zeros((1, 3)))
     ax.legend(loc="upper left", fontsize=9)
     ax.set_title(title or "Table 2.1: conformal entities")
     fig.tight_layout()
@@ -487,7 +489,7 @@ def fig_screw_helix(points, axis_point, axis_direction, title="A point under a r
     proj = (pts - axis_point) @ d
     seg = np.asarray(axis_point) + np.array([proj.min() - 0.3, proj.max() + 0.3])[:, None] * d
     ax.plot(*seg.T, "k--", lw=1.5, label="screw axis")
-    _set_equal_3d(ax, np.vstack([pts, seg]), pad=0.2)
+    set_equal_3d(ax, np.vstack([pts, seg]), pad=0.2)
     ax.view_init(*_side_view(d))
     ax.legend(loc="upper left")
     ax.set_title(title)

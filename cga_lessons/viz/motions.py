@@ -12,6 +12,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from .. import conformal as cga
+from .ch2 import set_equal_3d
 
 __all__ = ["tool_outline", "fig_motor_blend", "fig_scan_registration"]
 
@@ -69,15 +70,7 @@ def fig_motor_blend(outline, motors, matrix_blend=None, axis_point=None, axis_di
         s = (pts - c) @ d
         seg = np.stack([c + (s.min() - 0.2) * d, c + (s.max() + 0.2) * d])
         ax.plot(*seg.T, color="crimson", lw=1.2, ls=":", label="screw axis")
-    lo, hi = pts.min(axis=0), pts.max(axis=0)
-    mid, half = (lo + hi) / 2, max(float(np.max(hi - lo)) / 2, 0.3)
-    ax.set_xlim(mid[0] - half, mid[0] + half)
-    ax.set_ylim(mid[1] - half, mid[1] + half)
-    ax.set_zlim(mid[2] - half, mid[2] + half)
-    ax.set_box_aspect((1, 1, 1))
-    ax.set_xlabel("x (m)")
-    ax.set_ylabel("y (m)")
-    ax.set_zlabel("z (m)")
+    set_equal_3d(ax, pts, pad=0.1, labels=("x (m)", "y (m)", "z (m)"))
     ax.legend(loc="upper left", fontsize=8)
     ax.set_title(title or "Blending two poses along their screw")
     fig.tight_layout()
