@@ -8,7 +8,9 @@ that catches ``ValueError`` keeps working.
 
 from __future__ import annotations
 
-__all__ = ["GeometryError", "DegenerateGeometryError", "InvalidInputError"]
+import math
+
+__all__ = ["GeometryError", "DegenerateGeometryError", "InvalidInputError", "finite_real"]
 
 
 class GeometryError(ValueError):
@@ -21,6 +23,32 @@ class DegenerateGeometryError(GeometryError):
 
 class InvalidInputError(GeometryError):
     """The input has the wrong shape, type, or contains NaN/inf."""
+
+
+def finite_real(value, func: str, name: str) -> float:
+    """``value`` as a finite float, or :class:`InvalidInputError` "func: name: problem".
+
+    For a plain numeric setting (a slider, a threshold): refuses bools, strings,
+    None, complex numbers, NaN and inf.
+
+    >>> finite_real(2, "f", "x")
+    2.0
+    >>> finite_real(float("nan"), "f", "x")
+    Traceback (most recent call last):
+    ...
+    cga_lessons.algebra.InvalidInputError: f: x: is NaN or inf (nan)
+    """
+    if isinstance(value, bool) or type(value).__name__ == "bool_":
+        raise InvalidInputError(f"{func}: {name}: must be a real number, got the bool {value!r}")
+    try:
+        x = float(value)
+    except OverflowError:
+        x = math.inf
+    except (TypeError, ValueError):
+        raise InvalidInputError(f"{func}: {name}: must be a real number, got {value!r:.40}") from None
+    if isinstance(value, complex) or not math.isfinite(x):
+        raise InvalidInputError(f"{func}: {name}: is NaN or inf ({value!r:.40})")
+    return x
 
 
 # Tracebacks and reprs name the errors' public home.
