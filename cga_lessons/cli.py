@@ -447,7 +447,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out-dir", default="site", help="folder for the pages (default: site)")
     p.add_argument("--notebook-dir", help="the notebooks folder (default: the checkout's notebooks/)")
     p.add_argument("--include-solutions", action="store_true", help="also export teacher_solutions.ipynb")
-    p.add_argument("--mathjax-url", default="", help="MathJax 2.7 script to typeset formulas (e.g. a local copy)")
+    p.add_argument("--mathjax-url", default="",
+                   help="MathJax 2.7 script to typeset formulas (default: the copy bundled into the site's mathjax/)")
     p.add_argument("--force", action="store_true", help="overwrite existing pages")
     p.set_defaults(func=_cmd_export_html)
     return ap

@@ -204,7 +204,7 @@ def test_export_html_with_a_corrupt_notebook_writes_no_page_and_a_rerun_works(tm
     tiny_notebook(nbdir / "02_broken.ipynb", "Mended")
     rc, _, err = run(["export-html", "--notebook-dir", nbdir, "--out-dir", site, *force], capsys)
     assert rc == 0, err
-    assert sorted(p.name for p in site.iterdir()) == ["01_good.html", "02_broken.html", "index.html"]
+    assert sorted(p.name for p in site.iterdir()) == ["01_good.html", "02_broken.html", "index.html", "mathjax"]
     assert "Mended" in (site / "index.html").read_text() and "old page" not in (site / "01_good.html").read_text()
 
 

@@ -159,3 +159,16 @@ def test_the_stereographic_explorer_puts_the_image_on_the_ray_and_the_circle(x):
     px, py = ex._cone_pt.get_data()
     assert px[0] == pytest.approx(x) and py[0] == pytest.approx((x * x + 1) / 2)
     assert ex._img.get_data()[0][0] == pytest.approx(a)
+
+
+def test_the_sliders_show_what_the_drawing_returns_after_every_move(capsys):
+    from ipywidgets import FloatSlider
+
+    from cga_lessons.viz.controls import slider_panel
+
+    seen = []
+    panel = slider_panel(lambda a: seen.append(a) or f"drawn at {a}", a=FloatSlider(value=1.0, continuous_update=True))
+    panel.children[0].value = 2.0
+    assert seen == [1.0, 2.0]
+    assert panel.auto_display and not panel.children[0].continuous_update
+    assert "drawn at 2.0" in capsys.readouterr().out  # displayed (outside a front end: printed)

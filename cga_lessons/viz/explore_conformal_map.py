@@ -31,6 +31,7 @@ from ..algebra import InvalidInputError, Multivector
 from ..algebra_errors import finite_real
 from ..mapping2d_corrections import theta_correction, translation_correction
 from ..mapping2d_geometry import SegmentSet
+from .controls import slider_panel
 from .laser import draw_scene
 
 __all__ = ["CorrectionExplorer", "place", "ends", "line_members", "rotor_about", "conformal_correction"]
@@ -201,14 +202,14 @@ class CorrectionExplorer:
 
     def widget(self):
         """ipywidgets sliders for the pose error, bound to :meth:`update` (a live session)."""
-        from ipywidgets import FloatSlider, interactive
+        from ipywidgets import FloatSlider
 
         def show(dx, dy, dtheta_deg):
             self.update(dx=dx, dy=dy, dtheta_deg=dtheta_deg)
             return self.fig
 
         gate = float(np.floor(self.theta_xi_deg - 1.0))
-        return interactive(
+        return slider_panel(
             show,
             dx=FloatSlider(value=self.error[0], min=-1.0, max=1.0, step=0.05, description="dx (m)",
                            continuous_update=False),

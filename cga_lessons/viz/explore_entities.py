@@ -20,6 +20,7 @@ import numpy as np
 
 from .. import conformal as cga
 from ..algebra import GeometryError
+from .controls import slider_panel
 
 __all__ = ["PairExplorer", "pair_readback"]
 
@@ -91,13 +92,13 @@ class PairExplorer:
 
     def widget(self):
         """ipywidgets sliders (log10 of the separation, the distance) bound to :meth:`update` (a live session)."""
-        from ipywidgets import FloatSlider, interactive
+        from ipywidgets import FloatSlider
 
         def show(log10_separation, distance):
             self.update(separation=10.0**log10_separation, distance=distance)
             return self.fig
 
-        return interactive(
+        return slider_panel(
             show,
             log10_separation=FloatSlider(value=float(np.log10(self.separation)), min=-10, max=0, step=0.25,
                                          description="log10 sep."),

@@ -23,6 +23,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from .. import conformal as cga
+from .controls import slider_panel
 from .motions import tool_outline
 
 __all__ = ["ScrewParams", "ScrewExplorer"]
@@ -118,7 +119,7 @@ class ScrewExplorer:
 
     def widget(self):
         """ipywidgets sliders bound to :meth:`update` (a live session)."""
-        from ipywidgets import FloatSlider, interactive
+        from ipywidgets import FloatSlider
 
         p = self.params
 
@@ -126,7 +127,7 @@ class ScrewExplorer:
             self.update(azimuth=azimuth, elevation=elevation, angle=angle, pitch=pitch)
             return self.fig
 
-        return interactive(
+        return slider_panel(
             show,
             azimuth=FloatSlider(value=p.azimuth, min=-180, max=180, step=5, description="azimuth"),
             elevation=FloatSlider(value=p.elevation, min=-90, max=90, step=5, description="elevation"),

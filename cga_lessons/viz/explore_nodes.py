@@ -18,6 +18,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from .. import exploration_cases as cases
+from .controls import slider_panel
 from .exploration import plot_nodes
 
 __all__ = ["NodeExplorer"]
@@ -56,13 +57,13 @@ class NodeExplorer:
 
     def widget(self):
         """ipywidgets sliders bound to :meth:`update` (a live session)."""
-        from ipywidgets import FloatSlider, interactive
+        from ipywidgets import FloatSlider
 
         def show(heading_deg, fov_deg, diameter):
             self.update(heading_deg=heading_deg, fov_deg=fov_deg, diameter=diameter)
             return self.fig
 
-        return interactive(
+        return slider_panel(
             show,
             heading_deg=FloatSlider(value=self.heading_deg, min=0, max=360, step=5, description="heading"),
             fov_deg=FloatSlider(value=self.fov_deg, min=10, max=355, step=5, description="view (deg)"),

@@ -17,6 +17,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from .. import conformal as cga
+from .controls import slider_panel
 
 __all__ = ["StereographicExplorer"]
 
@@ -73,10 +74,10 @@ class StereographicExplorer:
 
     def widget(self):
         """An ipywidgets slider for ``x`` bound to :meth:`update` (a live session)."""
-        from ipywidgets import FloatSlider, interactive
+        from ipywidgets import FloatSlider
 
         def show(x):
             self.update(x)
             return self.fig
 
-        return interactive(show, x=FloatSlider(value=self.x, min=-4, max=4, step=0.05, description="x"))
+        return slider_panel(show, x=FloatSlider(value=self.x, min=-4, max=4, step=0.05, description="x"))

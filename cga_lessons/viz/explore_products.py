@@ -26,6 +26,7 @@ import numpy as np
 
 from ..algebra import Algebra, InvalidInputError, Multivector
 from ..algebra_errors import finite_real
+from .controls import slider_panel
 
 __all__ = ["ProductExplorer", "geometric_product", "reflect"]
 
@@ -177,7 +178,7 @@ class ProductExplorer:
 
     def widget(self):
         """ipywidgets sliders for the angle, the lengths and ``a``'s direction, bound to :meth:`update`."""
-        from ipywidgets import FloatSlider, interactive
+        from ipywidgets import FloatSlider
 
         def show(angle, len_a, len_b, direction):
             self.update(angle=angle, len_a=len_a, len_b=len_b, direction=direction)
@@ -187,7 +188,7 @@ class ProductExplorer:
             return FloatSlider(value=value, min=lo, max=hi, step=step, description=description,
                                continuous_update=False)  # fmt: skip
 
-        return interactive(
+        return slider_panel(
             show,
             angle=slider(self.angle, -180, 180, 5, "angle a->b"),
             len_a=slider(self.len_a, 0.2, 2.0, 0.1, "|a|"),

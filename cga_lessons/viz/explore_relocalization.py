@@ -36,6 +36,7 @@ from ..relocalization import RelocParams, pose_error, prepare_map, relocalize
 from ..relocalization_eval import HEADING_TOLERANCE, POSITION_TOLERANCE
 from ..relocalization_geometry import transform_points
 from ..relocalization_hough import hough_set, shifted_set_corrected
+from .controls import slider_panel
 
 __all__ = ["RelocalizationExplorer", "true_partners"]
 
@@ -320,7 +321,7 @@ class RelocalizationExplorer:
 
     def widget(self):
         """ipywidgets sliders for the true pose, bound to :meth:`update` (a live session)."""
-        from ipywidgets import FloatSlider, interactive
+        from ipywidgets import FloatSlider
 
         lo, hi = self.ref.segments.reshape(-1, 2).min(axis=0), self.ref.segments.reshape(-1, 2).max(axis=0)
         x0, y0, th0 = self.pose
@@ -329,7 +330,7 @@ class RelocalizationExplorer:
             self.update(x=x, y=y, theta_deg=theta_deg)
             return self.fig
 
-        return interactive(
+        return slider_panel(
             show,
             x=FloatSlider(value=x0, min=float(lo[0]), max=float(hi[0]), step=0.1, description="x (m)"),
             y=FloatSlider(value=y0, min=float(lo[1]), max=float(hi[1]), step=0.1, description="y (m)"),

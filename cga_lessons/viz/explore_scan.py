@@ -20,6 +20,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from .. import laser, lines
+from .controls import slider_panel
 from .laser import draw_scene
 
 __all__ = ["HoughExplorer"]
@@ -78,7 +79,7 @@ class HoughExplorer:
 
     def widget(self):
         """ipywidgets sliders for the robot's pose, bound to :meth:`update` (a live session)."""
-        from ipywidgets import FloatSlider, interactive
+        from ipywidgets import FloatSlider
 
         x0, y0, th0 = self.pose
 
@@ -86,7 +87,7 @@ class HoughExplorer:
             self.update(x=x, y=y, theta_deg=theta_deg)
             return self.fig
 
-        return interactive(
+        return slider_panel(
             show,
             x=FloatSlider(value=x0, min=x0 - 3, max=x0 + 3, step=0.1, description="x (m)"),
             y=FloatSlider(value=y0, min=y0 - 3, max=y0 + 3, step=0.1, description="y (m)"),

@@ -17,6 +17,7 @@ import numpy as np
 
 from .. import camera as cam
 from ..stereo_rig import stereo_head
+from .controls import slider_panel
 
 __all__ = ["DepthErrorExplorer"]
 
@@ -74,13 +75,13 @@ class DepthErrorExplorer:
 
     def widget(self):
         """ipywidgets sliders for the baseline, the focal length and the noise, bound to :meth:`update`."""
-        from ipywidgets import FloatSlider, interactive
+        from ipywidgets import FloatSlider
 
         def show(baseline_cm, focal_px, noise_px):
             self.update(baseline=baseline_cm / 100.0, focal_px=focal_px, noise_px=noise_px)
             return self.fig
 
-        return interactive(
+        return slider_panel(
             show,
             baseline_cm=FloatSlider(value=100 * self.baseline, min=2, max=60, step=1, description="baseline (cm)"),
             focal_px=FloatSlider(value=self.focal_px, min=200, max=2000, step=50, description="f (px)"),
