@@ -31,11 +31,6 @@ ALLOWED = {
     },
     "06_conformal_line_maps.ipynb": {METHOD: ["0.3 m"]},
     "07_stereo_reconstruction.ipynb": {DATA: ["4×", "193.001 mm"]},
-    "08_fused_3d_map.ipynb": {
-        SCENE: ["12 cm", "700 px", "1.2 m", "0.35 m", "1.5 cm", "8 m", "6 m", "2.5 m", "11 cm", "1 m", "0.7 m", "5 cm",
-                "1.8 m", "5 m", "3 m", "15 cm", "180°", "0.5°", "1 cm", "1.1 rad", "0.6 rad", "0.5 px", "0.4 rad",
-                "0.3 rad", "0.5 rad"],
-    },
     "09_relocalization.ipynb": {EXERCISE: ["6 m", "4 m"]},
     "teacher_solutions.ipynb": {EXERCISE: ["2 rad", "12 m"]},
 }

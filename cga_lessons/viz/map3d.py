@@ -26,7 +26,6 @@ __all__ = [
     "plot_robot",
     "plot_fused_map",
     "plot_virtual_walls",
-    "interactive_robot",
 ]
 
 _BASE, _DARK, _LASER, _CAM = (0.25, 0.42, 0.75), (0.2, 0.2, 0.22), (0.95, 0.75, 0.1), (0.08, 0.08, 0.08)
@@ -202,45 +201,3 @@ def plot_virtual_walls(fused: FusedMap, figsize=(13, 5.5)):
         plot_fused_map(fused, fig.add_subplot(1, 2, i + 1, projection="3d"), virtual_walls=vw, title=title)
     fig.tight_layout()
     return fig
-
-
-def interactive_robot(fused: FusedMap, robot: Robot | None = None, *, vis=None, state: RobotState | None = None):
-    """ipywidgets sliders for the five degrees of freedom, redrawing the robot in the fused map.
-
-    Each change goes through :meth:`Robot.set_state`, so only the motors it
-    touches are recomputed (their names are the figure's title).  With a
-    meshcat ``vis`` (:func:`cga_lessons.viz.meshcat_scene.open_viewer`) the
-    robot is also moved there.  Sliders update on release.
-
-    Returns
-    -------
-    ipywidgets.interactive
-    """
-    from ipywidgets import FloatSlider, interactive
-
-    robot = robot or Robot(fused.tour.geometry)
-    g = robot.geometry
-    s0 = state or RobotState(*fused.laser.poses[0])
-    s = RobotState(*(round(getattr(s0, d), 2) for d in ("x", "y", "theta", "pan", "tilt")))  # slider steps
-    lo, hi = fused.tour.world.walls[0].min(axis=0), fused.tour.world.walls[0].max(axis=0)
-
-    def slider(name, value, a, b, step):
-        return FloatSlider(value=value, min=a, max=b, step=step, description=name, continuous_update=False)
-
-    def draw(x, y, theta, pan, tilt):
-        changed = robot.set_state(RobotState(x, y, theta, pan, tilt))
-        if vis is not None:
-            from .meshcat_scene import show
-
-            show(vis, robot_primitives(robot))
-        plot_fused_map(fused, robot=robot, title="recomputed: " + (", ".join(changed) or "nothing"))
-        plt.show()
-
-    return interactive(
-        draw,
-        x=slider("x", s.x, lo[0], hi[0], 0.05),
-        y=slider("y", s.y, lo[1], hi[1], 0.05),
-        theta=slider("theta", s.theta, -np.pi, np.pi, 0.02),
-        pan=slider("pan", s.pan, *g.pan_limits, 0.02),
-        tilt=slider("tilt", s.tilt, *g.tilt_limits, 0.02),
-    )

@@ -5,12 +5,14 @@ The scene is the backend-free list of primitives of
 opened with :func:`open_viewer`, whose loopback-only server, which dies with its
 parent, is :mod:`cga_lessons.viz.meshcat_server`.  :func:`export_html` records
 the same commands without any server and writes meshcat's self-contained page
-(three.js inlined; opens offline).
+(three.js inlined; opens offline); :func:`scene_iframe` embeds that page in a
+notebook cell's output, so a saved notebook and its HTML export show the scene.
 """
 
 from __future__ import annotations
 
 import base64
+import html as _html
 import warnings
 from pathlib import Path
 
@@ -36,6 +38,8 @@ __all__ = [
     "set_camera",
     "scene_html",
     "export_html",
+    "EmbeddedScene",
+    "scene_iframe",
 ]
 
 
@@ -173,7 +177,8 @@ class _RecordingWindow:
         # the load event and is refused by some browsers for file:// pages).
         return (
             "<!DOCTYPE html>\n<html>\n<head><meta charset=utf-8><title>cga-lessons scene</title>\n"
-            "<style>body { margin: 0; } #meshcat-pane { width: 100vw; height: 100vh; overflow: hidden; }</style>\n"
+            "<style>html, body { margin: 0; height: 100%; overflow: hidden; }\n"
+            "#meshcat-pane { width: 100%; height: 100%; overflow: hidden; }</style>\n"
             '</head>\n<body>\n<div id="meshcat-pane"></div>\n'
             f"<script>\n{script}\n</script>\n"
             "<script>\n"
@@ -186,20 +191,27 @@ class _RecordingWindow:
         )
 
 
-def scene_html(primitives, *, frame_camera: bool = True) -> str:
+def _check_distance(value, func: str) -> None:
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating)) or not 0 < value < np.inf:
+        raise InvalidInputError(f"{func}: camera_distance must be a positive number, got {value!r}")
+
+
+def scene_html(primitives, *, frame_camera: bool = True, camera_distance: float = 1.3) -> str:
     """The self-contained HTML page of a scene (meshcat's viewer with three.js inlined), built offline.
 
     No server is started: the commands :func:`show` (and :func:`set_camera`, if ``frame_camera``) would
     send are kept per scene-tree node the way meshcat's server keeps them, and embedded base64-encoded
     in the page, which replays them on load (what ``Visualizer.static_html()`` does with a server).
+    ``camera_distance`` is :func:`set_camera`'s ``distance`` (times the scene's largest side).
     """
     prims = check_scene(primitives, "scene_html")
     if not prims:
         raise InvalidInputError("scene_html: the scene is empty")
+    _check_distance(camera_distance, "scene_html")
     vis = Visualizer(window=_RecordingWindow())
     show(vis, prims)
     if frame_camera:
-        set_camera(vis, *scene_bounds(prims))
+        set_camera(vis, *scene_bounds(prims), distance=camera_distance)
     return vis.window.html()
 
 
@@ -217,3 +229,62 @@ def export_html(primitives, path, *, force: bool = False, frame_camera: bool = T
     text = scene_html(primitives, frame_camera=frame_camera)
     path.write_text(text, encoding="utf-8")
     return path
+
+
+# ====================================================================== embedded in a notebook's output
+_HIDDEN_NOTE = (
+    "An interactive 3D view of {n} primitives (meshcat) is stored in this output. If you read this note instead, "
+    "it was removed or cannot draw: JupyterLab removes iframes from the outputs of a notebook it does not trust "
+    "(run <i>Trust Notebook</i> from the command palette, or run the cell), and a browser without WebGL cannot "
+    "draw it. The pages of <code>cga-lessons export-html</code> show it offline."
+)
+
+
+class EmbeddedScene:
+    """A scene for a notebook cell's output: meshcat's offline page inside an ``<iframe srcdoc>``.
+
+    Jupyter stores :attr:`html` as the output's ``text/html``; the plain-text form names the scene.  Where
+    the iframe is dropped (JupyterLab sanitizes the outputs of an untrusted notebook and keeps no iframe),
+    the note it lies over says how to see the view.
+    """
+
+    def __init__(self, html: str, n_primitives: int, height: int):
+        self.html, self.n_primitives, self.height = html, n_primitives, height
+
+    def _repr_html_(self) -> str:
+        return self.html
+
+    def __repr__(self) -> str:
+        return f"<meshcat scene of {self.n_primitives} primitives, an interactive 3D view {self.height} px high>"
+
+
+def scene_iframe(
+    primitives, *, height: int = 480, frame_camera: bool = True, camera_distance: float = 1.3
+) -> EmbeddedScene:
+    """The scene as a cell output: the page of :func:`scene_html` in an iframe ``height`` pixels high.
+
+    The page goes in the iframe's ``srcdoc`` attribute (HTML-escaped), so the output needs no file and no
+    server: it turns and zooms in a trusted JupyterLab, in nbconvert's HTML and in ``cga-lessons
+    export-html``'s pages, offline.  ``sandbox="allow-scripts"`` lets meshcat run without access to the
+    notebook's page.  The iframe lies over a note, which shows where the iframe is removed or cannot draw.
+    ``camera_distance``: see :func:`scene_html`.  Each call inlines one copy of meshcat's library (about
+    0.85 MB): embed a notebook's scene once.
+    """
+    if isinstance(height, bool) or not isinstance(height, (int, np.integer)) or not 100 <= height <= 4000:
+        raise InvalidInputError(f"scene_iframe: height must be a whole number of pixels from 100 to 4000, got "
+                                f"{height!r}")  # fmt: skip
+    _check_distance(camera_distance, "scene_iframe")
+    prims = check_scene(primitives, "scene_iframe")
+    if not prims:
+        raise InvalidInputError("scene_iframe: the scene is empty")
+    page = scene_html(prims, frame_camera=frame_camera, camera_distance=camera_distance)
+    note = _HIDDEN_NOTE.format(n=len(prims))
+    box = (
+        f'<div class="cga-lessons-scene" style="position: relative; width: 100%; height: {int(height)}px; '
+        'background: #f4f4f6; border: 1px solid #d0d0d8; box-sizing: border-box; overflow: hidden;">\n'
+        f'<p style="margin: 0; padding: 1em; color: #444;">{note}</p>\n'
+        '<iframe title="3D scene (meshcat)" sandbox="allow-scripts" '
+        'style="position: absolute; top: 0; left: 0; width: 100%; height: 100%; border: 0;" '
+        f'srcdoc="{_html.escape(page, quote=True)}"></iframe>\n</div>'
+    )
+    return EmbeddedScene(box, len(prims), int(height))
