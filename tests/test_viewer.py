@@ -471,6 +471,8 @@ def chromium_screenshot(url, png_path, size=(640, 480), timeout=60):
         "--headless",
         "--no-sandbox",
         "--disable-gpu",
+        "--use-gl=swiftshader",  # software WebGL asked for, not left to Chromium's (deprecated) automatic fallback
+        "--enable-unsafe-swiftshader",
         "--disable-background-networking",
         "--disable-quic",
         "--no-first-run",
