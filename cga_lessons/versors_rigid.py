@@ -27,7 +27,10 @@ from .algebra import DegenerateGeometryError, InvalidInputError, Multivector
 from .algebra_versors import motor_tolerance
 from .model import G41, IE, E, euclidean, exact_constants
 
-__all__ = ["decompose_motor", "rotor_angle_axis", "motor_to_matrix", "matrix_to_motor", "RIGID_MATRIX_TOLERANCE"]
+__all__ = [
+    "decompose_motor", "rotor_angle_axis", "motor_to_matrix", "matrix_to_motor", "why_not_motor",
+    "RIGID_MATRIX_TOLERANCE",
+]
 
 #: ``matrix_to_motor`` accepts ``[[R, t], [0, 0, 0, 1]]`` when ``max |R^T R - I|`` and the deviation of the
 #: last row from (0, 0, 0, 1) are within this, and det R > 0.
@@ -51,7 +54,7 @@ def _check_mv(M, func: str, name: str) -> Multivector:
     return M
 
 
-def _why_not_motor(M: Multivector) -> str:
+def why_not_motor(M: Multivector) -> str:
     """Why a numeric M (single or batch) is not a motor, or '' when it is one (the test of ``rigid_motion``)."""
     odd = [G41.blade_names[b] for b in M.coeffs if G41.grades[b] % 2]
     if odd:
@@ -89,7 +92,7 @@ def _why_not_motor(M: Multivector) -> str:
 
 
 def _require_motor(M: Multivector, func: str, name: str) -> None:
-    why = _why_not_motor(M)
+    why = why_not_motor(M)
     if why:
         err = DegenerateGeometryError if "no rotor part" in why else InvalidInputError
         raise err(f"{func}: {name}: {why}")

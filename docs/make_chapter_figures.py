@@ -37,7 +37,7 @@ PICTURES = {
     "04_entity_properties": ("separations = np.logspace(", 0, "the accuracy of the point-pair extraction (2.131)"),
     "05_laser_line_maps": ("draw.map_figure(result.segments", 0, "the line map of the office and the trajectories"),
     "06_conformal_line_maps": ("draw.draw_point_pair_spheres([g, l]", 0, "the five sphere cases of (3.19)"),
-    "07_stereo_reconstruction": ("0.5 px: least squares", 0, "conformal entities from two views"),
+    "07_stereo_reconstruction": ("px: least squares", 0, "conformal entities from two views"),
     "08_fused_3d_map": ("vz.plot_fused_map(fused", 0, "laser walls and stereo entities in one frame"),
     "09_relocalization": ("draw.steps_figure(", 0, "the four steps of relocalization (figure 5.2)"),
     "10_exploration": ("base = cases.run_scenario()", 0, "seen, unseen and occupied nodes"),

@@ -625,11 +625,15 @@ def test_hough_explorer_runs_and_its_slider_moves_the_robot(lab_and_browser, hou
     assert browser.evaluate(OUTPUT_ERRORS) == [], browser.evaluate(OUTPUT_ERRORS)
     readout = f"{slider(target, 'heading')}.querySelector('.widget-readout').innerText"
     before = float(browser.evaluate(readout))
+    image = f"(i => i && i.src)({cell_node(target)}.querySelector('.widget-output img'))"
+    drawn = browser.wait_for(image, "the explorer's figure inside the widget", timeout=60)
     # move the heading slider one step with the keyboard: focus its handle, press the right arrow
     browser.click(f"{slider(target, 'heading')}.querySelector('.noUi-handle')", "the heading slider's handle")
     browser.key("ArrowRight")
     after = float(browser.wait_for(f"(r => r !== '{before:.2f}' && r)({readout})", "the heading slider to move"))
     assert after == pytest.approx(before + 5), (before, after)  # one step of 5 degrees
+    # the kernel has the new value once it has redrawn the figure (an idle kernel alone may not have seen it yet)
+    browser.wait_for(f"(s => s && s !== {json.dumps(drawn)} && s)({image})", "the figure redrawn", timeout=60)
     wait_kernel_idle(browser, CHAPTER)
     # the kernel's explorer turned with the slider: ask it in a new cell under the widget (b, Enter, type, Shift+Enter)
     browser.click(f"{cell_node(target)}.querySelector('.jp-InputPrompt')", "the widget cell's prompt")

@@ -29,13 +29,13 @@ ENTRIES = [
         label="4.3",
         title="M_lu: laser frame to unified frame",
         status="erratum",
-        implementation=f"{R}.laser_chain, {R}.laser_chain_as_printed",
+        implementation=f"{R}.laser_chain, {R}.laser_chain_as_printed, cga_lessons.kinematics_arms.geometer_chains",
         printed="M_lu = M_cl M_pos",
         correct="M_lu = T_pos M_cl R_pos (= M_pos M_lsr)",
         note="the printed order is right only for a laser not turned on the robot (M_cl is then a translation and "
         "commutes with T_pos), as in (3.17); with a mount yaw phi it translates by R_pos t_lsr + R_phi t_pos",
         test=f"{T}::test_eq_4_3_erratum_printed_order_needs_a_straight_laser, "
-        f"{T}::test_laser_chain_4_1_to_4_3_equals_homogeneous_matrices",
+        f"{T}::test_laser_chain_4_1_to_4_3_equals_homogeneous_matrices, tests/test_kinematics.py::test_geometer_chains_equal_todays_robot_code",
     ),
     Entry(
         label="4.4",
@@ -80,13 +80,13 @@ ENTRIES = [
         label="4.9",
         title="M_eu: stereo frame to unified frame",
         status="erratum",
-        implementation=f"{R}.stereo_chain, {R}.stereo_chain_as_printed",
+        implementation=f"{R}.stereo_chain, {R}.stereo_chain_as_printed, cga_lessons.kinematics_arms.geometer_chains",
         printed="M_eu = T_opt T_ep R_mpt",
         correct="M_eu = T_opt T_ep M_mpt",
         note="R_mpt is not defined; (4.8) defines the motor M_mpt for this place; its rotor alone (R_pt) drops "
         "the robot's position T_pos",
         test=f"{T}::test_eq_4_9_erratum_rotor_alone_loses_the_position, "
-        f"{T}::test_stereo_chain_4_5_to_4_9_equals_homogeneous_matrices",
+        f"{T}::test_stereo_chain_4_5_to_4_9_equals_homogeneous_matrices, tests/test_kinematics.py::test_geometer_chains_equal_todays_robot_code",
     ),
     Entry(
         label="4.10",
