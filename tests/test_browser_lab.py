@@ -36,9 +36,9 @@ import urllib.request
 from pathlib import Path
 
 import pytest
+from headless import CHROMIUM, require_chromium
 
 ROOT = Path(__file__).resolve().parent.parent
-CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
 CHAPTER = "notebooks/05_laser_line_maps.ipynb"
 WIDGET_CELL = "hough_explorer.widget()"  # the last cell run: the explorer's sliders
 
@@ -47,14 +47,6 @@ pytestmark = pytest.mark.skipif(
     bool(os.environ.get("CGA_LESSONS_SKIP_BROWSER")) and not os.environ.get("CGA_LESSONS_REQUIRE_CHROMIUM"),
     reason="CGA_LESSONS_SKIP_BROWSER is set",
 )
-
-
-def _require_chromium():
-    if not Path(CHROMIUM).exists():
-        why = "chromium is not installed (.ci/run installs Debian's package 'chromium')"
-        if os.environ.get("CGA_LESSONS_REQUIRE_CHROMIUM"):
-            pytest.fail(f"{why}, and CGA_LESSONS_REQUIRE_CHROMIUM is set")
-        pytest.skip(why)
 
 
 def course_command(readme: Path = ROOT / "README.md") -> list[str]:
@@ -532,7 +524,7 @@ def assert_healthy(lab, browser):
 # ============================================================ fixtures: one lab and one browser for the module
 @pytest.fixture(scope="module")
 def lab_and_browser(tmp_path_factory):
-    _require_chromium()
+    require_chromium()
     tmp = tmp_path_factory.mktemp("lab")
     lab = browser = None
     left = []

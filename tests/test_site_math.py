@@ -10,19 +10,16 @@ import json
 import os
 import re
 import shutil
-import signal
-import subprocess
-import tempfile
 from html.parser import HTMLParser
 from pathlib import Path
 
 import nbformat
 import numpy as np
 import pytest
+from headless import require_chromium, run_chromium
 
 from cga_lessons import cli, cli_export, site_math
 
-CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
 FORMULA = r"$\mathbf{e}_+$"
 
 
@@ -223,48 +220,14 @@ class VisibleText(HTMLParser):
 
 
 def chromium_dom_and_screenshot(url, png, size=(900, 700), timeout=90):
-    profile = tempfile.mkdtemp(prefix="chromium-profile-")
-    args = [
-        CHROMIUM,
-        "--headless",
-        "--no-sandbox",
-        "--disable-gpu",
-        "--disable-background-networking",
-        "--disable-quic",
-        "--no-first-run",
-        "--disable-component-update",
-        "--disable-sync",
-        "--host-resolver-rules=MAP * ~NOTFOUND",  # the page is read from disk: no host name resolves
-        f"--user-data-dir={profile}",
-        f"--window-size={size[0]},{size[1]}",
-        f"--screenshot={png}",
-        "--virtual-time-budget=60000",  # MathJax's timers run in virtual time: no wall time spent waiting
-        "--dump-dom",
-        url,
-    ]
-    proc = subprocess.Popen(
-        args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, stdin=subprocess.DEVNULL, start_new_session=True
-    )
-    try:
-        out, err = proc.communicate(timeout=timeout)
-    finally:
-        try:
-            os.killpg(proc.pid, signal.SIGKILL)  # any helper process of this chromium session
-        except ProcessLookupError:
-            pass
-        proc.wait()
-        shutil.rmtree(profile, ignore_errors=True)
-    return proc.returncode, out.decode(errors="replace"), err.decode(errors="replace")
-
+    """The page's final DOM and its picture; MathJax's timers run in virtual time, and no host name resolves."""
+    return run_chromium(url, screenshot=png, size=size, budget_ms=60000, dump_dom=True, timeout=timeout,
+                        extra=("--host-resolver-rules=MAP * ~NOTFOUND",))
 
 def test_formulas_are_typeset_offline_in_headless_chromium(nbdir, tmp_path, capsys):
     from PIL import Image
 
-    if not Path(CHROMIUM).exists():
-        why = "chromium is not installed (.ci/run installs Debian's package 'chromium')"
-        if os.environ.get("CGA_LESSONS_REQUIRE_CHROMIUM"):
-            pytest.fail(f"{why}, and CGA_LESSONS_REQUIRE_CHROMIUM is set")
-        pytest.skip(why)
+    require_chromium()
     site = tmp_path / "site"
     rc, _, err = run(["export-html", "--notebook-dir", nbdir, "--out-dir", site], capsys)
     assert rc == 0, err

@@ -10,11 +10,9 @@ opened in headless Chromium and the screenshot is inspected for the objects' col
 import ipaddress
 import os
 import shutil
-import signal
 import socket
 import subprocess
 import sys
-import tempfile
 import time
 import urllib.request
 from pathlib import Path
@@ -22,6 +20,7 @@ from pathlib import Path
 import matplotlib
 import numpy as np
 import pytest
+from headless import require_chromium, run_chromium
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -51,7 +50,6 @@ from cga_lessons.viz.scene3d import (  # noqa: E402
 )
 
 ROOT = Path(__file__).resolve().parent.parent
-CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
 needs_proc = pytest.mark.skipif(not Path("/proc/self/net/tcp").exists(), reason="needs Linux /proc")
 
 
@@ -465,48 +463,15 @@ def test_server_dies_with_a_jupyter_kernel_stopped_like_nbval():
 
 # ============================================================ HTML export opened in headless Chromium
 def chromium_screenshot(url, png_path, size=(640, 480), timeout=60):
-    profile = tempfile.mkdtemp(prefix="chromium-profile-")
-    args = [
-        CHROMIUM,
-        "--headless",
-        "--no-sandbox",
-        "--disable-gpu",
-        "--use-gl=swiftshader",  # software WebGL asked for, not left to Chromium's (deprecated) automatic fallback
-        "--enable-unsafe-swiftshader",
-        "--disable-background-networking",
-        "--disable-quic",
-        "--no-first-run",
-        "--disable-component-update",
-        "--disable-sync",
-        f"--user-data-dir={profile}",
-        f"--screenshot={png_path}",
-        f"--window-size={size[0]},{size[1]}",
-        "--virtual-time-budget=3000",  # virtual time: lets the page's scripts and websocket settle, costs no wall time
-        url,
-    ]
-    proc = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, start_new_session=True)
-    try:
-        _, err = proc.communicate(timeout=timeout)
-    finally:
-        try:
-            os.killpg(proc.pid, signal.SIGKILL)  # any helper process of this chromium session
-        except ProcessLookupError:
-            pass
-        proc.wait()
-        shutil.rmtree(profile, ignore_errors=True)
-    return proc.returncode, err.decode(errors="replace")
-
+    code, _, err = run_chromium(url, screenshot=png_path, size=size, timeout=timeout)
+    return code, err
 
 @pytest.mark.parametrize("source", ["export", "live"])
 def test_scene_draws_in_headless_chromium(tmp_path, source):
     """The exported file (offline) and the live viewer page (websocket to our loopback server) both draw."""
     from PIL import Image
 
-    if not Path(CHROMIUM).exists():
-        why = "chromium is not installed (.ci/run installs Debian's package 'chromium')"
-        if os.environ.get("CGA_LESSONS_REQUIRE_CHROMIUM"):
-            pytest.fail(f"{why}, and CGA_LESSONS_REQUIRE_CHROMIUM is set")
-        pytest.skip(why)
+    require_chromium()
     # a red ball on the viewer's left and a green box on its right (camera looks from +x, -y, above)
     prims = [
         Sphere("ball", (0.0, -0.6, 0.3), 0.25, (1.0, 0.0, 0.0)),

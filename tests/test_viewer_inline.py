@@ -12,9 +12,6 @@ import json
 import os
 import re
 import shutil
-import signal
-import subprocess
-import tempfile
 from html.parser import HTMLParser
 from pathlib import Path
 
@@ -22,6 +19,7 @@ import nbformat
 import numpy as np
 import pytest
 import umsgpack
+from headless import require_chromium, run_chromium
 
 from cga_lessons import cli
 from cga_lessons.algebra import InvalidInputError
@@ -181,59 +179,18 @@ def test_notebook_08_stores_one_embedded_scene():
 
 
 # ============================================================ drawn by a browser
-CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
-
-
-def _require_chromium():
-    if not Path(CHROMIUM).exists():
-        why = "chromium is not installed (.ci/run installs Debian's package 'chromium')"
-        if os.environ.get("CGA_LESSONS_REQUIRE_CHROMIUM"):
-            pytest.fail(f"{why}, and CGA_LESSONS_REQUIRE_CHROMIUM is set")
-        pytest.skip(why)
 
 
 def screenshot(url, png_path, size=(1000, 800), budget_ms=10000, timeout=90):
-    """Headless Chromium's picture of ``url`` (the flags of tests/test_viewer.py, and a few more).
+    """Headless Chromium's picture of ``url``, with a longer virtual-time budget than a plain page's.
 
-    WebGL is asked of SwiftShader explicitly (Chromium's silent fallback to it is deprecated and logs so), and the
-    virtual-time budget is longer: the page parses a megabyte of srcdoc before meshcat draws, and virtual time lets
-    it finish however busy the machine is, at no cost in wall time once the page is idle.
+    The page parses a megabyte of srcdoc before meshcat draws; virtual time lets it finish however busy the machine
+    is.  A sandboxed iframe gets a process of its own, whose frames a busy machine may not have drawn by the time the
+    page's virtual time is up: it is kept in the page's process.
     """
-    profile = tempfile.mkdtemp(prefix="chromium-profile-")
-    args = [
-        CHROMIUM,
-        "--headless",
-        "--no-sandbox",
-        "--disable-gpu",
-        "--use-gl=swiftshader",
-        "--enable-unsafe-swiftshader",
-        # a sandboxed iframe gets a process of its own, whose frames a busy machine may not have drawn by the time
-        # the page's virtual time is up: keep it in the page's process
-        "--disable-features=IsolateSandboxedIframes",
-        "--disable-site-isolation-trials",
-        "--disable-background-networking",
-        "--disable-quic",
-        "--no-first-run",
-        "--disable-component-update",
-        "--disable-sync",
-        f"--user-data-dir={profile}",
-        f"--screenshot={png_path}",
-        f"--window-size={size[0]},{size[1]}",
-        f"--virtual-time-budget={budget_ms}",
-        url,
-    ]
-    proc = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, start_new_session=True)
-    try:
-        _, err = proc.communicate(timeout=timeout)
-    finally:
-        try:
-            os.killpg(proc.pid, signal.SIGKILL)  # any helper process of this chromium session
-        except ProcessLookupError:
-            pass
-        proc.wait()
-        shutil.rmtree(profile, ignore_errors=True)
-    return proc.returncode, err.decode(errors="replace")
-
+    code, _, err = run_chromium(url, screenshot=png_path, size=size, budget_ms=budget_ms, timeout=timeout,
+                                extra=("--disable-features=IsolateSandboxedIframes", "--disable-site-isolation-trials"))
+    return code, err
 
 def _sky(img):
     """meshcat's background, a gradient from light to dark blue: blue well above red."""
@@ -249,7 +206,7 @@ def test_the_exported_page_draws_the_stored_scene(tmp_path, capsys, kept):
     """
     from PIL import Image
 
-    _require_chromium()
+    require_chromium()
     _, cell, _ = _stored_view()
     nb = nbformat.v4.new_notebook()
     code = nbformat.from_dict(cell)
