@@ -1,8 +1,9 @@
 """Monte Carlo localization against chapter 5's relocalizer, on the six CARMEN logs and the office scene.
 
-Run: ``python benchmarks/bench_mcl.py [log ...] [--seeds N] [--processes N] [--no-hough] [--out FILE]``
-(default: the six logs and ``office``, seeds 0 and 1, two processes).  Prints numbers only; nothing here is
-asserted, and nothing is written unless ``--out`` is given.
+Run: ``python benchmarks/bench_mcl.py [log ...] [--seeds N] [--processes N] [--no-hough] [--confirmations N]
+[--out FILE]`` (default: the six logs and ``office``, seeds 0 and 1, two processes, the filter's defaults;
+``--no-hough``: no chapter-5 proposals; ``--confirmations 1``: converged after one chapter-5 confirmation).
+Prints numbers only; nothing here is asserted, and nothing is written unless ``--out`` is given.
 
 Protocol, for each log (``data/carmen/<name>-corrected.log.gz``):
 
@@ -93,7 +94,7 @@ def run_sequence(ref, scans, truth, odo, config, seed, walls=None):
 
 def log_task(args):
     """One fold of one log for one seed: the outcomes of its held-out sequences."""
-    name, fold, seeds, hough = args
+    name, fold, seeds, options = args
     log = laser.read_carmen_log(data_path("carmen", f"{name}-corrected.log.gz"))
     block = np.arange(len(log)) // LENGTH
     held = np.unique(block[(block % FOLDS) == fold])
@@ -101,7 +102,7 @@ def log_task(args):
     if not held:
         return name, []
     ref = reference_from_log(log, np.flatnonzero(block % FOLDS != fold), max_range=LOG_RANGE)
-    config = MCLConfig(beam=BeamModel(max_range=LOG_RANGE), hough=hough)
+    config = MCLConfig(beam=BeamModel(max_range=LOG_RANGE), **options)
     out = []
     for seed in seeds:
         odo = laser.simulate_odometry(log.poses, np.random.default_rng(seed))
@@ -113,9 +114,9 @@ def log_task(args):
 
 
 def office_task(args):
-    _, _, seeds, hough = args
+    _, _, seeds, options = args
     scene = laser.load_scene("office")
-    config = MCLConfig(beam=BeamModel(max_range=SCENE_RANGE), hough=hough)
+    config = MCLConfig(beam=BeamModel(max_range=SCENE_RANGE), **options)
     out = []
     for seed in seeds:
         rng = np.random.default_rng(seed)
@@ -187,11 +188,12 @@ def summarise(rows):
     )
 
 
-def main(names=None, seeds=(0, 1), processes=2, hough=True, out=None):
+def main(names=None, seeds=(0, 1), processes=2, out=None, **options):
+    """Run the benchmark on ``names`` (logs and/or ``office``) and print the table; ``options``: MCLConfig fields."""
     names = list(names or (*LOGS, "office"))
-    jobs = [(n, f, tuple(seeds), hough) for n in names if n != "office" for f in range(FOLDS)]
+    jobs = [(n, f, tuple(seeds), options) for n in names if n != "office" for f in range(FOLDS)]
     if "office" in names:
-        jobs.append(("office", 0, tuple(seeds), hough))
+        jobs.append(("office", 0, tuple(seeds), options))
     with Pool(processes) as pool:
         done = pool.map(task, jobs, chunksize=1)
     rows = {n: [] for n in names}
@@ -199,7 +201,7 @@ def main(names=None, seeds=(0, 1), processes=2, hough=True, out=None):
         rows[name] += res
     print(
         f"\nMonte Carlo localization, sequences of {LENGTH} scans from global initialisation, seeds {list(seeds)}, "
-        f"Hough proposals {'on' if hough else 'off'}"
+        f"settings {options or 'default'}"
     )
     print(
         "located = converged and within 10 cm / 2 deg of the truth after k scans; wrong = sequences with a "
@@ -250,7 +252,8 @@ def main(names=None, seeds=(0, 1), processes=2, hough=True, out=None):
     print(f"  ms per update, 2,000 particles      {med:5.1f}   (target <= 20 ms)  {'MET' if med <= 20 else 'NOT MET'}")
     if out is not None:
         Path(out).write_text(
-            json.dumps(dict(seeds=list(seeds), hough=hough, logs=table, timing_ms=med), indent=1, default=float) + "\n"
+            json.dumps(dict(seeds=list(seeds), options=options, logs=table, timing_ms=med), indent=1, default=float)
+            + "\n"
         )
     return table
 
@@ -261,12 +264,13 @@ def _option(flag, default):
 
 if __name__ == "__main__":
     argv = sys.argv[1:]
-    skip = {i + 1 for i, a in enumerate(argv) if a in ("--seeds", "--processes", "--out")}
+    skip = {i + 1 for i, a in enumerate(argv) if a in ("--seeds", "--processes", "--out", "--confirmations")}
     names = [a for i, a in enumerate(argv) if not a.startswith("--") and i not in skip]
     main(
         names or None,
         seeds=range(_option("--seeds", 2)),
         processes=_option("--processes", 2),
-        hough="--no-hough" not in argv,
+        **({"hough": False} if "--no-hough" in argv else {}),
+        **({"confirmations": _option("--confirmations", 2)} if "--confirmations" in argv else {}),
         out=_option("--out", "") or None,
     )

@@ -68,11 +68,15 @@ from .relocalization_geometry import (
     pose_error,
     prepare_map,
 )
+from .relocalization_mcl import MCLConfig, MCLEstimate, MonteCarloLocalizer
 from .relocalization_search import pose_hypotheses, propose_rotations
 from .relocalization_thesis import thesis_relocalization
 from .relocalization_verify import Candidate, decide, match_lines, pose_covariance, screen_hypotheses, verify_hypotheses
 
 __all__ = [
+    "MonteCarloLocalizer",
+    "MCLConfig",
+    "MCLEstimate",
     "RelocParams",
     "Candidate",
     "Relocalization",

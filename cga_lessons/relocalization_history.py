@@ -10,8 +10,8 @@ carry those scans in their number; a newcomer has not lived through them.
 :class:`ScanHistory` remembers the last few scans (the beams the likelihood
 field scores) and the odometry increments between them, and scores a pose by
 the scans it would have taken, carried back through the increments (no drift
-drawn: the increments of a few metres of driving are good to a few centimetres
-and a degree).  :func:`merge` gives the newcomers their share of the weight in
+drawn: by chapter 3's drift model, 3 m of driving are good to about 4 cm and
+one or two degrees).  :func:`merge` gives the newcomers their share of the weight in
 proportion to how well each explains those scans against the particles kept.
 """
 

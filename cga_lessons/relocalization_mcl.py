@@ -248,9 +248,12 @@ class MonteCarloLocalizer:
         self.move(u)
         self.history.moved(u)
         tracking = previous is not None and previous.anchored
+        suspicious = self.random_share() > 0
         hough = None
-        if cfg.hough and (not tracking or self.random_share() > 0):
-            hough = self._propose(scan, tracking)
+        if cfg.hough and (not tracking or suspicious):
+            # a mode chapter 5 has confirmed once only waits for its next confirmation: no newcomers
+            inject = suspicious or previous is None or previous.confirmations == 0
+            hough = self._propose(scan, tracking, inject)
         log_l, per_beam = self.field.log_likelihood(self.particles, beams)
         prior = normalise(self.log_w)
         w_avg = float(np.sum(prior * np.exp(per_beam)))
@@ -280,15 +283,17 @@ class MonteCarloLocalizer:
             return 0.0
         return float(min(share, self.config.max_random_fraction))
 
-    def _propose(self, scan, tracking: bool):
-        """Chapter 5's answer on the scan, as a proposal (see :meth:`inject`): around its pose where it is
-        confident; while the filter tracks no place, around its tied candidates (at most
+    def _propose(self, scan, tracking: bool, inject: bool = True):
+        """Chapter 5's answer on the scan, as a proposal (see :meth:`inject`, unless not ``inject``): around
+        its pose where it is confident; while the filter tracks no place, around its tied candidates (at most
         ``proposal_candidates``) where it is ambiguous."""
         from .relocalization import RelocParams, relocalize
         from .relocalization_verify import tie_bar
 
         cfg = self.config
         r = relocalize(self.reference, scan=scan, max_range=cfg.beam.max_range)
+        if not inject:
+            return r
         if r.status == "ok":
             self.inject([r.pose], cfg.proposal_fraction)
         elif r.status == "ambiguous" and cfg.proposal_candidates > 0 and not tracking:
