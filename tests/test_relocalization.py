@@ -35,7 +35,7 @@ from cga_lessons.relocalization_thesis import (
     translate_entities,
     translation_from_lines,
 )
-from cga_lessons.relocalization_verify import refine_pose_points, score_pose
+from cga_lessons.relocalization_verify import NO_RETURN_WEIGHT, refine_pose_points, score_pose
 
 
 def _rot(t):
@@ -211,12 +211,13 @@ def test_score_counts_beams_that_cross_walls():
     r = np.full(11, 2.0) / np.cos(a)  # all on the wall at x = 2
     r[:3] = np.inf  # three beams saw nothing: impossible with the wall 2 m ahead and a 5 m laser
     obs = Observation.from_scan(r, a, 5.0)
+    w = NO_RETURN_WEIGHT  # a beam without return counts this much of a violation (a returned one counts 1)
     score, inl, vio = score_pose(M, obs, [0.0, 0.0, 0.0], 0.05, 0.08)
-    assert (inl, vio) == (8, 3) and score == pytest.approx((8 - 3) / 8)
+    assert (inl, vio) == (8, 3 * w) and score == pytest.approx((8 - 3 * w) / 8)
     # moved 0.5 m back, the returned beams end before the wall: not inliers, not violations
-    assert score_pose(M, obs, [-0.5, 0.0, 0.0], 0.05, 0.08)[1:] == (0, 3)
+    assert score_pose(M, obs, [-0.5, 0.0, 0.0], 0.05, 0.08)[1:] == (0, 3 * w)
     # 0.5 m forward, every beam would pass through the wall
-    assert score_pose(M, obs, [0.5, 0.0, 0.0], 0.05, 0.08)[1:] == (0, 11)
+    assert score_pose(M, obs, [0.5, 0.0, 0.0], 0.05, 0.08)[1:] == (0, 8 + 3 * w)
 
 
 def test_refine_pose_points_converges_to_the_truth(hall):
