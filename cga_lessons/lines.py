@@ -348,6 +348,11 @@ def split_points(points, xi: float) -> list[tuple[int, int]]:
         raise InvalidInputError(f"split_points: points must have shape (n, 2), got {p.shape}")
     if not xi > 0:
         raise InvalidInputError(f"split_points: xi must be > 0, got {xi}")
+    return _split(p, xi)
+
+
+def _split(p, xi):
+    """:func:`split_points` without the input checks (the extractor calls it on every run of every scan)."""
     out = []
     stack = [(0, len(p) - 1)] if len(p) else []
     while stack:
@@ -562,9 +567,10 @@ def extract_segments(
     dphi = float(np.median(np.diff(a)))
 
     groups = []
+    moments = _prefix_moments(pts)
     for i0, i1 in _runs(pts, index, r, dphi, max_gap, jump_ratio):
-        pieces = [(i0 + p, i0 + q) for p, q in split_points(pts[i0 : i1 + 1], xi)]
-        groups.append(_merge(pts, pieces, xi, phi_xi, min_points))
+        pieces = [(i0 + p, i0 + q) for p, q in _split(pts[i0 : i1 + 1], xi)]
+        groups.append(_merge(moments, pieces, xi, phi_xi, min_points))
 
     out = []
     for run in groups:
@@ -583,31 +589,51 @@ def extract_segments(
     return out
 
 
-def _merge(pts, pieces, xi, phi_xi, min_points):
+def _prefix_moments(pts):
+    """Running sums ``(n + 1, 5)`` of x, y, x^2, xy, y^2 over ordered points (row 0 is zeros).
+
+    The moments of any range ``i..j`` are then one subtraction, so the merge step fits a line to a range in
+    constant time instead of touching its points again.
+    """
+    x, y = pts[:, 0], pts[:, 1]
+    out = np.zeros((len(pts) + 1, 5))
+    np.cumsum(np.column_stack([x, y, x * x, x * y, y * y]), axis=0, out=out[1:])
+    return out
+
+
+def _range_line(moments, i, j):
+    """Inclination in [0, pi) and RMS perpendicular residual of the least-squares line of points ``i..j``.
+
+    From the range's scatter matrix: the direction is its principal axis, and the mean squared
+    perpendicular distance is its smaller eigenvalue over the number of points (what :func:`fit_line`'s
+    residuals give, without the points).
+    """
+    n = j - i + 1
+    sx, sy, sxx, sxy, syy = moments[j + 1] - moments[i]
+    cx, cy = sx / n, sy / n
+    a, b, c = sxx - n * cx * cx, sxy - n * cx * cy, syy - n * cy * cy
+    small = 0.5 * (a + c - np.hypot(a - c, 2.0 * b))
+    return (0.5 * np.arctan2(2.0 * b, a - c)) % np.pi, np.sqrt(max(small, 0.0) / n)
+
+
+def _merge(moments, pieces, xi, phi_xi, min_points):
     """Merge neighbouring pieces of one run whose inclinations differ by less than phi_xi (and fit one line).
 
-    A piece too small to be a segment has no reliable inclination: it joins a
-    neighbour whenever the points of both fit one line.
+    ``moments`` are the scan's running sums (:func:`_prefix_moments`).  A piece too small to be a segment
+    has no reliable inclination: it joins a neighbour whenever the points of both fit one line.
     """
     if len(pieces) < 2:
         return pieces
-
-    def inclination(i, j):
-        _, d, _ = fit_line(pts[i : j + 1])
-        return np.arctan2(d[1], d[0]) % np.pi
-
     merged = [pieces[0]]
     for p in pieces[1:]:
         q = merged[-1]
         small = min(q[1] - q[0], p[1] - p[0]) + 1 < min_points
         ok = small
         if not small:
-            diff = abs(inclination(*q) - inclination(*p))
+            diff = abs(_range_line(moments, *q)[0] - _range_line(moments, *p)[0])
             ok = min(diff, np.pi - diff) < phi_xi
-        if ok:
-            _, _, res = fit_line(pts[q[0] : p[1] + 1])
-            if np.sqrt(np.mean(res**2)) < xi / 2:
-                merged[-1] = (q[0], p[1])
-                continue
+        if ok and _range_line(moments, q[0], p[1])[1] < xi / 2:
+            merged[-1] = (q[0], p[1])
+            continue
         merged.append(p)
     return merged

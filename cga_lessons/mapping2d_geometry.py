@@ -93,21 +93,30 @@ class SegmentSet:
 
 
 def _transform_sums(sums, R, t):
-    """Point sums ``(n, 6)`` moved by ``x -> R x + t``; ``R`` (2, 2) or (n, 2, 2), ``t`` (2,) or (n, 2)."""
-    R = np.broadcast_to(R, (len(sums), 2, 2))
-    t = np.broadcast_to(t, (len(sums), 2))
-    n = sums[:, 0]
-    s1 = sums[:, 1:3]
-    s2 = np.stack([np.stack([sums[:, 3], sums[:, 4]], -1), np.stack([sums[:, 4], sums[:, 5]], -1)], -2)
-    rs1 = np.einsum("nij,nj->ni", R, s1)
-    s1n = rs1 + n[:, None] * t
-    s2n = (
-        np.einsum("nij,njk,nlk->nil", R, s2, R)
-        + rs1[:, :, None] * t[:, None, :]
-        + t[:, :, None] * rs1[:, None, :]
-        + n[:, None, None] * t[:, :, None] * t[:, None, :]
-    )
-    return np.column_stack([n, s1n, s2n[:, 0, 0], s2n[:, 0, 1], s2n[:, 1, 1]])
+    """Point sums ``(n, 6)`` moved by ``x -> R x + t``; ``R`` (2, 2) or (n, 2, 2), ``t`` (2,) or (n, 2).
+
+    The sums are ``(n, sx, sy, sxx, sxy, syy)``; written out component by component (the map builder calls
+    this thousands of times on a few dozen rows, where array-building overhead would dominate).
+    """
+    R = np.asarray(R, float)
+    t = np.asarray(t, float)
+    r00, r01, r10, r11 = R[..., 0, 0], R[..., 0, 1], R[..., 1, 0], R[..., 1, 1]
+    tx, ty = t[..., 0], t[..., 1]
+    n, sx, sy, sxx, sxy, syy = sums.T
+    ax = r00 * sx + r01 * sy  # R s1
+    ay = r10 * sx + r11 * sy
+    # R S2 R^T, S2 = [[sxx, sxy], [sxy, syy]]
+    m00 = r00 * (r00 * sxx + r01 * sxy) + r01 * (r00 * sxy + r01 * syy)
+    m01 = r00 * (r10 * sxx + r11 * sxy) + r01 * (r10 * sxy + r11 * syy)
+    m11 = r10 * (r10 * sxx + r11 * sxy) + r11 * (r10 * sxy + r11 * syy)
+    out = np.empty_like(sums, dtype=float)
+    out[:, 0] = n
+    out[:, 1] = ax + n * tx
+    out[:, 2] = ay + n * ty
+    out[:, 3] = m00 + 2 * ax * tx + n * tx * tx
+    out[:, 4] = m01 + ax * ty + tx * ay + n * tx * ty
+    out[:, 5] = m11 + 2 * ay * ty + n * ty * ty
+    return out
 
 
 def _rotations(theta):
@@ -152,11 +161,12 @@ class PlainGeometry:
 
     def hough(self, segs: SegmentSet, centre):
         """Oriented Hough coordinates ``(rho, theta)`` seen from ``centre`` (3.3), arrays (n,)."""
-        d = segs.end - segs.start
-        d = d / np.hypot(*d.T)[:, None]
-        n = np.column_stack([d[:, 1], -d[:, 0]])
-        rho = np.einsum("ij,ij->i", n, segs.start - np.asarray(centre, float))
-        theta = np.mod(np.arctan2(n[:, 1], n[:, 0]), TWO_PI)
+        dx, dy = (segs.end - segs.start).T
+        length = np.hypot(dx, dy)
+        nx, ny = dy / length, -dx / length  # the normal: the direction turned by -90 degrees
+        cx, cy = np.asarray(centre, float)
+        rho = nx * (segs.start[:, 0] - cx) + ny * (segs.start[:, 1] - cy)
+        theta = np.mod(np.arctan2(ny, nx), TWO_PI)
         return rho, theta
 
     def overlap(self, G: SegmentSet, L: SegmentSet, margin):
@@ -301,7 +311,8 @@ def correspondences(G: SegmentSet, L: SegmentSet, centre, params, geometry=None)
     has = np.isfinite(Mm[np.arange(len(G)), best])
     C[has] = best[has]
     # conflict rule: a local line goes to one global line only
-    for k in np.unique(C[C >= 0]):
+    taken = np.bincount(C[has], minlength=len(L))
+    for k in np.flatnonzero(taken > 1):
         rivals = np.flatnonzero(C == k)
         if len(rivals) > 1:
             key = np.lexsort((np.abs(drho[rivals, k]), np.round(np.abs(dth[rivals, k]), 12)))
