@@ -77,6 +77,7 @@ against the truth); this module re-exports what callers use.
 
 from __future__ import annotations
 
+from collections import deque
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -84,6 +85,7 @@ import numpy as np
 from .algebra import InvalidInputError
 from .laser import compose, relative, scan_points
 from .lines import extract_segments
+from .mapping2d_adjust import adjust_built_map
 from .mapping2d_builder import MapBuilder
 from .mapping2d_corrections import (
     line_variances,
@@ -253,6 +255,16 @@ class MapParams:
     graph_sigma_xy, graph_sigma_theta : float
         Model error (m, rad) added to each corrected step and revisit in the
         pose graph.
+    learn_lag : int
+        Besides each scan on the one before, every ``learn_lag``-th scan is
+        registered on the scan ``learn_lag`` before it to learn how good the
+        odometry is (its error grows with the steps, the registration's does
+        not).  Four: scans a few metres apart still share most of their
+        walls on the bundled logs (steps of about a metre); 1 turns it off.
+    adjust : bool
+        When the last scan is in, estimate all poses and lines together from
+        every observation and odometry step
+        (:func:`~cga_lessons.mapping2d_adjust.adjust_map`).
     """
 
     delta: float = 0.3
@@ -298,6 +310,8 @@ class MapParams:
     loop_ambiguity: float = 0.8
     graph_sigma_xy: float = 0.01
     graph_sigma_theta: float = 0.005
+    adjust: bool = True
+    learn_lag: int = 4
 
 
 @dataclass
@@ -348,6 +362,8 @@ def _warm_up(corrector, scans, odometry, ext, params):
         if len(local[k]) and len(local[k - 1]):
             inc = relative(odometry[k - 1], odometry[k])
             corrector.learn_odometry(local[k - 1], local[k], inc, odometry_covariance(inc, params))
+        if params.learn_lag > 1 and k >= params.learn_lag and k % params.learn_lag == 0:
+            corrector.learn_lagged(local[k - params.learn_lag], local[k], odometry, k - params.learn_lag, k)
     return local
 
 
@@ -413,6 +429,8 @@ def build_map(
         raise InvalidInputError(f"build_map: unknown parameter(s) {sorted(bad)}")
     if overrides:
         params = MapParams(**{**params.__dict__, **overrides})
+    if not (isinstance(params.learn_lag, (int, np.integer)) and params.learn_lag >= 1):
+        raise InvalidInputError(f"build_map: learn_lag must be an integer >= 1, got {params.learn_lag!r}")
     if not max_range > 0:
         raise InvalidInputError(f"build_map: max_range must be > 0, got {max_range}")
     if method == "plain":
@@ -441,7 +459,9 @@ def build_map(
     history = []
     P = np.zeros((3, 3))
     local = _warm_up(b.corrector, scans, odometry, ext, params)
+    increments, step_covs = np.zeros((max(T - 1, 0), 3)), np.zeros((max(T - 1, 0), 3, 3))
     previous = SegmentSet.empty()
+    recent = deque(local[-(params.learn_lag + 1) :], maxlen=params.learn_lag + 1)  # the last scans' segments
     for k, (ranges, angles) in enumerate(scans):
         if k == 0:
             pose = odometry[0].copy()
@@ -459,8 +479,13 @@ def build_map(
         if k >= len(local) and len(L) and len(previous):
             b.corrector.learn_odometry(previous, L, inc, Q)  # how good the odometry is, scan against scan
         previous = L
+        if k >= len(local):
+            recent.append(L)
+            if params.learn_lag > 1 and k % params.learn_lag == 0 and len(recent) == params.learn_lag + 1:
+                b.corrector.learn_lagged(recent[0], L, odometry, k - params.learn_lag, k)
         if k > 0:
             P = carried + b.corrector.odometry_scale * Q  # the step scaled by what the data say of the odometry
+            increments[k - 1], step_covs[k - 1] = inc, b.corrector.odometry_scale * Q
         pts = np.zeros((0, 2))
         if len(L):
             r = np.asarray(ranges, float)
@@ -483,6 +508,8 @@ def build_map(
         if progress is not None:
             progress(k + 1, T)
     b.remove_duplicates()
+    if params.adjust and T > 1:
+        poses = adjust_built_map(b, poses, increments, step_covs).poses
     segments = b.G.to_segments()
     if np.any(shift):
         back = np.array([shift[0], shift[1], 0.0])

@@ -29,7 +29,7 @@ import numpy as np
 
 from .laser import wrap_angle
 from .lines import diff_theta
-from .mapping2d_corrections import line_variances
+from .mapping2d_corrections import chain_covariance, line_variances
 from .mapping2d_estimation import Correction, Measurements, estimate_correction
 from .mapping2d_geometry import SegmentSet, correspondences
 from .mapping2d_noise import InnovationModel, NoiseFloors, scan_range_noise
@@ -267,6 +267,20 @@ class ScanCorrector:
         if est.rank == 0 or not est.valid:
             return np.array(predicted, float), prior, False
         return reg.pose, reg.cov, True
+
+    def learn_lagged(self, earlier: SegmentSet, L: SegmentSet, odometry, first: int, last: int):
+        """Register scan ``last``'s segments ``L`` on scan ``first``'s (``earlier``) and learn from the innovation.
+
+        The odometry's increment over the steps between them and its covariance are carried through the
+        steps (:func:`~cga_lessons.mapping2d_corrections.chain_covariance`).  The odometry's error over
+        ``last - first`` steps adds up over them; the registration's does not (one registration, whatever
+        the lag).  With step-by-step innovations alone the two are confounded when the steps are all of
+        about one length (the bundled logs: about one metre).
+        """
+        if not (len(earlier) and len(L)):
+            return None
+        inc, cov = chain_covariance(odometry, first, last, self.params)
+        return self.learn_odometry(earlier, L, inc, cov)
 
     def learn_odometry(self, previous: SegmentSet, L: SegmentSet, increment, step_cov):
         """Register scan ``L`` on the scan before it (``previous``) alone and learn from the innovation.

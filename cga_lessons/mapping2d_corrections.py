@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from .algebra import InvalidInputError
-from .laser import OdometryModel
+from .laser import OdometryModel, relative
 from .mapping2d_geometry import SegmentSet
 
 __all__ = [
@@ -23,6 +23,7 @@ __all__ = [
     "pose_correction",
     "line_variances",
     "odometry_covariance",
+    "chain_covariance",
 ]
 
 
@@ -221,3 +222,30 @@ def odometry_covariance(increment, params) -> np.ndarray:
     """
     model = OdometryModel(params.odo_sigma_xy, params.odo_sigma_heading, params.odo_sigma_turn, params.odo_heading_bias)
     return model.step_covariance(increment) + np.diag([1e-8, 1e-8, 1e-10])
+
+
+def chain_covariance(odometry, first, last, params) -> tuple[np.ndarray, np.ndarray]:
+    """The odometry's increment from pose ``first`` to pose ``last`` and its covariance under the drift model.
+
+    The steps' covariances (:func:`odometry_covariance`) are carried through the composition
+    ``u = u_1 o u_2 o ...``: with ``u' = u o s``, ``cov(u') = J_u cov(u) J_u' + J_s cov(s) J_s'`` (the
+    Jacobians of the planar composition).  Over ``k`` steps the odometry's error grows about ``k``-fold in
+    variance, while a registration of the two scans has the error of one: the two are told apart by it.
+
+    Returns
+    -------
+    increment : ndarray, shape (3,)
+    cov : ndarray, shape (3, 3)
+    """
+    odo = np.asarray(odometry, float)
+    u = np.zeros(3)
+    cov = np.zeros((3, 3))
+    for k in range(int(first) + 1, int(last) + 1):
+        s = relative(odo[k - 1], odo[k])
+        c, sn = np.cos(u[2]), np.sin(u[2])
+        Ju = np.array([[1.0, 0.0, -sn * s[0] - c * s[1]], [0.0, 1.0, c * s[0] - sn * s[1]], [0.0, 0.0, 1.0]])
+        Js = np.array([[c, -sn, 0.0], [sn, c, 0.0], [0.0, 0.0, 1.0]])
+        cov = Ju @ cov @ Ju.T + Js @ odometry_covariance(s, params) @ Js.T
+        u = np.array([u[0] + c * s[0] - sn * s[1], u[1] + sn * s[0] + c * s[1], u[2] + s[2]])
+    u[2] = np.mod(u[2] + np.pi, 2 * np.pi) - np.pi
+    return u, cov

@@ -286,7 +286,8 @@ def map_from_log(log, indices, *, max_range: float = 8.0) -> list:
 
     idx = np.asarray(indices, int)
     res = build_map(
-        [log.scans[i] for i in idx], log.poses[idx], max_range=max_range, t_xi=0.0, theta_max=0.0, loop_closure=False
+        [log.scans[i] for i in idx], log.poses[idx], max_range=max_range, t_xi=0.0, theta_max=0.0, loop_closure=False,
+        adjust=False,
     )
     if not np.allclose(res.poses, log.poses[idx], atol=1e-6):
         raise InvalidInputError("map_from_log: build_map moved the logged poses; the map would not match the truth")

@@ -160,8 +160,10 @@ def test_the_corrector_corrects_a_drifting_odometry_on_a_real_log(aces):
     n = 160
     truth = aces.poses[:n]
     odo = simulate_odometry(truth, np.random.default_rng(0))
-    res = build_map(aces.scans[:n], odo, max_range=8.0)
+    res = build_map(aces.scans[:n], odo, max_range=8.0, adjust=False)  # the scan-by-scan corrector alone
     assert pose_errors(odo, truth)[0] > 10 * pose_errors(res.poses, truth)[0]
+    # (the final adjustment of all poses and lines, mapping2d_adjust, takes these 160 scans from 0.62 m to
+    # 0.89 m: no revisit ties the corridors together yet; on the whole logs it helps: tests/test_mapping2d_adjust.py)
 
 
 def test_one_false_revisit_does_not_bend_the_map(monkeypatch):
