@@ -45,7 +45,9 @@ ROOM = np.array([[[0, 0], [6, 0]], [[6, 0], [6, 4]], [[6, 4], [0, 4]], [[0, 4], 
 def _map_lines(walls, rng, jitter=0.03):
     moved = walls + rng.normal(size=walls.shape) * jitter  # the builder's lines are a start, not the truth
     x, y = moved[:, :, 0], moved[:, :, 1]
-    sums = np.column_stack([np.full(len(walls), 2.0), x.sum(1), y.sum(1), (x * x).sum(1), (x * y).sum(1), (y * y).sum(1)])
+    sums = np.column_stack(
+        [np.full(len(walls), 2.0), x.sum(1), y.sum(1), (x * x).sum(1), (x * y).sum(1), (y * y).sum(1)]
+    )
     return SegmentSet(moved[:, 0].copy(), moved[:, 1].copy(), sums, np.zeros((len(walls), 2), int))
 
 
@@ -65,7 +67,8 @@ def test_real_edges_fix_the_position_along_a_corridor():
     corridor = np.array([[[0, 0], [8, 0]], [[8, 2], [0, 2]]], float)
     rng = np.random.default_rng(1)
     T = 8
-    truth = np.column_stack([np.linspace(2, 6, T), np.full(T, 1.0) + rng.normal(size=T) * 0.1, rng.normal(size=T) * 0.2])
+    across = np.full(T, 1.0) + rng.normal(size=T) * 0.1
+    truth = np.column_stack([np.linspace(2, 6, T), across, rng.normal(size=T) * 0.2])
     start = truth + np.array([0.3, 0.02, 0.01])  # every pose 30 cm along the corridor
     start[0] = truth[0]
     inc = relative(truth[:-1], truth[1:]) + rng.normal(size=(T - 1, 3)) * [0.2, 0.0, 0.0]  # bad along the corridor
