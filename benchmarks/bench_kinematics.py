@@ -4,6 +4,7 @@ Run by hand from the repository root::
 
     python benchmarks/bench_kinematics.py            # N = 10,000 configurations, 30 rounds
     python benchmarks/bench_kinematics.py --quick    # fewer rounds
+    python benchmarks/bench_kinematics.py --out benchmarks/results/bench_kinematics.json  # also the numbers as JSON
 
 Cases (every one batched over the N configurations, none loops over them in Python):
 
@@ -28,6 +29,7 @@ best time of the case over the best time of the floor.  Ratios, not absolute tim
 
 from __future__ import annotations
 
+import json
 import os
 import pathlib
 import sys
@@ -162,7 +164,7 @@ def run_rounds(cases: dict, rounds: int, floor: str) -> dict:
                    float(np.min(t) / base.min())) for name, t in times.items()}  # fmt: skip
 
 
-def main(n: int = 10_000, rounds: int = 30, seed: int = 0):
+def main(n: int = 10_000, rounds: int = 30, seed: int = 0, out=None):
     rng = np.random.default_rng(seed)
     q = rng.uniform(-np.pi, np.pi, (n, 6))
     ch = ur5()
@@ -204,8 +206,19 @@ def main(n: int = 10_000, rounds: int = 30, seed: int = 0):
     print(f"\nmotor chain (4x4 out) / NumPy 4x4 floor: {res['kinematics.forward_matrix (motors, then 4x4)'][2]:.2f}x"
           f"; motor numbers only: {res['kinematics.forward_coefficients (motor numbers)'][2]:.2f}x"
           " (target: within 2x)")  # fmt: skip
+    if out is not None:
+        cols = ("median_ms", "best_ms", "x_floor", "best_x_floor")
+        record = dict(arm="UR5", joints=ch.n, configurations=n, rounds=rounds, seed=seed, floor=floor_name,
+                      max_deviation=checks, cases={name: dict(zip(cols, (r[0] * 1e3, r[1] * 1e3, r[2], r[3])))
+                                                   for name, r in res.items()},
+                      multivector_product_ms=t_mv * 1e3, multivector_x_floor=t_mv / res[floor_name][0])  # fmt: skip
+        path = pathlib.Path(out)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(json.dumps(record, indent=1) + "\n")
+        print(f"\nwrote {path}")
 
 
 if __name__ == "__main__":
     quick = "--quick" in sys.argv[1:]
-    main(rounds=8 if quick else 30)
+    out = sys.argv[sys.argv.index("--out") + 1] if "--out" in sys.argv[1:-1] else None
+    main(rounds=8 if quick else 30, out=out)

@@ -1,7 +1,8 @@
 """Automatic registration of conformal entities (future work 6.2.2): quality and speed of the detector.
 
-Run: ``python benchmarks/bench_stereo_detect.py`` (add ``--quick`` for 3 seeds instead of 10 and fewer levels).
-Prints numbers only; nothing here is asserted.
+Run: ``python benchmarks/bench_stereo_detect.py`` (add ``--quick`` for 3 seeds instead of 10 and fewer levels;
+``--out FILE`` also writes every table as JSON, e.g. ``benchmarks/results/bench_stereo_detect.json``, which
+notebook 11 reads).  Prints numbers only; nothing here is asserted.
 
 1. Precision / recall per kind over seeds and noise levels: scenes of 3 planes, 3 spheres, 3 circles and
    3 lines with 300 clutter points (:mod:`cga_lessons.stereo_detect_scenes`), seen through the simulated
@@ -14,8 +15,10 @@ Prints numbers only; nothing here is asserted.
 
 from __future__ import annotations
 
+import json
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -26,6 +29,7 @@ from cga_lessons.stereo_rig import load_rig
 QUICK = "--quick" in sys.argv
 SEEDS = range(3) if QUICK else range(10)
 KINDS = ss.KINDS
+RESULTS = {"quick": QUICK, "seeds": len(SEEDS), "kinds": list(KINDS), "sections": [], "motorcycle": None}
 
 
 def run(make, seeds, noise_of=lambda scene: scene.noise, config=None):
@@ -50,10 +54,14 @@ def row(label, tot, t, n):
         tp, det, tru = tot[k]
         cells.append(f"{tp / max(det, 1):5.2f} {tp / max(tru, 1):5.2f}")
     print(f"{label:<28}" + "  ".join(cells) + f"   {n:6.0f} {t:6.2f}")
+    if RESULTS["sections"]:
+        kinds = {k: dict(zip(("tp", "detected", "truth"), map(int, tot[k]))) for k in KINDS}
+        RESULTS["sections"][-1]["rows"].append(dict(label=label, kinds=kinds, points=n, seconds=t))
 
 
 def header(title):
     print(f"\n{title}")
+    RESULTS["sections"].append(dict(title=title, rows=[]))
     print(f"{'':<28}" + "  ".join(f"{k:^11}" for k in KINDS) + "   points   time")
     print(f"{'':<28}" + "  ".join(f"{'prec':>5} {'rec':>5}" for _ in KINDS) + "        (s/cloud)")
 
@@ -108,6 +116,7 @@ def motorcycle(step=6, sigma_px=0.5):
     print(f"\n4. Middlebury motorcycle, every {step}th pixel: {len(X)} points (left camera frame: x right, y down, "
           f"z forward), {sigma_px} px disparity noise as the sensor fact")  # fmt: skip
     floor = None
+    RESULTS["motorcycle"] = dict(step=step, sigma_px=sigma_px, points=len(X), runs=[])
     for label, cfg in (("planes only", sd.DetectConfig(kinds=("plane",))), ("all kinds", sd.DetectConfig())):
         t0 = time.perf_counter()
         ents = sd.detect_entities(X, np.random.default_rng(0), cfg, cov)
@@ -115,6 +124,9 @@ def motorcycle(step=6, sigma_px=0.5):
         found = {k: sum(e.kind == k for e in ents) for k in KINDS}
         cover = sum(len(e.inliers) for e in ents) / len(X)
         print(f"  {label}: {dt:.1f} s, {len(ents)} entities {found}, {cover:.0%} of the points on one")
+        RESULTS["motorcycle"]["runs"].append(dict(label=label, seconds=dt, found=found, cover=cover, entities=[
+            dict(kind=e.kind, inliers=len(e.inliers), rms=e.rms, chi2=e.chi2,
+                 params={k: np.asarray(v).tolist() for k, v in e.params.items()}) for e in ents]))
         floor = floor or ents[0]  # the largest plane of the planes-only run: the floor (normal along image y)
         for e in ents[:6]:
             if e.kind == "plane":
@@ -140,3 +152,8 @@ if __name__ == "__main__":
     bundled_head()
     timing()
     motorcycle()
+    if "--out" in sys.argv:
+        out = Path(sys.argv[sys.argv.index("--out") + 1])
+        out.parent.mkdir(parents=True, exist_ok=True)
+        out.write_text(json.dumps(RESULTS, indent=1) + "\n")
+        print(f"\nwrote {out}")

@@ -1,7 +1,7 @@
 """The course's chapters and how they depend on each other: one table for the README and notebook 00.
 
     >>> [c.notebook for c in CHAPTERS if "07" in c.needs]
-    ['08_fused_3d_map']
+    ['08_fused_3d_map', '11_future_work']
     >>> ("06", "09") in arrows()
     True
 """
@@ -47,6 +47,9 @@ CHAPTERS = (
     Chapter("09_relocalization", "5", ("05", "06"),
             "where am I in a known map: the thesis's votes, why they fail, what works"),
     Chapter("10_exploration", "2nd document", ("04",), "seen, unseen and occupied nodes; a path around an obstacle"),
+    Chapter("11_future_work", "6", ("07", "08", "09"),
+            "the future work built: Monte Carlo localization with chapter 5 as its proposal, motors for n joints "
+            "(forward and inverse kinematics), conformal entities registered automatically"),
 )  # fmt: skip
 
 

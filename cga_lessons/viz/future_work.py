@@ -1,0 +1,244 @@
+"""Figures for notebook 11 (the thesis's future work, chapter 6): Monte Carlo localization in a line map.
+
+:func:`mcl_figure` draws rows of snapshots of a particle filter
+(:class:`~cga_lessons.relocalization_mcl.MonteCarloLocalizer`) over the map: the particles (darker where they
+weigh more), the log's pose and the filter's estimate with its covariance ellipse; a snapshot may zoom on the
+estimate, where the ellipse is centimetres wide.  :func:`error_trace_figure` plots the estimate's error per
+scan, with the scans where the filter said "converged" and where the robot was kidnapped.
+
+The arms of section 6.2.2 are drawn by :mod:`cga_lessons.viz.future_work_arms` and the detected entities by
+:mod:`cga_lessons.viz.future_work_stereo`.  Every public function checks its input and raises
+:class:`~cga_lessons.algebra.InvalidInputError` (a ``ValueError``) naming itself and the argument.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+from ..algebra import InvalidInputError
+from .laser import draw_walls
+
+__all__ = ["as_points", "Snapshot", "covariance_ellipse", "draw_particles", "draw_pose", "mcl_figure",
+           "error_trace_figure"]  # fmt: skip
+
+TRUTH_COLOR, ESTIMATE_COLOR, PARTICLE_CMAP = "k", "tab:red", "Blues"
+TOLERANCE = (0.10, float(np.radians(2.0)))  #: located: within 10 cm and 2 degrees (chapter 5's tolerance)
+
+
+def as_points(x, func: str, name: str, width: int, *, at_least: int = 0) -> np.ndarray:
+    """``x`` as a finite float array of shape (N, width), or :class:`InvalidInputError` naming func and name.
+
+    >>> as_points([[0, 1, 2]], "f", "poses", 3).shape
+    (1, 3)
+    """
+    try:
+        a = np.asarray(x, dtype=float)
+    except (TypeError, ValueError):
+        raise InvalidInputError(f"{func}: {name}: expected numbers of shape (N, {width})") from None
+    if a.ndim != 2 or a.shape[1] != width:
+        raise InvalidInputError(f"{func}: {name}: expected shape (N, {width}), got {a.shape}")
+    if not np.all(np.isfinite(a)):
+        raise InvalidInputError(f"{func}: {name}: contains NaN or inf")
+    if len(a) < at_least:
+        raise InvalidInputError(f"{func}: {name}: expected at least {at_least} rows, got {len(a)}")
+    return a
+
+
+def _vector(x, func: str, name: str, sizes: tuple) -> np.ndarray:
+    """``x`` as a finite 1-d float array whose length is one of ``sizes``."""
+    try:
+        a = np.asarray(x, dtype=float)
+    except (TypeError, ValueError):
+        raise InvalidInputError(f"{func}: {name}: expected {' or '.join(map(str, sizes))} numbers") from None
+    if a.ndim != 1 or len(a) not in sizes:
+        raise InvalidInputError(f"{func}: {name}: expected {' or '.join(map(str, sizes))} numbers, got {a.shape}")
+    if not np.all(np.isfinite(a)):
+        raise InvalidInputError(f"{func}: {name}: contains NaN or inf")
+    return a
+
+
+def _series(x, func: str, name: str) -> np.ndarray:
+    """``x`` as a non-empty finite 1-d float array."""
+    try:
+        a = np.asarray(x, dtype=float)
+    except (TypeError, ValueError):
+        raise InvalidInputError(f"{func}: {name}: expected a sequence of numbers") from None
+    if a.ndim != 1 or not len(a) or not np.all(np.isfinite(a)):
+        raise InvalidInputError(f"{func}: {name}: expected a non-empty 1-d sequence of finite numbers")
+    return a
+
+
+def _covariance(cov, func: str) -> np.ndarray:
+    try:
+        c = np.asarray(cov, dtype=float)
+    except (TypeError, ValueError):
+        raise InvalidInputError(f"{func}: covariance: expected a (2, 2) or (3, 3) array") from None
+    if c.shape not in ((2, 2), (3, 3)) or not np.all(np.isfinite(c)):
+        raise InvalidInputError(f"{func}: covariance: expected a finite (2, 2) or (3, 3) array, got {c.shape}")
+    c = c[:2, :2]
+    if not np.allclose(c, c.T, atol=1e-12 * max(1.0, np.abs(c).max())) or np.linalg.eigvalsh(c).min() < -1e-12:
+        raise InvalidInputError(f"{func}: covariance: not symmetric positive semi-definite")
+    return c
+
+
+def covariance_ellipse(mean, cov, n_sigma: float = 3.0, n: int = 72) -> np.ndarray:
+    """Points (n, 2) of the ellipse ``(x - mean)^T C^-1 (x - mean) = n_sigma^2`` of the x-y block C of ``cov``.
+
+    ``mean`` holds at least x and y (a pose (3,) is fine); ``cov`` is (2, 2) or a pose covariance (3, 3).
+
+    >>> e = covariance_ellipse([1.0, 2.0], [[4.0, 0.0], [0.0, 1.0]], n_sigma=1.0, n=4)
+    >>> e.round(12) + 0.0  # the half-axes: 1 along y, 2 along x
+    array([[ 1.,  3.],
+           [ 3.,  2.],
+           [ 1.,  1.],
+           [-1.,  2.]])
+    """
+    func = "covariance_ellipse"
+    m = _vector(mean, func, "mean", (2, 3))[:2]
+    c = _covariance(cov, func)
+    if not (isinstance(n_sigma, (int, float)) and np.isfinite(n_sigma) and n_sigma > 0):
+        raise InvalidInputError(f"{func}: n_sigma: expected a finite number > 0, got {n_sigma!r}")
+    if not (isinstance(n, (int, np.integer)) and n >= 3):
+        raise InvalidInputError(f"{func}: n: expected an integer >= 3, got {n!r}")
+    vals, vecs = np.linalg.eigh(c)
+    t = np.linspace(0.0, 2 * np.pi, int(n), endpoint=False)
+    circle = np.column_stack([np.cos(t), np.sin(t)]) * np.sqrt(np.maximum(vals, 0.0))
+    return m + n_sigma * circle @ vecs.T
+
+
+def draw_particles(ax, particles, log_w=None, *, s: float = 2.0, cmap: str = PARTICLE_CMAP):
+    """Scatter the particles' positions (N, 3) on ``ax``, darker where they weigh more (``log_w`` (N,)).
+
+    Returns the PathCollection; its offsets are the particles' x, y (the heaviest drawn last, on top).
+    """
+    func = "draw_particles"
+    p = as_points(particles, func, "particles", 3, at_least=1)
+    order = np.arange(len(p))
+    if log_w is None:
+        shade = np.full(len(p), 0.75)
+    else:
+        lw = np.asarray(log_w, dtype=float)
+        if lw.shape != (len(p),) or np.any(np.isnan(lw)) or np.any(lw == np.inf):
+            raise InvalidInputError(f"{func}: log_w: expected {len(p)} numbers (not NaN or +inf), got {lw.shape}")
+        w = np.exp(lw - lw.max())
+        shade = 0.15 + 0.85 * w
+        order = np.argsort(w, kind="stable")  # the heavy ones on top
+    return ax.scatter(p[order, 0], p[order, 1], s=s, c=shade[order], cmap=cmap, vmin=0.0, vmax=1.0, lw=0, zorder=3)
+
+
+def draw_pose(ax, pose, color=TRUTH_COLOR, length: float = 0.6, label=None, **kw):
+    """An arrow from the pose's position along its heading (a pose is x, y, theta)."""
+    x, y, th = _vector(pose, "draw_pose", "pose", (3,))
+    return ax.annotate("", xy=(x + length * np.cos(th), y + length * np.sin(th)), xytext=(x, y), zorder=6,
+                       arrowprops=dict(arrowstyle="-|>", color=color, lw=kw.pop("lw", 1.8), shrinkA=0, shrinkB=0),
+                       label=label, **kw)  # fmt: skip
+
+
+@dataclass(frozen=True)
+class Snapshot:
+    """One panel of :func:`mcl_figure`: the particles (N, 3) and their log-weights after an update.
+
+    ``estimate`` is the filter's :class:`~cga_lessons.relocalization_mcl.MCLEstimate` (or None: not drawn),
+    ``truth`` the log's pose (or None), ``zoom`` the half-width (m) of a window around the estimate (None: the
+    whole map).
+    """
+
+    title: str
+    particles: np.ndarray
+    log_w: np.ndarray | None = None
+    estimate: object = None
+    truth: np.ndarray | None = None
+    zoom: float | None = None
+
+
+def _panel(ax, segments, snap: Snapshot, n_sigma):
+    draw_walls(segments, ax=ax, color="0.35", lw=1.2, alpha=0.9)
+    draw_particles(ax, snap.particles, snap.log_w, s=1.5 if snap.zoom is None else 8.0)
+    length = 1.6 if snap.zoom is None else snap.zoom / 2.5
+    e = snap.estimate
+    if e is not None:
+        draw_pose(ax, e.pose, ESTIMATE_COLOR, length, lw=2.2)
+        ring = covariance_ellipse(e.pose, e.covariance, n_sigma)
+        ax.plot(*np.vstack([ring, ring[:1]]).T, color=ESTIMATE_COLOR, lw=1.2, zorder=5)
+        if snap.zoom is None:  # a ring to find a cloud a few centimetres wide on a map tens of metres wide
+            ax.plot(*e.pose[:2], "o", ms=16, mfc="none", mec=ESTIMATE_COLOR, mew=1.5, zorder=5)
+    if snap.truth is not None:
+        draw_pose(ax, snap.truth, TRUTH_COLOR, length, lw=1.2)
+        ax.plot(*snap.truth[:2], "x", color=TRUTH_COLOR, ms=5 if snap.zoom is None else 8, zorder=7)
+    if snap.zoom is not None:
+        centre = (e.pose if e is not None else snap.truth)[:2]
+        ax.set_xlim(centre[0] - snap.zoom, centre[0] + snap.zoom)
+        ax.set_ylim(centre[1] - snap.zoom, centre[1] + snap.zoom)
+    ax.set_aspect("equal")
+    ax.set_title(snap.title, fontsize=9)
+    ax.tick_params(labelsize=7)
+
+
+def mcl_figure(map_segments, rows, row_titles=None, n_sigma: float = 3.0, panel: float = 3.4):
+    """Rows of :class:`Snapshot` panels over the map segments (M, 2, 2): particles, log pose, estimate, ellipse.
+
+    Black arrow: the log's pose; red arrow and ellipse: the filter's estimate and its ``n_sigma`` covariance
+    ellipse (x-y block of :attr:`MCLEstimate.covariance`).  Returns the figure; its axes are row by row.
+    """
+    func = "mcl_figure"
+    segs = np.asarray(map_segments, dtype=float) if not hasattr(map_segments, "segments") else map_segments.segments
+    if segs.ndim != 3 or segs.shape[1:] != (2, 2) or not len(segs) or not np.all(np.isfinite(segs)):
+        raise InvalidInputError(f"{func}: map_segments: expected a non-empty array (M, 2, 2) of finite numbers")
+    if not rows or not all(rows) or not all(isinstance(s, Snapshot) for r in rows for s in r):
+        raise InvalidInputError(f"{func}: rows: expected a non-empty list of non-empty lists of Snapshot")
+    if row_titles is not None and len(row_titles) != len(rows):
+        raise InvalidInputError(f"{func}: row_titles: expected {len(rows)} titles, got {len(row_titles)}")
+    ncols = max(len(r) for r in rows)
+    fig, axes = plt.subplots(len(rows), ncols, figsize=(panel * ncols, panel * len(rows) + 0.3), squeeze=False)
+    for i, row in enumerate(rows):
+        for j in range(ncols):
+            if j < len(row):
+                _panel(axes[i, j], segs, row[j], n_sigma)
+            else:
+                axes[i, j].set_axis_off()
+        if row_titles is not None:
+            axes[i, 0].set_ylabel(row_titles[i], fontsize=10)
+    handles = [plt.Line2D([], [], color=TRUTH_COLOR, lw=2, label="the log's pose"),
+               plt.Line2D([], [], color=ESTIMATE_COLOR, lw=2, label=f"estimate, {n_sigma:g}-sigma ellipse"),
+               plt.Line2D([], [], color="tab:blue", marker=".", lw=0, label="particles (darker: heavier)")]
+    fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=9, frameon=False)
+    fig.tight_layout(rect=(0, 0.04, 1, 1))
+    return fig
+
+
+def error_trace_figure(position_error, heading_error, converged, events=(), tolerance=TOLERANCE,
+                       figsize=(9.0, 3.6)):  # fmt: skip
+    """Position and heading error of the estimate per update (log scale), converged updates filled.
+
+    ``events`` is a sequence of ``(update index, label)`` drawn as vertical lines (a kidnapping);
+    ``tolerance`` (m, rad) is drawn dashed.  Returns the figure.
+    """
+    func = "error_trace_figure"
+    pe = _series(position_error, func, "position_error")
+    he = _series(heading_error, func, "heading_error")
+    conv = np.asarray(converged)
+    if len(he) != len(pe) or conv.shape != pe.shape or conv.dtype != bool:
+        raise InvalidInputError(f"{func}: heading_error and converged (bool) must match position_error's {pe.shape}")
+    fig, axes = plt.subplots(1, 2, figsize=figsize)
+    k = np.arange(1, len(pe) + 1)
+    for ax, err, tol, unit, scale in ((axes[0], pe, tolerance[0], "m", 1.0),
+                                      (axes[1], np.abs(he), tolerance[1], "deg", 180 / np.pi)):  # fmt: skip
+        y = np.maximum(err * scale, 1e-4 * scale)
+        ax.semilogy(k, y, color="0.4", lw=1)
+        ax.scatter(k[conv], y[conv], s=22, color=ESTIMATE_COLOR, zorder=3, label="converged")
+        ax.scatter(k[~conv], y[~conv], s=22, facecolor="none", edgecolor="0.3", zorder=3, label="not converged")
+        ax.axhline(tol * scale, ls="--", color="tab:green", lw=1, label="tolerance")
+        for at, label in events:
+            ax.axvline(at + 0.5, color="tab:purple", lw=1.2)
+            ax.text(at + 0.3, 0.97, label + " ", color="tab:purple", fontsize=8, va="top", ha="right",
+                    transform=ax.get_xaxis_transform())
+        ax.set_xlabel("update (scan)")
+        ax.set_ylabel(f"error of the estimate ({unit})")
+    axes[0].set_title("position", fontsize=10)
+    axes[1].set_title("heading", fontsize=10)
+    axes[0].legend(fontsize=8, loc="center right")
+    fig.tight_layout()
+    return fig

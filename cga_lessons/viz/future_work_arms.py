@@ -1,0 +1,223 @@
+"""Figures for notebook 11, section 6.2.2: arms as chains of motors drawn in 3D (matplotlib).
+
+An arm is drawn as a skeleton: a polyline through points fixed to its links.  A point fixed to the link after
+joint k sits at ``p`` at home (q = 0); at the configuration q it is ``M_1(q_1) ... M_k(q_k) p`` (2.103), the
+forward kinematics of the chain cut after joint k (:func:`cga_lessons.kinematics.forward_matrix`).  So the
+picture is the motors' own output, nothing recomputed with matrices.  :func:`dh_home_points` gives the points
+of a Denavit-Hartenberg arm (the origins of its link frames, walked once with rotors and translators);
+without them, :func:`chain_points` uses a point of each joint's axis line and the tool.
+"""
+
+from __future__ import annotations
+
+import matplotlib.pyplot as plt
+import numpy as np
+
+from .. import conformal as cga
+from .. import kinematics as kin
+from ..algebra import InvalidInputError
+from ..kinematics_arms import DHParameters
+from .future_work import as_points
+
+__all__ = ["dh_home_points", "chain_points", "axis_segments", "draw_arm", "draw_frame", "arm_figure", "ik_figure"]
+
+_X, _Z = np.array([1.0, 0.0, 0.0]), np.array([0.0, 0.0, 1.0])
+
+
+def dh_home_points(p: DHParameters):
+    """The origins of a DH arm's link frames at home, and after how many joints each one is fixed.
+
+    The frames are walked with motors as :func:`cga_lessons.kinematics_arms.dh_chain` walks them (standard:
+    ``Rz Tz Tx Rx`` per link, frame i fixed to link i; modified: ``Rx Tx Rz Tz``, then the flange).
+
+    Returns
+    -------
+    points : ndarray (K, 3)
+        Base origin first, the flange last.
+    attached : ndarray (K,) of int
+        Point j moves with joints 1..attached[j].
+    """
+    if not isinstance(p, DHParameters):
+        raise InvalidInputError(f"dh_home_points: p: expected DHParameters, got {type(p).__name__}")
+    F = cga.G41.scalar(1.0)
+    pts, attached = [np.zeros(3)], [0]
+    for i, (d, a, alpha) in enumerate(zip(p.d, p.a, p.alpha)):
+        if p.convention == "standard":
+            F = F * cga.translator(d * _Z) * cga.translator(a * _X) * cga.rotor(_X, alpha)
+            pts.append(cga.motor_to_matrix(F)[:3, 3])
+        else:  # the joint's own frame (on its axis), then the offset along it
+            F = F * cga.rotor(_X, alpha) * cga.translator(a * _X)
+            pts.append(cga.motor_to_matrix(F)[:3, 3])
+            F = F * cga.translator(d * _Z)
+            pts.append(cga.motor_to_matrix(F)[:3, 3])
+            attached.append(i + 1)
+        attached.append(i + 1)
+    if p.flange:
+        F = F * cga.translator(float(p.flange) * _Z)
+        pts.append(cga.motor_to_matrix(F)[:3, 3])
+        attached.append(len(p.d))
+    return np.array(pts), np.array(attached)
+
+
+def _check_chain(ch, func):
+    if not isinstance(ch, kin.Chain):
+        raise InvalidInputError(f"{func}: chain: expected a kinematics.Chain, got {type(ch).__name__}")
+
+
+def _default_points(ch):
+    pts = [np.array(j.point) for j in ch.joints] + [cga.motor_to_matrix(ch.home)[:3, 3]]
+    return np.array(pts), np.array(list(range(ch.n)) + [ch.n])
+
+
+def chain_points(ch, q, points=None, attached=None) -> np.ndarray:
+    """Where the link points are at the configurations q: (K, 3) for q of shape (n,), (N, K, 3) for (N, n).
+
+    ``points`` (K, 3) are home positions, ``attached`` (K,) how many joints move each (0: the base).  Default:
+    each joint's axis point (:attr:`Joint.point`, moved by the joints before it) and the tool (the home
+    motor's position, moved by all of them).
+    """
+    func = "chain_points"
+    _check_chain(ch, func)
+    try:
+        qa = np.asarray(q, dtype=float)
+    except (TypeError, ValueError):
+        raise InvalidInputError(f"{func}: q: expected joint values of shape ({ch.n},) or (N, {ch.n})") from None
+    if qa.ndim not in (1, 2) or qa.shape[-1] != ch.n or not np.all(np.isfinite(qa)):
+        raise InvalidInputError(f"{func}: q: expected finite values of shape ({ch.n},) or (N, {ch.n}), got {qa.shape}")
+    if points is None:
+        points, attached = _default_points(ch)
+    pts = as_points(points, func, "points", 3, at_least=1)
+    att = np.asarray(attached if attached is not None else np.zeros(len(pts), int))
+    if att.shape != (len(pts),) or att.dtype.kind not in "iu" or att.min() < 0 or att.max() > ch.n:
+        raise InvalidInputError(f"{func}: attached: expected {len(pts)} integers in 0..{ch.n}")
+    q2 = qa.reshape(-1, ch.n)
+    out = np.broadcast_to(pts, (len(q2), len(pts), 3)).copy()
+    for k in np.unique(att[att > 0]):
+        H = kin.forward_matrix(kin.chain(ch.joints[:k]), q2[:, :k])  # M_1 ... M_k, the chain cut after joint k
+        sel = att == k
+        out[:, sel] = np.einsum("nij,kj->nki", H[:, :3, :3], pts[sel]) + H[:, None, :3, 3]
+    return out[0] if qa.ndim == 1 else out
+
+
+def draw_arm(ax, pts, color="tab:blue", lw: float = 3.0, alpha: float = 1.0, label=None):
+    """The skeleton (K, 3) on a 3D axes: links as a thick polyline, joints as dots.  Returns the Line3D."""
+    p = as_points(pts, "draw_arm", "pts", 3, at_least=2)
+    (line,) = ax.plot(*p.T, "-", color=color, lw=lw, alpha=alpha, solid_capstyle="round", label=label)
+    ax.scatter(*p[:-1].T, s=14, color="k", alpha=alpha, depthshade=False)
+    ax.scatter(*p[-1], s=30, marker="s", color=color, alpha=alpha, depthshade=False)
+    return line
+
+
+def draw_frame(ax, H, length: float = 0.1, lw: float = 2.0):
+    """A 4x4 pose as three arrows x (red), y (green), z (blue) from its origin."""
+    H = np.asarray(H, dtype=float)
+    if H.shape != (4, 4) or not np.all(np.isfinite(H)):
+        raise InvalidInputError(f"draw_frame: H: expected a finite 4x4 matrix, got {H.shape}")
+    for k, col in enumerate(("tab:red", "tab:green", "tab:blue")):
+        ax.quiver(*H[:3, 3], *(length * H[:3, k]), color=col, lw=lw, arrow_length_ratio=0.25)
+
+
+def axis_segments(ch, q, pts, half: float = 0.12) -> np.ndarray:
+    """The joints' axis lines at the configuration q (n,), as segments (n, 2, 3) of half-length ``half``.
+
+    Each axis is a column ``(omega, v)`` of the spatial Jacobian (the home axis moved by the joints before it,
+    2.103); its direction is omega and its point nearest the origin ``omega x v``.  A segment is centred on the
+    point of the skeleton ``pts`` (K, 3) nearest its line.
+    """
+    func = "axis_segments"
+    _check_chain(ch, func)
+    P = as_points(pts, func, "pts", 3, at_least=1)
+    J = kin.spatial_jacobian(ch, np.asarray(q, dtype=float))
+    out = []
+    for w, v in zip(J[:3].T, J[3:].T):
+        if np.linalg.norm(w) < 0.5:  # a slide: its direction is v, drawn through the skeleton's first point
+            d, c = v / np.linalg.norm(v), P[0]
+        else:
+            d, p0 = w, np.cross(w, v)
+            t = (P - p0) @ d
+            near = np.argmin(np.linalg.norm(P - p0 - t[:, None] * d, axis=1))
+            c = p0 + t[near] * d
+        out.append([c - half * d, c + half * d])
+    return np.array(out)
+
+
+def _box(ax, pts, pad=0.08):
+    lo, hi = pts.min(axis=0) - pad, pts.max(axis=0) + pad
+    for setter, k in ((ax.set_xlim, 0), (ax.set_ylim, 1), (ax.set_zlim, 2)):
+        setter(lo[k], hi[k])
+    ax.set_box_aspect(hi - lo)  # metres at one scale on the three axes
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_zlabel("z (m)")
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+        axis.set_major_locator(plt.MaxNLocator(4))
+
+
+def arm_figure(ch, qs, points=None, attached=None, n_drawn: int = 6, title=None, elev=24.0, azim=-60.0,
+               cmap="viridis", axes: bool = True, figsize=(7.0, 5.5)):  # fmt: skip
+    """An arm moving along the configurations ``qs`` (N, n): ``n_drawn`` of them drawn, the tool's whole path.
+
+    Colours run from the first configuration to the last (``cmap``); with ``axes``, the joints' axis lines at
+    the first configuration are drawn dashed (:func:`axis_segments`).  Returns the figure; its axes holds the
+    drawn skeletons as its first ``n_drawn`` lines, in order, then the tool path, then the axis lines.
+    """
+    func = "arm_figure"
+    _check_chain(ch, func)
+    q = as_points(qs, func, "qs", ch.n, at_least=2)
+    if not (isinstance(n_drawn, (int, np.integer)) and 1 <= n_drawn <= len(q)):
+        raise InvalidInputError(f"{func}: n_drawn: expected an integer in 1..{len(q)}, got {n_drawn!r}")
+    P = chain_points(ch, q, points, attached)
+    fig = plt.figure(figsize=figsize)
+    ax = fig.add_subplot(projection="3d")
+    colors = plt.get_cmap(cmap)(np.linspace(0.0, 0.9, n_drawn))
+    picks = np.round(np.linspace(0, len(q) - 1, n_drawn)).astype(int)
+    for c, i in zip(colors, picks):
+        draw_arm(ax, P[i], color=c, alpha=0.9)
+    ax.plot(*P[:, -1].T, "--", color="tab:red", lw=1.5, label="tool path")
+    boxed = P.reshape(-1, 3)
+    if axes:
+        segs = axis_segments(ch, q[0], P[0])
+        for k, seg in enumerate(segs):
+            ax.plot(*seg.T, ":", color="k", lw=1.2, label="joint axes (first pose)" if k == 0 else None)
+        boxed = np.vstack([boxed, segs.reshape(-1, 3)])
+    ax.scatter(0, 0, 0, s=60, marker="^", color="k", label="base")
+    _box(ax, boxed)
+    ax.view_init(elev=elev, azim=azim)
+    ax.legend(loc="upper left", fontsize=8)
+    if title:
+        ax.set_title(title, fontsize=10)
+    fig.tight_layout()
+    return fig
+
+
+def ik_figure(ch, q_start, q_end, target, position_errors, rotation_errors, points=None, attached=None,
+              elev=24.0, azim=-60.0, figsize=(12.0, 5.0)):  # fmt: skip
+    """Inverse kinematics: the arm at the start (grey) and at the solution (blue) with the target frame (4x4),
+    and the errors per iteration (m, rad; log scale).  Returns the figure."""
+    func = "ik_figure"
+    _check_chain(ch, func)
+    pe = as_points(np.reshape(np.asarray(position_errors, float), (-1, 1)), func, "position_errors", 1, at_least=1)
+    re = as_points(np.reshape(np.asarray(rotation_errors, float), (-1, 1)), func, "rotation_errors", 1)
+    if len(re) != len(pe):
+        raise InvalidInputError(f"{func}: rotation_errors: expected {len(pe)} values, got {len(re)}")
+    fig = plt.figure(figsize=figsize)
+    ax = fig.add_subplot(1, 2, 1, projection="3d")
+    a = chain_points(ch, np.asarray(q_start, float), points, attached)
+    b = chain_points(ch, np.asarray(q_end, float), points, attached)
+    draw_arm(ax, a, color="0.6", label="start")
+    draw_arm(ax, b, color="tab:blue", label="solution")
+    draw_frame(ax, target, length=0.12)
+    ax.plot([], [], color="tab:red", label="target frame (x red, y green, z blue)")
+    _box(ax, np.vstack([a, b, np.asarray(target, float)[None, :3, 3]]))
+    ax.view_init(elev=elev, azim=azim)
+    ax.legend(loc="upper left", fontsize=8)
+    ax2 = fig.add_subplot(1, 2, 2)
+    it = np.arange(len(pe))
+    ax2.semilogy(it, np.maximum(pe[:, 0], 1e-17), "o-", label="position error (m)")
+    ax2.semilogy(it, np.maximum(re[:, 0], 1e-17), "s-", label="rotation error (rad)")
+    ax2.set_xlabel("iteration")
+    ax2.set_ylabel("error")
+    ax2.grid(True, which="major", alpha=0.3)
+    ax2.legend(fontsize=9)
+    fig.tight_layout()
+    return fig

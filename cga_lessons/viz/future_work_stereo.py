@@ -1,0 +1,212 @@
+"""Figures for notebook 11, section 6.2.2: conformal entities found automatically in stereo point clouds.
+
+:func:`detections_figure` shows a generated cloud twice, side by side: coloured by the entity each point was
+sampled from (the ground truth) and by the entity the detector (:func:`cga_lessons.stereo_detect.detect_entities`)
+put it on, with the detected spheres, circles and lines drawn from their parameters; a detection matched to a true
+entity takes that entity's colour.  :func:`detections_on_image` paints the detections of a real pair over its
+left image, and :func:`depth_noise_figure` plots the depth noise of a stereo head against the distance.
+"""
+
+from __future__ import annotations
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.patches import Patch
+
+from .. import stereo as st
+from ..algebra import InvalidInputError
+from ..stereo_real import label_image
+from .future_work import as_points
+
+__all__ = ["PALETTE", "detections_figure", "detections_on_image", "depth_noise", "depth_noise_figure"]
+
+PALETTE = plt.get_cmap("tab20")(np.arange(20))[[0, 2, 4, 6, 8, 10, 12, 16, 18, 1, 3, 5, 7, 9, 11, 13, 17, 19]]
+_KINDS = ("plane", "sphere", "circle", "line")
+CLUTTER, UNMATCHED = (0.72, 0.72, 0.72, 1.0), (0.0, 0.0, 0.0, 1.0)
+
+
+def _entities(entities, n_points, func):
+    ents = list(entities)
+    for k, e in enumerate(ents):
+        idx = getattr(e, "inliers", None)
+        if getattr(e, "kind", None) not in _KINDS or idx is None:
+            raise InvalidInputError(f"{func}: entities[{k}]: expected a DetectedEntity, got {type(e).__name__}")
+        idx = np.asarray(idx)
+        if idx.ndim != 1 or idx.dtype.kind not in "iu" or (len(idx) and (idx.min() < 0 or idx.max() >= n_points)):
+            raise InvalidInputError(f"{func}: entities[{k}].inliers: expected indices into {n_points} points")
+    return ents
+
+
+def _sphere(ax, c, r, color):
+    u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 19), np.linspace(0, np.pi, 10))
+    ax.plot_wireframe(c[0] + r * np.cos(u) * np.sin(v), c[1] + r * np.sin(u) * np.sin(v), c[2] + r * np.cos(v),
+                      color=color, lw=0.5, alpha=0.6)  # fmt: skip
+
+
+def _shape(ax, e, color):
+    """An entity from its parameters: sphere wireframe, circle, line segment (planes: only their points)."""
+    p = e.params
+    if e.kind == "sphere":
+        _sphere(ax, np.asarray(p["center"]), float(p["radius"]), color)
+    elif e.kind == "circle":
+        ax.plot(*st.circle_polyline(p["center"], p["normal"], p["radius"]).T, color=color, lw=2.0)
+    elif e.kind == "line":
+        a, d = np.asarray(p["point"]), np.asarray(p["direction"]) * float(p["length"]) / 2
+        ax.plot(*np.array([a - d, a + d]).T, color=color, lw=2.5)
+
+
+def _count(n: int, kind: str) -> str:
+    return f"{n} {kind}" + ("" if n == 1 else "s")
+
+
+def _box(ax, X):
+    lo, hi = X.min(axis=0), X.max(axis=0)
+    for setter, k in ((ax.set_xlim, 0), (ax.set_ylim, 1), (ax.set_zlim, 2)):
+        setter(lo[k], hi[k])
+    ax.set_box_aspect(hi - lo)  # metres at one scale on the three axes
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_zlabel("z (m)")
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+        axis.set_major_locator(plt.MaxNLocator(4))
+
+
+def detections_figure(points, labels, truth, entities, matches=(), elev=22.0, azim=-170.0,
+                      figsize=(13.0, 6.2)):  # fmt: skip
+    """Ground truth (left) and detections (right) of a cloud (N, 3) in 3D.
+
+    ``labels`` (N,) holds each point's true entity (-1: clutter); ``truth`` the true entities (with ``kind``
+    and ``params``, as :class:`~cga_lessons.stereo_detect_scenes.TruthEntity`); ``entities`` the detections;
+    ``matches`` pairs ``(detection index, truth index, ...)`` as
+    :func:`cga_lessons.stereo_detect_scenes.evaluate` returns them.  In the right panel, the i-th scatter
+    holds the points of detection i.  Returns the figure.
+    """
+    func = "detections_figure"
+    X = as_points(points, func, "points", 3, at_least=1)
+    lab = np.asarray(labels)
+    truth = list(truth)
+    if not all(getattr(t, "kind", None) in _KINDS and isinstance(getattr(t, "params", None), dict) for t in truth):
+        raise InvalidInputError(f"{func}: truth: expected entities with a kind and params (TruthEntity)")
+    kinds = [t.kind for t in truth]
+    if lab.shape != (len(X),) or lab.dtype.kind not in "iu" or lab.min() < -1 or lab.max() >= len(kinds):
+        raise InvalidInputError(f"{func}: labels: expected {len(X)} integers in -1..{len(kinds) - 1}")
+    ents = _entities(entities, len(X), func)
+    to_truth = {}
+    for m in matches:
+        i, j = int(m[0]), int(m[1])
+        if not (0 <= i < len(ents) and 0 <= j < len(kinds)) or ents[i].kind != kinds[j]:
+            raise InvalidInputError(f"{func}: matches: ({i}, {j}) pairs no detection with a true entity of its kind")
+        to_truth[i] = j
+    fig = plt.figure(figsize=figsize)
+    left, right = fig.add_subplot(1, 2, 1, projection="3d"), fig.add_subplot(1, 2, 2, projection="3d")
+    left.scatter(*X[lab < 0].T, s=2, color=CLUTTER, depthshade=False)
+    for j, t in enumerate(truth):
+        left.scatter(*X[lab == j].T, s=3, color=PALETTE[j % len(PALETTE)], depthshade=False)
+        _shape(left, t, PALETTE[j % len(PALETTE)])
+    free = np.ones(len(X), bool)
+    for i, e in enumerate(ents):
+        color = PALETTE[to_truth[i] % len(PALETTE)] if i in to_truth else UNMATCHED
+        right.scatter(*X[e.inliers].T, s=3, color=color, depthshade=False)
+        free[e.inliers] = False
+    for i, e in enumerate(ents):
+        _shape(right, e, PALETTE[to_truth[i] % len(PALETTE)] if i in to_truth else UNMATCHED)
+    right.scatter(*X[free].T, s=2, color=CLUTTER, depthshade=False)
+    count = {k: kinds.count(k) for k in dict.fromkeys(kinds)}
+    found = {k: sum(e.kind == k for e in ents) for k in dict.fromkeys(kinds + [e.kind for e in ents])}
+    left.set_title("ground truth: " + ", ".join(_count(n, k) for k, n in count.items()) + " + clutter (grey)",
+                   fontsize=10)  # fmt: skip
+    right.set_title("detected: " + ", ".join(_count(n, k) for k, n in found.items())
+                    + f" ({len(to_truth)} matched; black: unmatched)", fontsize=10)  # fmt: skip
+    for ax in (left, right):
+        _box(ax, X)
+        ax.view_init(elev=elev, azim=azim)
+    fig.tight_layout()
+    return fig
+
+
+def detections_on_image(image, pixels, entities, step: int = 1, names=None, title=None, figsize=(7.0, 5.0)):
+    """Detections painted over the (greyed) left image: point j of the cloud came from ``pixels[j]`` (col, row).
+
+    Each detection's points fill ``step`` x ``step`` blocks in its colour; the legend gives its kind (or
+    ``names[i]``), number of points and RMS distance.  Returns the figure.
+    """
+    func = "detections_on_image"
+    img = np.asarray(image)
+    if img.ndim != 3 or img.shape[2] != 3:
+        raise InvalidInputError(f"{func}: image: expected an RGB image (H, W, 3), got {img.shape}")
+    px = as_points(pixels, func, "pixels", 2)
+    ents = _entities(entities, len(px), func)
+    if names is not None and len(names) != len(ents):
+        raise InvalidInputError(f"{func}: names: expected {len(ents)} names, got {len(names)}")
+    labels = np.full(len(px), -1)
+    for i, e in enumerate(ents):
+        labels[e.inliers] = i
+    painted = label_image(img.shape[:2], px, labels, step)
+    grey = img.astype(float).mean(axis=2, keepdims=True) / 255.0
+    over = np.repeat(0.3 + 0.7 * grey, 3, axis=2)
+    handles = []
+    for i, e in enumerate(ents):
+        m, col = painted == i, PALETTE[i % len(PALETTE)][:3]
+        over[m] = 0.4 * over[m] + 0.6 * col
+        name = names[i] if names is not None else e.kind
+        handles.append(Patch(color=col, label=f"{name}: {len(e.inliers)} pts, rms {1e3 * e.rms:.1f} mm"))
+    fig, ax = plt.subplots(figsize=figsize)
+    ax.imshow(over)
+    ax.set_axis_off()
+    if title:
+        ax.set_title(title, fontsize=10)
+    ax.legend(handles=handles, loc="lower right", fontsize=8, framealpha=0.9)
+    fig.tight_layout()
+    return fig
+
+
+def depth_noise(z, baseline: float, focal_px: float, sigma_d: float = 1.0) -> np.ndarray:
+    """Standard deviation of the depth of a rectified pair, ``z^2 sigma_d / (f B)`` (first order in the disparity).
+
+    From ``z = f B / d``: ``dz/dd = -f B / d^2 = -z^2 / (f B)``, so ``sigma_z = z^2 sigma_d / (f B)``, with
+    ``sigma_d`` the disparity's noise in pixels (``sqrt(2)`` times that of each image's coordinate).
+
+    >>> float(depth_noise(2.0, 0.4, 1200.0))  # 4 / 480 m
+    0.008333333333333333
+    """
+    func = "depth_noise"
+    for name, v in (("baseline", baseline), ("focal_px", focal_px), ("sigma_d", sigma_d)):
+        if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)) or not (v > 0):
+            raise InvalidInputError(f"{func}: {name}: expected a number > 0, got {v!r}")
+    try:
+        z = np.asarray(z, dtype=float)
+    except (TypeError, ValueError):
+        raise InvalidInputError(f"{func}: z: expected depths (numbers)") from None
+    if not np.all(np.isfinite(z)) or np.any(z <= 0):
+        raise InvalidInputError(f"{func}: z: expected finite depths > 0")
+    return z**2 * sigma_d / (focal_px * baseline)
+
+
+def depth_noise_figure(heads: dict, sigma_d: float = 1.0, figsize=(7.0, 3.8)):
+    """Depth noise against depth for stereo heads ``{label: (baseline m, focal px, (near, far) m)}``.
+
+    ``sigma_d`` is the disparity noise (px).
+    Each head's curve is drawn over 0.3-3 m, thick over the depths its scenes use.  Returns the figure.
+    """
+    func = "depth_noise_figure"
+    if not isinstance(heads, dict) or not heads:
+        raise InvalidInputError(f"{func}: heads: expected a non-empty dict label -> (baseline, focal_px, (near, far))")
+    fig, ax = plt.subplots(figsize=figsize)
+    z = np.linspace(0.3, 3.0, 200)
+    for k, (label, head) in enumerate(heads.items()):
+        try:
+            baseline, focal, (near, far) = head
+        except (TypeError, ValueError):
+            raise InvalidInputError(f"{func}: heads[{label!r}]: expected (baseline, focal_px, (near, far))") from None
+        if not (0 < near < far):
+            raise InvalidInputError(f"{func}: heads[{label!r}]: expected 0 < near < far, got ({near}, {far})")
+        col = PALETTE[2 * k % len(PALETTE)]
+        ax.plot(z, 100 * depth_noise(z, baseline, focal, sigma_d), color=col, lw=1, alpha=0.6)
+        zz = np.linspace(near, far, 50)
+        ax.plot(zz, 100 * depth_noise(zz, baseline, focal, sigma_d), color=col, lw=4, label=label)
+    ax.set_xlabel("depth z (m)")
+    ax.set_ylabel(f"depth noise (cm), disparity noise {sigma_d:.2g} px")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    return fig
