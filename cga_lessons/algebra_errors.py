@@ -10,7 +10,9 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["GeometryError", "DegenerateGeometryError", "InvalidInputError", "finite_real"]
+import numpy as np
+
+__all__ = ["GeometryError", "DegenerateGeometryError", "InvalidInputError", "finite_real", "finite_rows"]
 
 
 class GeometryError(ValueError):
@@ -55,3 +57,26 @@ def finite_real(value, func: str, name: str) -> float:
 for _cls in (GeometryError, DegenerateGeometryError, InvalidInputError):
     _cls.__module__ = "cga_lessons.algebra"
 del _cls
+
+
+def finite_rows(x, func: str, name: str, width: int, *, at_least: int = 0):
+    """``x`` as a finite float array of shape (N, width), or :class:`InvalidInputError` "func: name: problem".
+
+    >>> finite_rows([[0, 1, 2]], "f", "poses", 3).shape
+    (1, 3)
+    >>> finite_rows([[0, 1]], "f", "poses", 3)
+    Traceback (most recent call last):
+    ...
+    cga_lessons.algebra.InvalidInputError: f: poses: expected shape (N, 3), got (1, 2)
+    """
+    try:
+        a = np.asarray(x, dtype=float)
+    except (TypeError, ValueError):
+        raise InvalidInputError(f"{func}: {name}: expected numbers of shape (N, {width})") from None
+    if a.ndim != 2 or a.shape[1] != width:
+        raise InvalidInputError(f"{func}: {name}: expected shape (N, {width}), got {a.shape}")
+    if not np.all(np.isfinite(a)):
+        raise InvalidInputError(f"{func}: {name}: contains NaN or inf")
+    if len(a) < at_least:
+        raise InvalidInputError(f"{func}: {name}: expected at least {at_least} rows, got {len(a)}")
+    return a

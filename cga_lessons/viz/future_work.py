@@ -19,32 +19,29 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from ..algebra import InvalidInputError
+from ..algebra_errors import finite_rows as as_points  # the shared check, under the name the figures use
 from .laser import draw_walls
 
-__all__ = ["as_points", "Snapshot", "covariance_ellipse", "draw_particles", "draw_pose", "mcl_figure",
+__all__ = ["as_points", "metric_box", "Snapshot", "covariance_ellipse", "draw_particles", "draw_pose",
+           "mcl_figure",
            "error_trace_figure"]  # fmt: skip
 
 TRUTH_COLOR, ESTIMATE_COLOR, PARTICLE_CMAP = "k", "tab:red", "Blues"
 TOLERANCE = (0.10, float(np.radians(2.0)))  #: located: within 10 cm and 2 degrees (chapter 5's tolerance)
 
 
-def as_points(x, func: str, name: str, width: int, *, at_least: int = 0) -> np.ndarray:
-    """``x`` as a finite float array of shape (N, width), or :class:`InvalidInputError` naming func and name.
-
-    >>> as_points([[0, 1, 2]], "f", "poses", 3).shape
-    (1, 3)
-    """
-    try:
-        a = np.asarray(x, dtype=float)
-    except (TypeError, ValueError):
-        raise InvalidInputError(f"{func}: {name}: expected numbers of shape (N, {width})") from None
-    if a.ndim != 2 or a.shape[1] != width:
-        raise InvalidInputError(f"{func}: {name}: expected shape (N, {width}), got {a.shape}")
-    if not np.all(np.isfinite(a)):
-        raise InvalidInputError(f"{func}: {name}: contains NaN or inf")
-    if len(a) < at_least:
-        raise InvalidInputError(f"{func}: {name}: expected at least {at_least} rows, got {len(a)}")
-    return a
+def metric_box(ax, pts, pad: float = 0.0):
+    """Fit a 3D axes to points ``(N, 3)`` (plus ``pad`` metres) with one metre the same length on every axis."""
+    pts = np.asarray(pts, float)
+    lo, hi = pts.min(axis=0) - pad, pts.max(axis=0) + pad
+    for setter, k in ((ax.set_xlim, 0), (ax.set_ylim, 1), (ax.set_zlim, 2)):
+        setter(lo[k], hi[k])
+    ax.set_box_aspect(hi - lo)
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_zlabel("z (m)")
+    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
+        axis.set_major_locator(plt.MaxNLocator(4))
 
 
 def _vector(x, func: str, name: str, sizes: tuple) -> np.ndarray:

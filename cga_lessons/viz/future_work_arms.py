@@ -17,7 +17,7 @@ from .. import conformal as cga
 from .. import kinematics as kin
 from ..algebra import InvalidInputError
 from ..kinematics_arms import DHParameters
-from .future_work import as_points
+from .future_work import as_points, metric_box
 
 __all__ = ["dh_home_points", "chain_points", "axis_segments", "draw_arm", "draw_frame", "arm_figure", "ik_figure"]
 
@@ -141,18 +141,6 @@ def axis_segments(ch, q, pts, half: float = 0.12) -> np.ndarray:
     return np.array(out)
 
 
-def _box(ax, pts, pad=0.08):
-    lo, hi = pts.min(axis=0) - pad, pts.max(axis=0) + pad
-    for setter, k in ((ax.set_xlim, 0), (ax.set_ylim, 1), (ax.set_zlim, 2)):
-        setter(lo[k], hi[k])
-    ax.set_box_aspect(hi - lo)  # metres at one scale on the three axes
-    ax.set_xlabel("x (m)")
-    ax.set_ylabel("y (m)")
-    ax.set_zlabel("z (m)")
-    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
-        axis.set_major_locator(plt.MaxNLocator(4))
-
-
 def arm_figure(ch, qs, points=None, attached=None, n_drawn: int = 6, title=None, elev=24.0, azim=-60.0,
                cmap="viridis", axes: bool = True, figsize=(7.0, 5.5)):  # fmt: skip
     """An arm moving along the configurations ``qs`` (N, n): ``n_drawn`` of them drawn, the tool's whole path.
@@ -181,7 +169,7 @@ def arm_figure(ch, qs, points=None, attached=None, n_drawn: int = 6, title=None,
             ax.plot(*seg.T, ":", color="k", lw=1.2, label="joint axes (first pose)" if k == 0 else None)
         boxed = np.vstack([boxed, segs.reshape(-1, 3)])
     ax.scatter(0, 0, 0, s=60, marker="^", color="k", label="base")
-    _box(ax, boxed)
+    metric_box(ax, boxed, pad=0.08)
     ax.view_init(elev=elev, azim=azim)
     ax.legend(loc="upper left", fontsize=8)
     if title:
@@ -208,7 +196,7 @@ def ik_figure(ch, q_start, q_end, target, position_errors, rotation_errors, poin
     draw_arm(ax, b, color="tab:blue", label="solution")
     draw_frame(ax, target, length=0.12)
     ax.plot([], [], color="tab:red", label="target frame (x red, y green, z blue)")
-    _box(ax, np.vstack([a, b, np.asarray(target, float)[None, :3, 3]]))
+    metric_box(ax, np.vstack([a, b, np.asarray(target, float)[None, :3, 3]]), pad=0.08)
     ax.view_init(elev=elev, azim=azim)
     ax.legend(loc="upper left", fontsize=8)
     ax2 = fig.add_subplot(1, 2, 2)

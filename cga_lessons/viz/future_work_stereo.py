@@ -16,7 +16,7 @@ from matplotlib.patches import Patch
 from .. import stereo as st
 from ..algebra import InvalidInputError
 from ..stereo_real import label_image
-from .future_work import as_points
+from .future_work import as_points, metric_box
 
 __all__ = ["PALETTE", "detections_figure", "detections_on_image", "depth_noise", "depth_noise_figure"]
 
@@ -57,18 +57,6 @@ def _shape(ax, e, color):
 
 def _count(n: int, kind: str) -> str:
     return f"{n} {kind}" + ("" if n == 1 else "s")
-
-
-def _box(ax, X):
-    lo, hi = X.min(axis=0), X.max(axis=0)
-    for setter, k in ((ax.set_xlim, 0), (ax.set_ylim, 1), (ax.set_zlim, 2)):
-        setter(lo[k], hi[k])
-    ax.set_box_aspect(hi - lo)  # metres at one scale on the three axes
-    ax.set_xlabel("x (m)")
-    ax.set_ylabel("y (m)")
-    ax.set_zlabel("z (m)")
-    for axis in (ax.xaxis, ax.yaxis, ax.zaxis):
-        axis.set_major_locator(plt.MaxNLocator(4))
 
 
 def detections_figure(points, labels, truth, entities, matches=(), elev=22.0, azim=-170.0,
@@ -118,7 +106,7 @@ def detections_figure(points, labels, truth, entities, matches=(), elev=22.0, az
     right.set_title("detected: " + ", ".join(_count(n, k) for k, n in found.items())
                     + f" ({len(to_truth)} matched; black: unmatched)", fontsize=10)  # fmt: skip
     for ax in (left, right):
-        _box(ax, X)
+        metric_box(ax, X)
         ax.view_init(elev=elev, azim=azim)
     fig.tight_layout()
     return fig
