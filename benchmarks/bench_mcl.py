@@ -25,6 +25,13 @@ converged and is not within them.  Side by side, chapter 5 on the same scans: th
 alone (:func:`cga_lessons.relocalization.relocalize`, located = ``"ok"`` and within the tolerance), and the
 first three scans as one run (:func:`cga_lessons.relocalization_sequence.relocalize_sequence`).
 
+Two diagnostics, which change no success criterion: *wrong vs map* counts the confidently wrong sequences whose
+wrong estimate is also outside the tolerance of the logged pose refined on the map by chapter 5's point
+refinement (the rest follow the map where the logged pose disagrees with it: measured on CSAIL and ACES, the
+map's best fit near some logged poses lies 12-25 cm or 2.6-7.8 degrees from them); *mapped@10* is the located
+share among the sequences that never put more than ``UNMAPPED`` of their beams, seen from the logged pose, into
+space the held-out map does not know (a held-out block that drives where only it has been cannot be located).
+
 The timing row: updates of a tracking filter held at exactly 2,000 particles on Intel's map (one process,
 no Hough proposal: the filter converged), against the targets: >= 95 % located within 10 scans on every log,
 0 confidently wrong after convergence, <= 20 ms per update with 2,000 particles.
@@ -43,14 +50,19 @@ import numpy as np
 from cga_lessons import data_path, laser
 from cga_lessons.relocalization import pose_error, relocalize
 from cga_lessons.relocalization_eval import HEADING_TOLERANCE, POSITION_TOLERANCE, reference_from_log
+from cga_lessons.relocalization_geometry import Observation, check_scan
 from cga_lessons.relocalization_likelihood import BeamModel
 from cga_lessons.relocalization_mcl import MCLConfig, MonteCarloLocalizer
 from cga_lessons.relocalization_sampling import KLDConfig
 from cga_lessons.relocalization_sequence import relocalize_sequence
+from cga_lessons.relocalization_verify import refine_pose_points
 
 LOGS = ("intel", "aces", "csail", "freiburg-101", "seattle", "orebro")
 LENGTH, FOLDS, CHECK = 10, 7, (1, 3, 10)
 LOG_RANGE, SCENE_RANGE = 8.0, 5.0
+#: A diagnostic split, not the success criterion: a sequence is *mapped* when at none of its scans more than this
+#: share of the scored returned beams ends, seen from the logged pose, where the held-out map knows nothing.
+UNMAPPED = 0.3
 
 
 def within(pose, truth, factor=1.0) -> bool:
@@ -65,8 +77,9 @@ def run_sequence(ref, scans, truth, odo, config, seed, walls=None):
     """One sequence through the filter and through chapter 5: a dict of per-scan outcomes."""
     mcl = MonteCarloLocalizer(walls if walls is not None else ref, config=config, rng=np.random.default_rng(seed))
     max_range = config.beam.max_range
-    located, close, wrong, near, secs, counts = [], [], [], [], [], []
+    located, close, wrong, near, secs, counts, unknown, off_map = [], [], [], [], [], [], [], []
     for k, scan in enumerate(scans):
+        unknown.append(unmapped_share(mcl.field, truth[k], scan))
         u = np.zeros(3) if k == 0 else laser.relative(odo[k - 1], odo[k])
         t0 = time.perf_counter()
         e = mcl.update(u, scan)
@@ -75,6 +88,7 @@ def run_sequence(ref, scans, truth, odo, config, seed, walls=None):
         located.append(e.converged and ok)
         close.append(ok)
         wrong.append(e.converged and not ok)
+        off_map.append(e.converged and not ok and not within(e.pose, map_consistent(mcl, scan, truth[k], max_range)))
         near.append(within(e.pose, truth[k], 2))
         counts.append(e.n_particles)
     single = {}
@@ -88,8 +102,36 @@ def run_sequence(ref, scans, truth, odo, config, seed, walls=None):
     ok, twice = within(r3.pose, truth[2]), within(r3.pose, truth[2], 2)
     seq3 = (r3.status == "ok" and ok, r3.status == "ok" and not ok, r3.status == "ok" and not twice)
     return dict(
-        located=located, close=close, wrong=wrong, near=near, secs=secs, counts=counts, single=single, seq3=seq3
+        located=located,
+        close=close,
+        wrong=wrong,
+        near=near,
+        secs=secs,
+        counts=counts,
+        single=single,
+        seq3=seq3,
+        unknown=unknown,
+        off_map=off_map,
     )
+
+
+def map_consistent(mcl, scan, pose, max_range):
+    """The logged ``pose`` refined on the map by chapter 5's point-to-wall Gauss-Newton
+    (:func:`cga_lessons.relocalization_verify.refine_pose_points`, independent of the filter): where the map and
+    the logged pose disagree (a time skew in a turn, a residual of the log's own SLAM), the pose the map says."""
+    obs = Observation.from_scan(*check_scan(scan), max_range)
+    return refine_pose_points(mcl.reference.lines, obs, np.asarray(pose, float)[None])[0]
+
+
+def unmapped_share(field, pose, scan) -> float:
+    """Share of the scored returned beams of ``scan`` that end, seen from the true ``pose``, where the map knows
+    nothing (a diagnostic: what the held-out block saw that the map's scans did not)."""
+    r, a, _ = field.select_beams(scan)
+    if not len(r):
+        return 0.0
+    phi = pose[2] + a
+    flat, _ = field.cells(pose[:2] + r[:, None] * np.column_stack([np.cos(phi), np.sin(phi)]))
+    return float(1.0 - np.mean(field.known.ravel()[flat]))
 
 
 def log_task(args):
@@ -159,6 +201,7 @@ def summarise(rows):
     close = {k: sum(r["close"][k - 1] for r in rows) / n for k in CHECK}
     wrong = sum(any(r["wrong"]) for r in rows)
     gross = sum(any(w and not n for w, n in zip(r["wrong"], r["near"])) for r in rows)
+    off_map = sum(any(r["off_map"]) for r in rows)
     single = {k: sum(r["single"][k][0] for r in rows) / n for k in CHECK}
     single_wrong = sum(any(r["single"][k][1] for k in CHECK) for r in rows)
     single_gross = sum(any(r["single"][k][2] for k in CHECK) for r in rows)
@@ -168,6 +211,8 @@ def summarise(rows):
     first = [r["secs"][0] for r in rows]
     later = [s for r in rows for s in r["secs"][1:]]
     particles = float(np.median([r["counts"][-1] for r in rows]))
+    mapped = [r for r in rows if max(r["unknown"]) < UNMAPPED]
+    loc_mapped = sum(r["located"][9] for r in mapped) / len(mapped) if mapped else float("nan")
     hough_ms = 1000 * np.mean([r["single"][k][3] for r in rows for k in CHECK])
     return dict(
         n=n,
@@ -185,6 +230,9 @@ def summarise(rows):
         later_ms=1000 * np.mean(later),
         particles=particles,
         hough_ms=hough_ms,
+        off_map=off_map,
+        n_mapped=len(mapped),
+        located_mapped=loc_mapped,
     )
 
 
@@ -205,12 +253,21 @@ def main(names=None, seeds=(0, 1), processes=2, out=None, **options):
     )
     print(
         "located = converged and within 10 cm / 2 deg of the truth after k scans; wrong = sequences with a "
-        "converged estimate outside them at any scan (all/gross: gross = beyond twice the tolerance);\n"
+        "converged estimate outside them at any scan (all/gross/vs map: gross = beyond twice the tolerance);\n"
         "est@10 = the estimate within the tolerance after 10 scans, converged or not; ch5 = chapter 5's "
         "relocalize on the k-th scan alone (located = 'ok' and within); seq3 = relocalize_sequence on scans 1-3"
     )
+    print(
+        "wrong vs map = sequences with a converged estimate outside the tolerance of the logged pose AND of the "
+        "logged pose refined on the map (chapter 5's point refinement): the rest agree with the map, not the log"
+    )
+    print(
+        f"mapped@10 = located within 10 scans among the 'mapped' sequences (n_map of them): at none of their scans "
+        f"do more than {UNMAPPED:.0%} of the beams end, from the logged pose, where the held-out map knows nothing"
+    )
     hdr = (
-        f"{'log':<13} {'n':>4} | {'MCL@1':>6} {'@3':>6} {'@10':>6} {'wrong':>7} {'est@10':>6} {'parts':>5} "
+        f"{'log':<13} {'n':>4} | {'MCL@1':>6} {'@3':>6} {'@10':>6} {'wrong':>8} {'est@10':>6} "
+        f"{'n_map':>5} {'map@10':>6} {'parts':>5} "
         f"{'ms 1st':>6} {'ms':>4} | {'ch5@1':>6} {'@3':>6} {'@10':>6} {'wrong':>7} {'seq3':>6} {'wrong':>7} {'ms':>4}"
     )
     print(hdr)
@@ -221,13 +278,12 @@ def main(names=None, seeds=(0, 1), processes=2, out=None, **options):
             continue
         table[name] = s
         L, C, S = s["located"], s["close"], s["single"]
-        w_mcl, w_ch5, w_seq = (
-            f"{s[k]}/{s[g]}"
-            for k, g in (("wrong", "gross"), ("single_wrong", "single_gross"), ("seq3_wrong", "seq3_gross"))
-        )
+        w_ch5, w_seq = (f"{s[k]}/{s[g]}" for k, g in (("single_wrong", "single_gross"), ("seq3_wrong", "seq3_gross")))
+        w_mcl = f"{s['wrong']}/{s['gross']}/{s['off_map']}"
         print(
-            f"{name:<13} {s['n']:4d} | {100 * L[1]:5.1f}% {100 * L[3]:5.1f}% {100 * L[10]:5.1f}% {w_mcl:>7} "
-            f"{100 * C[10]:5.1f}% {s['particles']:5.0f} {s['first_ms']:6.0f} {s['later_ms']:4.0f} | "
+            f"{name:<13} {s['n']:4d} | {100 * L[1]:5.1f}% {100 * L[3]:5.1f}% {100 * L[10]:5.1f}% {w_mcl:>8} "
+            f"{100 * C[10]:5.1f}% {s['n_mapped']:5d} {100 * s['located_mapped']:5.1f}% "
+            f"{s['particles']:5.0f} {s['first_ms']:6.0f} {s['later_ms']:4.0f} | "
             f"{100 * S[1]:5.1f}% {100 * S[3]:5.1f}% {100 * S[10]:5.1f}% {w_ch5:>7} "
             f"{100 * s['seq3']:5.1f}% {w_seq:>7} {s['hough_ms']:4.0f}"
         )
@@ -240,6 +296,7 @@ def main(names=None, seeds=(0, 1), processes=2, out=None, **options):
     worst = min((table[n]["located"][10] for n in logs), default=float("nan"))
     wrong = sum(table[n]["wrong"] for n in table)
     gross = sum(table[n]["gross"] for n in table)
+    off_map = sum(table[n]["off_map"] for n in table)
     print("against the targets:")
     print(
         f"  located within 10 scans, worst log  {100 * worst:5.1f} % (target >= 95 % on every log)  "
@@ -247,7 +304,7 @@ def main(names=None, seeds=(0, 1), processes=2, out=None, **options):
     )
     print(
         f"  confidently wrong after convergence {wrong:5d}   (target 0)  {'MET' if wrong == 0 else 'NOT MET'}"
-        f"   ({gross} beyond twice the tolerance)"
+        f"   ({gross} beyond twice the tolerance; {off_map} also off the map-refined logged pose)"
     )
     print(f"  ms per update, 2,000 particles      {med:5.1f}   (target <= 20 ms)  {'MET' if med <= 20 else 'NOT MET'}")
     if out is not None:

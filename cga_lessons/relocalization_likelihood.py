@@ -261,18 +261,29 @@ class LikelihoodField:
             ``beam_weight`` times the sum over the scored beams of each beam's
             log-likelihood: the particle's log-weight.
         per_beam : ndarray, shape (N,)
-            The mean log-likelihood per scored beam (0 without any): the
-            measure of fit the augmented filter averages over time.
+            The mean log-likelihood per beam the map can judge (silent beams,
+            and returned beams ending in known space; 0 without any): the
+            measure of fit the augmented filter averages over time.  Beams
+            ending where the map knows nothing are left out: a scan looking
+            into unmapped space is not a worse fit (on ACES, held-out blocks
+            driving into space only they saw put 50-75 % of the beams at the
+            logged pose into unknown space, and each such scan looked like a
+            kidnapping to the filter).
         """
         p = check_particles(particles, "LikelihoodField.log_likelihood")
         r_hit, a_hit, a_silent = scan if len(scan) == 3 else self.select_beams(scan)
         total = np.zeros(len(p))
+        judged = np.full(len(p), float(len(a_silent)))
         if len(r_hit):
-            total += self._hit_terms(p, r_hit, a_hit)
+            hits, known = self._hit_terms(p, r_hit, a_hit)
+            total += hits
+            judged += known
         if len(a_silent):
             total += self._silent_terms(p, a_silent)
-        n = len(r_hit) + len(a_silent)
-        return self.model.beam_weight * total, total / max(n, 1)
+        # the fit per beam counts the beams the map can judge: an end point in unknown space is no worse a fit
+        unknown = len(r_hit) - (judged - len(a_silent))
+        per_beam = (total - unknown * self.model.log_unknown) / np.maximum(judged, 1.0)
+        return self.model.beam_weight * total, per_beam
 
     def fit(self, pose, scan) -> float:
         """Share of the scan's beams that the map explains at one pose, among those it can judge.
@@ -299,8 +310,9 @@ class LikelihoodField:
         total = explained + contradicted
         return explained / total if total else float("nan")
 
-    def _hit_terms(self, p, r, a) -> np.ndarray:
-        """Sum over the returned beams of the end points' log-likelihoods, per particle (N,)."""
+    def _hit_terms(self, p, r, a) -> tuple[np.ndarray, np.ndarray]:
+        """Sum over the returned beams of the end points' log-likelihoods, and how many end in known space,
+        per particle (N,), (N,)."""
         res = self.model.resolution
         phi = (p[:, 2:3] + a[None, :]).astype(np.float32)
         rr = (r / res).astype(np.float32)
@@ -310,7 +322,8 @@ class LikelihoodField:
         row = np.sin(phi)
         row *= rr
         row += ((p[:, 1:2] - self.origin[1]) / res).astype(np.float32)
-        return self._flat[0][self._flat_index(col, row)].sum(axis=1, dtype=float)
+        idx = self._flat_index(col, row)
+        return self._flat[0][idx].sum(axis=1, dtype=float), self._flat[3][idx].sum(axis=1, dtype=float)
 
     def _blocked_rays(self, p, a) -> np.ndarray:
         """Whether a map wall lies across each silent beam's ray within reach, (N, B) for particles (N, 3)."""

@@ -6,17 +6,21 @@ scan cannot tell two places apart.  A particle filter (Thrun, Burgard and Fox,
 weighted sample of laser poses and lets the scans and the odometry between
 them tell the places apart:
 
-1. **global initialisation**: ``n_max`` poses drawn uniformly over the map's
-   free space (:meth:`~cga_lessons.relocalization_likelihood.LikelihoodField.free_space`),
-   headings uniform; or around a given pose;
+1. **global initialisation**: ``n_max`` poses over the map's free space
+   (:meth:`~cga_lessons.relocalization_likelihood.LikelihoodField.free_space`),
+   drawn at the first scan by importance from an exhaustive coarse search of
+   it (:class:`~cga_lessons.relocalization_mcl_search.CoarseSearch`: every
+   20 cm cell and 3 degree heading) and weighed back to the uniform prior;
+   or around a given pose;
 2. **motion**: every particle moved by the reported odometry increment with
    its own draw of chapter 3's drift (:class:`~cga_lessons.laser.OdometryModel`);
 3. **proposal**: while the filter tracks no confirmed place (or suspects a
    kidnapping) the scan is relocalized by chapter 5's method
-   (:func:`~cga_lessons.relocalization.relocalize`); around a confident answer
-   (or, before any place is confirmed, around tied candidates) a share of the
-   particles is redrawn, weighed against the rest by the last scans carried
-   back through the odometry (:mod:`cga_lessons.relocalization_history`);
+   (:func:`~cga_lessons.relocalization.relocalize`); around a confident answer,
+   or around each of its tied candidates, a share of the particles is
+   redrawn, weighed against the rest by the last scans carried back through
+   the odometry (:mod:`cga_lessons.relocalization_history`,
+   :mod:`cga_lessons.relocalization_mcl_proposal`);
 4. **measurement**: each particle weighed by the scan's likelihood
    (:class:`~cga_lessons.relocalization_likelihood.LikelihoodField`),
    tempered when one scan would leave almost no particle with weight
@@ -33,8 +37,12 @@ them tell the places apart:
 :meth:`MonteCarloLocalizer.estimate` gives the mean pose of the main mode, its
 covariance and whether the filter has converged: the mode heavy and tight for
 ``converged_updates`` updates in a row, moving as the odometry says, and
-confirmed by confident chapter-5 answers within it (the filter's own
-uniform draw finds a place by chance; chapter 5 searches every place).
+confirmed by chapter 5 (which searches every place): confident answers
+within it, or ambiguous answers whose best candidate lies within it and
+whose other tied candidates the remembered scans have ruled out
+(:func:`~cga_lessons.relocalization_mcl_proposal.confirms`).  The fit the
+augmented filter watches counts only the beams the map can judge: a scan
+looking into unmapped space is no sign of a kidnapping.
 The settings and the reasons for their defaults are in
 :mod:`cga_lessons.relocalization_mcl_config`.
 """
@@ -51,6 +59,8 @@ from .relocalization_geometry import as_segment_array, check_scan, prepare_map
 from .relocalization_history import ScanHistory, merge, normalise
 from .relocalization_likelihood import LikelihoodField, check_particles
 from .relocalization_mcl_config import MCLConfig
+from .relocalization_mcl_proposal import confirms, propose
+from .relocalization_mcl_search import CoarseSearch
 from .relocalization_sampling import kld_resample, mode_estimate, tempering
 
 __all__ = ["MCLConfig", "MCLEstimate", "MonteCarloLocalizer"]
@@ -84,8 +94,9 @@ class MCLEstimate:
     streak : int
         Updates in a row the mode has been heavy and tight.
     anchored : bool
-        At least ``confirmations`` confident chapter-5 answers have fallen
-        within the mode since it was first tracked (always, without ``hough``).
+        Chapter 5 has confirmed the mode at least ``confirmations`` times since
+        it was first tracked (always, without ``hough``): see
+        :func:`~cga_lessons.relocalization_mcl_proposal.confirms`.
     confirmations : int
         How many.
     """
@@ -157,10 +168,13 @@ class MonteCarloLocalizer:
             raise InvalidInputError(f"{func}: coverage must be a Coverage, got {type(coverage).__name__}")
         self.field = LikelihoodField(segs, coverage, cfg.beam)
         self.reference = prepare_map(segs, coverage)
-        free = np.flatnonzero(self.field.free_space(cfg.clearance).ravel())
+        free_mask = self.field.free_space(cfg.clearance)
+        free = np.flatnonzero(free_mask.ravel())
         if not len(free):
             raise InvalidInputError(f"{func}: map_segments leave no free space {cfg.clearance} m from the walls")
         self._free = free
+        self.search = CoarseSearch(self.field, free_mask, cfg.search) if cfg.search is not None else None
+        self.pending_global = False
         self.w_slow = self.w_fast = None
         self.n_updates = 0
         self._estimate = None
@@ -184,6 +198,7 @@ class MonteCarloLocalizer:
         """Forget the pose: ``n_max`` particles over the free space, equal weights."""
         self.particles = self.sample_free(self.config.kld.n_max)
         self.log_w = np.zeros(len(self.particles))
+        self.pending_global = self.config.search is not None
         self.w_slow = self.w_fast = None
         self._estimate = None
         self.history.clear()
@@ -196,6 +211,7 @@ class MonteCarloLocalizer:
             raise InvalidInputError(f"MonteCarloLocalizer: initial_sd must be 3 finite numbers >= 0, got {sd}")
         self.particles = self._around(pose, sd, self.config.kld.n_min)
         self.log_w = np.zeros(len(self.particles))
+        self.pending_global = False
         self.w_slow = self.w_fast = None
         self._estimate = None
         self.history.clear()
@@ -245,15 +261,16 @@ class MonteCarloLocalizer:
         beams = self.field.select_beams(scan, func)
         cfg = self.config
         previous = self._estimate
-        self.move(u)
-        self.history.moved(u)
         tracking = previous is not None and previous.anchored
         suspicious = self.random_share() > 0
-        hough = None
-        if cfg.hough and (not tracking or suspicious):
-            # a mode chapter 5 has confirmed once only waits for its next confirmation: no newcomers
-            inject = suspicious or previous is None or previous.confirmations == 0
-            hough = self._propose(scan, tracking, inject)
+        if self.pending_global:  # the uniform prior drawn by importance from the scan's coarse scores
+            self.particles, log_q = self.search.sample(beams, cfg.kld.n_max, self.rng)
+            self.log_w = -log_q
+            self.pending_global = False
+        else:
+            self.move(u)
+        self.history.moved(u)
+        hough = propose(self, scan) if cfg.hough and (not tracking or suspicious) else None
         log_l, per_beam = self.field.log_likelihood(self.particles, beams)
         prior = normalise(self.log_w)
         w_avg = float(np.sum(prior * np.exp(per_beam)))
@@ -283,39 +300,24 @@ class MonteCarloLocalizer:
             return 0.0
         return float(min(share, self.config.max_random_fraction))
 
-    def _propose(self, scan, tracking: bool, inject: bool = True):
-        """Chapter 5's answer on the scan, as a proposal (see :meth:`inject`, unless not ``inject``): around
-        its pose where it is confident; while the filter tracks no place, around its tied candidates (at most
-        ``proposal_candidates``) where it is ambiguous."""
-        from .relocalization import RelocParams, relocalize
-        from .relocalization_verify import tie_bar
-
-        cfg = self.config
-        r = relocalize(self.reference, scan=scan, max_range=cfg.beam.max_range)
-        if not inject:
-            return r
-        if r.status == "ok":
-            self.inject([r.pose], cfg.proposal_fraction)
-        elif r.status == "ambiguous" and cfg.proposal_candidates > 0 and not tracking:
-            bar = tie_bar(r.score, RelocParams())
-            centres = [c.pose for c in r.candidates if c.score >= bar][: cfg.proposal_candidates]
-            self.inject(centres, cfg.proposal_fraction)
-        return r
-
-    def inject(self, centres, fraction: float):
+    def inject(self, centres, fraction: float) -> list:
         """Replace ``fraction`` of the particles, chosen at random, by draws around ``centres`` (``proposal_sd``),
-        weighed against the rest by the remembered scans (:func:`~cga_lessons.relocalization_history.merge`)."""
+        as many around each, weighed against the rest by the remembered scans
+        (:func:`~cga_lessons.relocalization_history.merge`); the indices of each centre's newcomers."""
         n = int(round(fraction * len(self.particles)))
         if not len(centres) or n < len(centres):
-            return
+            return []
+        n -= n % len(centres)
         sd = np.asarray(self.config.proposal_sd)
-        parts = np.array_split(np.arange(n), len(centres))
-        new = np.concatenate([self._around(np.asarray(c, float), sd, len(part)) for c, part in zip(centres, parts)])
+        each = n // len(centres)
+        new = np.concatenate([self._around(np.asarray(c, float), sd, each) for c in centres])
         keep = np.ones(len(self.particles), bool)
         keep[self.rng.choice(len(self.particles), size=n, replace=False)] = False
         self.particles, self.log_w = merge(
             self.history, self.particles[keep], self.log_w[keep], new, fraction, self.rng
         )
+        start = len(self.particles) - n
+        return [start + each * k + np.arange(each) for k in range(len(centres))]
 
     def _resample(self, w, share):
         """KLD-sized low-variance resampling; a share ``share`` of the new set drawn over the free space."""
@@ -328,7 +330,7 @@ class MonteCarloLocalizer:
     def _estimate_from(self, w, ess, hough=None, scan=None, previous=None, u=None) -> MCLEstimate:
         """The main mode.  Converged once it has been heavy, tight and fitting the scans ``converged_updates``
         updates in a row, moving as the odometry says in between, and chapter 5 has confirmed it
-        ``confirmations`` times (a confident answer within ``gate`` of it) while it was tracked."""
+        ``confirmations`` times (:func:`~cga_lessons.relocalization_mcl_proposal.confirms`) while tracked."""
         cfg = self.config
         pose, cov, mass = mode_estimate(self.particles, w, cfg.gate)
         sd_xy = float(np.sqrt(max(np.linalg.eigvalsh(cov[:2, :2]).max(), 0.0)))
@@ -342,7 +344,7 @@ class MonteCarloLocalizer:
                 np.hypot(*(moved[:2] - pose[:2])) <= cfg.gate[0] and abs(wrap_angle(moved[2] - pose[2])) <= cfg.gate[1]
             )
         streak = (previous.streak + 1 if same else 1) if good and previous is not None else int(good)
-        confirmed = hough is not None and hough.status == "ok" and _within(hough.pose, pose, cfg.gate)
+        confirmed = confirms(hough, pose, w, cfg.gate, cfg.converged_mass)
         confirmations = (previous.confirmations if same else 0) + int(confirmed)
         anchored = not cfg.hough or confirmations >= cfg.confirmations
         converged = streak >= cfg.converged_updates and anchored
@@ -367,7 +369,3 @@ class MonteCarloLocalizer:
             w = normalise(self.log_w)
             self._estimate = self._estimate_from(w, 1.0 / float(np.sum(w**2)))
         return self._estimate
-
-
-def _within(p, q, gate) -> bool:
-    return bool(np.hypot(p[0] - q[0], p[1] - q[1]) <= gate[0] and abs(wrap_angle(p[2] - q[2])) <= gate[1])

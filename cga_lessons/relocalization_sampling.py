@@ -46,8 +46,10 @@ class KLDConfig:
         Most particles, and the global initialisation: 20,000.  On Intel's
         free space (336 m2 at 20 cm from the walls) one particle per 0.1 m2 per
         radian of heading: too few for a uniform draw to land within a scan's
-        reach of the pose (centimetres and a degree); chapter 5's proposal is
-        what puts particles there.  Scoring them costs about ten tracking
+        reach of the pose (centimetres and a degree); the draw is made from
+        the first scan's coarse search instead
+        (:mod:`cga_lessons.relocalization_mcl_search`), and chapter 5's
+        proposals add particles at its answers.  Scoring them costs about ten tracking
         updates of 2,000 (7 ms each on Intel's map, one core).
     epsilon : float
         Bound on the KL divergence: 0.05, KLD sampling's usual value.

@@ -90,8 +90,15 @@ def test_silent_beams_and_unknown_space():
     cov = build_coverage([scan], [[0.0, 0.0, 0.0]], max_range=5.0)
     known = LikelihoodField(WALL, cov, model=model)
     behind = (np.array([1.0, 1.0]), np.array([-0.01, 0.01]))  # from (2.5, 3): ends at x = 3.5, behind the wall
-    _, per_beam = known.log_likelihood([[2.5, 3.0, 0.0]], behind)
-    assert per_beam[0] == pytest.approx(-np.log(5.0), abs=1e-6)
+    log_w, per_beam = known.log_likelihood([[2.5, 3.0, 0.0]], behind)
+    assert log_w[0] == pytest.approx(model.beam_weight * 2 * -np.log(5.0), abs=1e-5)
+    assert per_beam[0] == pytest.approx(0.0, abs=1e-6)  # no beam the map can judge: no measure of fit
+    # one beam ends on the wall (judged), one in unknown space (left out of the fit per beam)
+    mixed = (np.array([1.0, 3.0]), np.array([-0.01, 0.01]))
+    log_w, per_beam = known.log_likelihood([[1.0, 0.0, 0.0], [1.0, 0.0, 0.0]], mixed)
+    # the judged beam's end lies on the wall, up to half a cell diagonal of the grid (3.5 cm)
+    lo, hi = (np.log(gauss_beam(d, model.sigma_hit, 0.1, 5.0)) for d in (0.05 * np.sqrt(0.5), 0.0))
+    assert lo - 1e-6 <= per_beam[0] <= hi + 1e-6  # not the mean with the unknown beam's log(1/5)
     _, per_beam = field.log_likelihood([[2.5, 3.0, 0.0]], behind)  # no coverage: a miss in mapped space
     assert per_beam[0] == pytest.approx(np.log(0.1 / 5.0), abs=1e-3)
 
@@ -190,3 +197,70 @@ def test_bad_inputs_raise(office):
         KLDConfig(n_min=500, n_max=100)
     with pytest.raises(InvalidInputError, match="MCLConfig: proposal_sd"):
         MCLConfig(proposal_sd=(0.05, -1.0, 0.01))
+
+
+# --------------------------------------------------------------------------- the coarse search and honest ambiguity
+
+
+def test_coarse_search_finds_the_pose_and_weighs_back_to_the_uniform_prior(office):
+    from cga_lessons.relocalization_mcl_search import CoarseSearch
+
+    field = LikelihoodField(office.walls)
+    search = CoarseSearch(field, field.free_space(0.2))
+    rng = np.random.default_rng(5)
+    truth = office.trajectory[60]
+    beams = field.select_beams(laser.simulate_scan(office, truth, rng))
+    draws, log_q = search.sample(beams, 20_000, rng)
+    near = (np.hypot(*(draws[:, :2] - truth[:2]).T) < 0.2) & (np.abs(laser.wrap_angle(draws[:, 2] - truth[2])) < 0.05)
+    uniform = 20_000 * np.pi * 0.2**2 * 0.1 / (2 * np.pi * search.area)  # expected of a uniform draw, closed form
+    assert uniform < 1.0 and near.sum() >= 50
+    # a scan with no return scores every pose alike: the draw is uniform over (cell, heading) entries, and the
+    # importance weights p0 / q average to one, whatever the cells' free areas (E_q[p0 / q] = 1)
+    room = np.array(
+        [[[0.0, 0.0], [1.6, 0.0]], [[1.6, 0.0], [1.6, 1.4]], [[1.6, 1.4], [0.0, 1.4]], [[0.0, 1.4], [0.0, 0.0]]]
+    )
+    small = LikelihoodField(room)
+    s2 = CoarseSearch(small, small.free_space(0.2))
+    assert s2.free.sum() * len(s2.headings) <= 10_000  # every entry can be drawn
+    _, lq = s2.sample((np.zeros(0), np.zeros(0), np.zeros(0)), 40_000, rng)
+    assert np.mean(np.exp(-lq)) == pytest.approx(1.0, abs=0.03)
+    assert np.std(np.exp(-lq)) > 0.05  # partly free cells near the walls: weights differ, and are corrected
+
+
+def test_a_symmetric_room_is_reported_ambiguous_not_converged():
+    # a 6 x 4 m rectangle: every scan fits the pose and its half-turn about the centre equally
+    box = [np.array([[0.0, 0.0], [6.0, 0.0], [6.0, 4.0], [0.0, 4.0]])]
+    truth = np.column_stack([np.linspace(1.5, 4.0, 8), np.full(8, 1.3), np.zeros(8)])
+    scene = laser.Scene("box", box, truth)
+    rng = np.random.default_rng(2)
+    mcl = MonteCarloLocalizer(scene.walls, rng=np.random.default_rng(3))
+    est = drive(mcl, scene, truth, laser.OdometryModel().increments(truth, rng), rng)
+    assert not any(e.converged for e in est)
+    twin = np.array([6.0 - truth[-1, 0], 4.0 - truth[-1, 1], np.pi])
+    w = np.exp(mcl.log_w - mcl.log_w.max())
+    w /= w.sum()
+    for pose in (truth[-1], twin):  # both places keep a share of the belief
+        d = np.hypot(*(mcl.particles[:, :2] - pose[:2]).T)
+        turned = np.abs(laser.wrap_angle(mcl.particles[:, 2] - pose[2]))
+        assert w[(d < 0.3) & (turned < 0.1)].sum() > 0.1
+
+
+def test_an_ambiguous_answer_confirms_only_when_every_rival_lost():
+    from types import SimpleNamespace
+
+    from cga_lessons.relocalization_mcl_proposal import Proposal, confirms
+
+    mode, rival = np.array([1.0, 2.0, 0.3]), np.array([7.0, 2.0, 0.3 + np.pi])
+    groups = [np.arange(0, 10), np.arange(10, 20)]
+    gate = MCLConfig().gate
+
+    def answer(rival_share, best=mode, complete=True):
+        w = np.zeros(30)
+        w[:10], w[10:20], w[20:] = 0.5 / 10, rival_share * 0.5 / 10, 0.01
+        result = SimpleNamespace(status="ambiguous", pose=best)
+        return confirms(Proposal(result, [mode, rival], groups, complete), mode + [0.05, 0.0, 0.01], w, gate, 0.95)
+
+    bar = 0.05 / 0.95  # the rival's weight against the mode's candidate: a posterior of at most 5 % between the two
+    assert answer(0.99 * bar) and not answer(1.01 * bar)
+    assert not answer(0.0, best=rival)  # chapter 5's best answer lies elsewhere
+    assert not answer(0.0, complete=False)  # a tied candidate was not tested
