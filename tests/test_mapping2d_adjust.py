@@ -167,3 +167,17 @@ def test_the_adjustment_brings_a_real_log_closer_to_its_corrected_poses():
     before, after = pose_errors(scan_by_scan.poses, truth)[0], pose_errors(adjusted.poses, truth)[0]
     assert after < 0.5 * before
     assert pose_errors(odo, truth)[0] > 50 * after
+
+
+def test_solve_spd_solves_a_sparse_positive_definite_system_and_reports_a_singular_one():
+    from scipy import sparse
+
+    from cga_lessons.mapping2d_adjust import solve_spd
+
+    rng = np.random.default_rng(5)
+    J = sparse.random(300, 120, density=0.05, random_state=6, format="csr") + sparse.eye(300, 120)
+    H = (J.T @ J).tocsc()
+    b = rng.normal(size=120)
+    np.testing.assert_allclose(solve_spd(H, b), np.linalg.solve(H.toarray(), b), rtol=1e-9, atol=1e-9)
+    singular = sparse.csc_matrix(np.diag([1.0, 0.0, 2.0]))
+    assert solve_spd(singular, np.ones(3)) is None
