@@ -64,6 +64,7 @@ import numpy as np
 
 from . import stereo_detect_models as dm
 from .algebra import InvalidInputError
+from .algebra_errors import finite_rows
 from .stereo_detect_noise import as_noise_model
 from .stereo_detect_search import DetectedEntity, Search, merge
 
@@ -157,16 +158,7 @@ class DetectConfig:
 
 
 def _check_cloud(X, func: str, at_least: int) -> np.ndarray:
-    try:
-        X = np.asarray(X, dtype=float)
-    except (TypeError, ValueError):
-        raise InvalidInputError(f"{func}: X: points are not numeric") from None
-    if X.ndim != 2 or X.shape[1] != 3:
-        raise InvalidInputError(f"{func}: X: points must have shape (N, 3), got {X.shape}")
-    if not np.all(np.isfinite(X)):
-        raise InvalidInputError(f"{func}: X: points contain NaN or inf")
-    if len(X) < at_least:
-        raise InvalidInputError(f"{func}: X: need at least {at_least} points, got {len(X)}")
+    X = finite_rows(X, func, "X", 3, at_least=at_least)  # the shared check: numbers, shape (N, 3), finite, count
     if np.ptp(X, axis=0).max() == 0:
         raise InvalidInputError(f"{func}: X: all points coincide")
     return X

@@ -31,6 +31,7 @@ import numpy as np
 
 from . import conformal as cga
 from .algebra import DegenerateGeometryError, InvalidInputError
+from .algebra_errors import finite_rows
 
 __all__ = [
     "fit_sphere",
@@ -49,14 +50,7 @@ _BLADES = [1, 2, 4, 8, 16]  # e1 e2 e3 e+ e-
 
 
 def _points(X, func: str, at_least: int) -> np.ndarray:
-    try:
-        X = np.asarray(X, dtype=float)
-    except (TypeError, ValueError):
-        raise InvalidInputError(f"{func}: points are not numeric") from None
-    if X.ndim != 2 or X.shape[1] != 3:
-        raise InvalidInputError(f"{func}: points must have shape (N, 3), got {X.shape}")
-    if not np.all(np.isfinite(X)):
-        raise InvalidInputError(f"{func}: points contain NaN or inf")
+    X = finite_rows(X, func, "points", 3)  # the shared check: numbers, shape (N, 3), finite
     if len(X) < at_least:
         raise DegenerateGeometryError(f"{func}: need at least {at_least} points, got {len(X)}")
     return X
