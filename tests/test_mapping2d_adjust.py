@@ -149,6 +149,8 @@ def test_adjust_map_and_learn_lag_refuse_bad_input():
         adjust_map(start, inc[:-1], covs, obs, scan, line, G)
     with pytest.raises(InvalidInputError, match="adjust_map: line"):
         adjust_map(start, inc, covs, obs, scan, line + 10, G)
+    with pytest.raises(InvalidInputError, match="adjust_map: params.loss"):
+        adjust_map(start, inc, covs, obs, scan, line, G, params=AdjustParams(loss="tukey"))
     with pytest.raises(InvalidInputError, match="learn_lag"):
         build_map([(np.ones(5), np.linspace(0, 1, 5))] * 2, np.zeros((2, 3)), learn_lag=0)
 
