@@ -161,7 +161,8 @@ def _scan_noise(sigma, scan, T):
 
 
 def _edge_sightings(obs, scan, line, X, G, theta, mount, edge_match):
-    """The real-edge ends of the observations: (observation, point in the robot frame, key ``2 line + end``).
+    """The real-edge ends of the observations: (observation, point in the robot frame, key ``2 line + end``,
+    position along the line at the poses ``X``).
 
     Each sighting is tied to the end of its map line (``G``'s start or end) that lies nearer along the line,
     and dropped when farther than ``edge_match`` from it (an edge of another part of the wall).
@@ -183,7 +184,7 @@ def _edge_sightings(obs, scan, line, X, G, theta, mount, edge_match):
     a0, a1 = np.einsum("ij,ij->i", d, G.start[j]), np.einsum("ij,ij->i", d, G.end[j])
     end = (np.abs(along - a1) < np.abs(along - a0)).astype(int)
     near = np.abs(along - np.where(end == 1, a1, a0)) <= edge_match
-    return e_obs[near], rob[near], 2 * j[near] + end[near]
+    return e_obs[near], rob[near], 2 * j[near] + end[near], along[near]
 
 
 def _line_params(G: SegmentSet):
@@ -278,13 +279,10 @@ def adjust_map(poses, increments, step_covs, obs: SegmentSet, scan, line, G: Seg
     Wod = np.transpose(Linf, (0, 2, 1))  # rows r' = L^T r
     # real edges: each sighting tied to the nearer end of its map line (within edge_match), one unknown per end
     ends = _edge_sightings(obs, scan, line, X, G.take(used), theta, mount, p.edge_match)
-    e_obs, e_rob, e_key = ends
+    e_obs, e_rob, e_key, along = ends
     e_scan, e_line = scan[e_obs], line[e_obs]
     keys, e_id = np.unique(e_key, return_inverse=True)
     ne = len(keys)
-    c, s = _rot(X[e_scan, 2])
-    along = -np.sin(theta[e_line]) * (c * e_rob[:, 0] - s * e_rob[:, 1] + X[e_scan, 0]) + np.cos(theta[e_line]) * (
-        s * e_rob[:, 0] + c * e_rob[:, 1] + X[e_scan, 1])  # fmt: skip
     sval = np.bincount(e_id, weights=along, minlength=ne) / np.maximum(np.bincount(e_id, minlength=ne), 1)
     w_e = 1 / np.sqrt(max(float(floors[2]) + R[0, 0], 1e-12))
     me = len(e_obs)
