@@ -115,4 +115,4 @@ def test_bad_input_is_refused(room):
     with pytest.raises(InvalidInputError, match="refine_chains: need 2 observations"):
         refine_chains(M, obs[:1], inc, chain, [0.01, 0.01])
     with pytest.raises(InvalidInputError, match="refine_chains: sigmas, increments and anchor must be finite"):
-        refine_chains(M, obs, inc * np.inf, chain, [0.01, 0.01])
+        refine_chains(M, obs, np.full_like(inc, np.inf), chain, [0.01, 0.01])
