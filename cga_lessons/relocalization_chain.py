@@ -12,8 +12,8 @@ right one too, ended tens of centimetres to metres off the odometry's steps).
 Gauss-Newton on two kinds of residual:
 
 * every returned point of scan ``j`` against the map wall its beam meets first
-  at pose ``P_j`` (the association of
-  :func:`~cga_lessons.relocalization_verify.refine_pose_points`), with the spread
+  at pose ``P_j`` (:func:`~cga_lessons.relocalization_verify.point_normal_equations`,
+  the terms of :func:`~cga_lessons.relocalization_verify.refine_pose_points`), with the spread
   ``sigma_j`` the scan's points show about the map's walls;
 * every step ``P_{j-1} -> P_j`` against the odometry increment ``u_j``: the
   residual ``P_j - (P_{j-1} (+) u_j)`` with the drift model's covariance of that
@@ -37,7 +37,8 @@ import numpy as np
 
 from .algebra import InvalidInputError
 from .laser import OdometryModel, wrap_angle
-from .relocalization_geometry import MapLines, Observation, first_hits
+from .relocalization_geometry import MapLines
+from .relocalization_verify import point_normal_equations
 
 __all__ = ["Chain", "SequenceRelocalization", "refine_chains", "CHAIN_GATES", "STILL_VARIANCE"]
 
@@ -106,25 +107,6 @@ class Chain:
         return float((self.inliers.sum() - self.violations.sum()) / n) if n else -np.inf
 
 
-def _point_terms(M: MapLines, obs: Observation, poses, gate: float):
-    """Per chain: ``H`` (C, 3, 3) and ``g`` (C, 3) of the scan's point residuals at ``poses`` (C, 3)."""
-    p = obs.points
-    C = len(poses)
-    if len(p) < 3 or len(M) == 0:
-        return np.zeros((C, 3, 3)), np.zeros((C, 3))
-    dirs = p / obs.ranges[:, None]
-    reach = (obs.max_range if np.isfinite(obs.max_range) else float(obs.ranges.max())) + 1.0
-    s_hit, seg = first_hits(M, poses, dirs, reach)
-    c, s = np.cos(poses[:, 2])[:, None], np.sin(poses[:, 2])[:, None]
-    rx = c * p[None, :, 0] - s * p[None, :, 1]
-    ry = s * p[None, :, 0] + c * p[None, :, 1]
-    nx, ny = M.normal[seg, 0], M.normal[seg, 1]
-    e = nx * (rx + poses[:, 0:1]) + ny * (ry + poses[:, 1:2]) - M.offset[seg]
-    w = (np.isfinite(s_hit) & (np.abs(e) < gate)).astype(float)
-    J = np.stack([nx, ny, ny * rx - nx * ry], axis=-1) * w[..., None]
-    return np.einsum("cni,cnj->cij", J, J), np.einsum("cni,cn->ci", J, e)
-
-
 def refine_chains(
     M: MapLines,
     observations,
@@ -187,7 +169,7 @@ def refine_chains(
         H = np.zeros((C, N, N))
         g = np.zeros((C, N))
         for j in range(n):
-            Hj, gj = _point_terms(M, obs[j], P[:, j], gate)
+            Hj, gj, _, _ = point_normal_equations(M, obs[j], P[:, j], gate)
             H[:, 3 * j : 3 * j + 3, 3 * j : 3 * j + 3] += Hj / sig[j] ** 2
             g[:, 3 * j : 3 * j + 3] += gj / sig[j] ** 2
         for k, u in enumerate(U):

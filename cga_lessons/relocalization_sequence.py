@@ -248,7 +248,7 @@ class Relocalizer:
         chains = np.array([ch.poses for ch in self.chains])
         odo = np.array(self.odometry)
         inc = relative(odo[max(j0 - 1, 0) : n - 1], odo[max(j0, 1) : n])
-        sig = np.maximum(np.array(self._sigmas[j0:]), 1e-3)
+        sig = np.maximum(np.array(self._sigmas[j0:]), 1e-3)  # a noise-free (simulated) scan: 1 mm keeps weights finite
         anchor = chains[:, j0 - 1] if j0 > 0 else None
         out = refine_chains(self.ref.lines, self.obs[j0:], inc, chains[:, j0:], sig, self.odometry_model, anchor=anchor)
         for j in range(j0, n):

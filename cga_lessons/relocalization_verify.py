@@ -29,6 +29,7 @@ from .relocalization_geometry import MapLines, Observation, ScanLines, first_hit
 from .relocalization_search import overlap_fraction
 
 __all__ = [
+    "point_normal_equations",
     "Candidate",
     "distinct",
     "screen_hypotheses",
@@ -174,6 +175,51 @@ def match_lines(M: MapLines, S: ScanLines, pose, distance: float, parallel_tol: 
     return np.column_stack([best[ok], np.flatnonzero(ok)]).astype(int)
 
 
+def point_normal_equations(M: MapLines, obs: Observation, poses, gate: float):
+    """The scan's points against the walls their beams meet first: Gauss-Newton terms for many poses.
+
+    Each returned point ``q = R(theta) p + t`` is paired with the map wall its
+    beam meets first at the pose (projective association: a point behind the
+    near face of a thin wall is pulled to the near face, not the far one); the
+    residual is ``e = n_w . q - c_w`` and only points within ``gate`` of their
+    wall count.
+
+    Parameters
+    ----------
+    poses : ndarray, shape (C, 3)
+    gate : float
+        Association distance (m).
+
+    Returns
+    -------
+    H : ndarray, shape (C, 3, 3)
+        ``J^T J`` of the residuals in ``(x, y, theta)``.
+    g : ndarray, shape (C, 3)
+        ``J^T e``.
+    used : ndarray, shape (C,)
+        How many points counted.
+    sse : ndarray, shape (C,)
+        The sum of their squared distances ``e^2``.
+    """
+    poses = np.asarray(poses, float).reshape(-1, 3)
+    p = obs.points
+    C = len(poses)
+    if len(p) == 0 or len(M) == 0:
+        return np.zeros((C, 3, 3)), np.zeros((C, 3)), np.zeros(C), np.zeros(C)
+    dirs = p / obs.ranges[:, None]
+    reach = (obs.max_range if np.isfinite(obs.max_range) else float(obs.ranges.max())) + 1.0
+    s_hit, seg = first_hits(M, poses, dirs, reach)
+    c, s = np.cos(poses[:, 2])[:, None], np.sin(poses[:, 2])[:, None]
+    rx = c * p[None, :, 0] - s * p[None, :, 1]  # R p, (C, n)
+    ry = s * p[None, :, 0] + c * p[None, :, 1]
+    nx, ny = M.normal[seg, 0], M.normal[seg, 1]
+    e = nx * (rx + poses[:, 0:1]) + ny * (ry + poses[:, 1:2]) - M.offset[seg]
+    w = (np.isfinite(s_hit) & (np.abs(e) < gate)).astype(float)
+    J = np.stack([nx, ny, ny * rx - nx * ry], axis=-1) * w[..., None]  # d e / d (x, y, theta)
+    H, g = np.einsum("cni,cnj->cij", J, J), np.einsum("cni,cn->ci", J, e)
+    return H, g, w.sum(axis=1), np.einsum("cn,cn->c", w, e * e)
+
+
 def refine_pose_points(M: MapLines, obs: Observation, poses, gates=(0.3, 0.15, 0.08, 0.05), damping: float = 1e-3):
     """Gauss-Newton steps on the scan's points against the walls their beams meet first, for many poses.
 
@@ -197,24 +243,12 @@ def refine_pose_points(M: MapLines, obs: Observation, poses, gates=(0.3, 0.15, 0
     ndarray, shape (C, 3)
     """
     poses = np.array(poses, float).reshape(-1, 3)
-    p = obs.points
-    if len(p) < 3 or len(M) == 0:
+    if len(obs.points) < 3 or len(M) == 0:
         return poses
-    dirs = p / obs.ranges[:, None]
-    reach = (obs.max_range if np.isfinite(obs.max_range) else float(obs.ranges.max())) + 1.0
     for gate in gates:
-        s_hit, seg = first_hits(M, poses, dirs, reach)
-        c, s = np.cos(poses[:, 2])[:, None], np.sin(poses[:, 2])[:, None]
-        rx = c * p[None, :, 0] - s * p[None, :, 1]  # R p, (C, n)
-        ry = s * p[None, :, 0] + c * p[None, :, 1]
-        nx, ny = M.normal[seg, 0], M.normal[seg, 1]
-        e = nx * (rx + poses[:, 0:1]) + ny * (ry + poses[:, 1:2]) - M.offset[seg]
-        w = (np.isfinite(s_hit) & (np.abs(e) < gate)).astype(float)
-        J = np.stack([nx, ny, ny * rx - nx * ry], axis=-1) * w[..., None]  # d e / d (x, y, theta)
-        H = np.einsum("cni,cnj->cij", J, J)
-        g = np.einsum("cni,cn->ci", J, e)
+        H, g, used, _ = point_normal_equations(M, obs, poses, gate)
         H = H + damping * np.einsum("cii->ci", H)[:, :, None] * np.eye(3) + 1e-9 * np.eye(3)
-        enough = w.sum(axis=1) >= 3
+        enough = used >= 3
         if not enough.any():
             break
         step = np.zeros_like(poses)
@@ -227,27 +261,18 @@ def refine_pose_points(M: MapLines, obs: Observation, poses, gates=(0.3, 0.15, 0
 def pose_information(M: MapLines, obs: Observation, pose, gate: float = 0.05):
     """What the scan's points say about a pose: the information matrix ``J^T J`` (3, 3) and the residual variance.
 
-    ``J`` holds the rows of :func:`refine_pose_points` (derivatives of each
+    ``J`` holds the rows of :func:`point_normal_equations` (derivatives of each
     point's distance to the wall its beam meets first, by ``x, y, theta``) for
-    the points within ``gate`` of their wall; ``sigma^2`` is their mean
-    squared distance (``inf`` with fewer than four such points).
+    the points within ``gate`` of their wall; ``sigma^2`` is their squared
+    distances summed over ``n - 3`` (``inf`` with fewer than four such points).
     """
     pose = np.asarray(pose, float).reshape(3)
-    p = obs.points
-    if len(p) < 4 or len(M) == 0:
+    if len(obs.points) < 4 or len(M) == 0:
         return np.zeros((3, 3)), np.inf
-    dirs = p / obs.ranges[:, None]
-    reach = (obs.max_range if np.isfinite(obs.max_range) else float(obs.ranges.max())) + 1.0
-    s_hit, seg = first_hits(M, pose[None], dirs, reach)
-    s_hit, seg = s_hit[0], seg[0]
-    r = p @ rotation_matrix(pose[2]).T
-    n = M.normal[seg]
-    e = np.einsum("ij,ij->i", n, r + pose[:2]) - M.offset[seg]
-    ok = np.isfinite(s_hit) & (np.abs(e) < gate)
-    if ok.sum() < 4:
+    H, _, used, sse = point_normal_equations(M, obs, pose[None], gate)
+    if used[0] < 4:
         return np.zeros((3, 3)), np.inf
-    J = np.column_stack([n[ok, 0], n[ok, 1], n[ok, 1] * r[ok, 0] - n[ok, 0] * r[ok, 1]])
-    return J.T @ J, float(np.sum(e[ok] ** 2) / (ok.sum() - 3))
+    return H[0], float(sse[0] / (used[0] - 3))
 
 
 def pose_covariance(M: MapLines, obs: Observation, pose, gate: float = 0.05) -> np.ndarray:
