@@ -115,6 +115,8 @@ class Relocalizer:
             raise InvalidInputError(
                 f"Relocalizer: need max_chains >= 1 and 0 < keep_ratio <= 1, got {max_chains}, {keep_ratio}"
             )
+        if int(window) < 1:
+            raise InvalidInputError(f"Relocalizer: window must be >= 1 (poses the joint fit moves), got {window}")
         self.ref = prepare_map(map_segments)
         self.max_range = float(max_range)
         self.max_chains = int(max_chains)

@@ -127,6 +127,7 @@ def test_stop_when_confident_uses_fewer_scans(hall):
         (lambda w, s: Relocalizer(w).add(s, [0.0, 0.0]), "odometry must be a finite"),
         (lambda w, s: Relocalizer(w).add((s[0][:5], s[1]), [0.0, 0.0, 0.0]), "equal 1-D shapes"),
         (lambda w, s: Relocalizer(w, max_chains=0), "max_chains"),
+        (lambda w, s: Relocalizer(w, window=0), "window"),
         (lambda w, s: Relocalizer(w, max_range=-1.0), "max_range"),
         (lambda w, s: Relocalizer(w, xi_gamma=1.0), "unknown parameter"),
     ],
