@@ -190,8 +190,7 @@ def _add_step(H, g, a, b, u, inv_var, ia, ib):
     ry = b[:, 1] - a[:, 1] - (s * u[0] + c * u[1])
     rt = wrap_angle(b[:, 2] - a[:, 2] - u[2])
     r = np.stack([rx, ry, rt], axis=-1)  # (C, 3)
-    W = np.diag(inv_var)
-    Jb = np.eye(3)
+    W = np.diag(inv_var)  # d r / d b is the identity
     bj = slice(3 * ib, 3 * ib + 3)
     H[:, bj, bj] += W
     g[:, bj] += r * inv_var
@@ -204,6 +203,6 @@ def _add_step(H, g, a, b, u, inv_var, ia, ib):
     Ja[:, 1, 2] = -(c * u[0] - s * u[1])
     aj = slice(3 * ia, 3 * ia + 3)
     H[:, aj, aj] += np.einsum("cki,k,ckj->cij", Ja, inv_var, Ja)
-    H[:, aj, bj] += np.einsum("cki,kj->cij", Ja, W @ Jb)
-    H[:, bj, aj] += np.einsum("ik,ckj->cij", Jb.T @ W, Ja)
+    H[:, aj, bj] += np.einsum("cki,kj->cij", Ja, W)
+    H[:, bj, aj] += np.einsum("ik,ckj->cij", W, Ja)
     g[:, aj] += np.einsum("cki,ck->ci", Ja, r * inv_var)

@@ -145,13 +145,14 @@ class Relocalizer:
         if odo.shape != (3,) or not np.all(np.isfinite(odo)):
             raise InvalidInputError(f"Relocalizer.add: odometry must be a finite (x, y, theta), got {odo!r}")
         noise = estimate_range_noise(np.where(ranges < self.max_range, ranges, np.inf))
-        params = noise_scaled(self.params, combined_noise(noise, self.ref))
+        spread = combined_noise(noise, self.ref)  # of the scan's points about the map's walls
+        params = noise_scaled(self.params, spread)
         obs = Observation.from_scan(ranges, angles, self.max_range)
         k = len(self.obs)
         self.obs.append(obs)
         self.odometry.append(odo)
         self._scan_params.append(params)
-        self._sigmas.append(combined_noise(noise, self.ref))
+        self._sigmas.append(spread)
         self.returned = np.append(self.returned, len(obs.points))
         single = relocalize(self.ref, scan=(ranges, angles), max_range=self.max_range, params=self.params)
         self.single.append(single)
