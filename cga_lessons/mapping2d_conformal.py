@@ -366,6 +366,10 @@ class ConformalGeometry(PlainGeometry):
         d2 = -2.0 * float((e2c(p) | e2c(q)).scalar())
         return float(np.sqrt(max(d2, 0.0)))
 
+    def distance_rows(self, P, Q):
+        """:meth:`distance` of ``P[i]`` and ``Q[i]`` (each from its conformal points), shape (n,)."""
+        return np.array([self.distance(p, q) for p, q in zip(P, Q)], float).reshape(-1)
+
     def fuse_ends(self, g_start, g_end, l_start, l_end):
         """End points of the fusion of two point pairs, Eqs. (3.20)-(3.21).
 

@@ -117,22 +117,33 @@ class ScanCorrector:
         return dth, vt_l + vt_g, offset, vr_l + vr_g, ng, lever
 
     def _edge_terms(self, Gn, Lw, gi, li, centre):
-        """Along-line measurements from ends that are real edges in both the map and the scan."""
-        rows, res = [], []
-        for g, k in zip(gi, li):
-            dl = Lw.end[k] - Lw.start[k]
-            dl = dl / np.hypot(*dl)
-            same = (Gn.end[g] - Gn.start[g]) @ dl >= 0
-            gends = (Gn.start[g], Gn.end[g]) if same else (Gn.end[g], Gn.start[g])
-            gflags = Gn.edge[g] if same else Gn.edge[g][::-1]
-            for e, (lp, lf) in enumerate(((Lw.start[k], Lw.edge[k, 0]), (Lw.end[k], Lw.edge[k, 1]))):
-                if lf and gflags[e] and self.geo.distance(gends[e], lp) < self.params.edge_match:
-                    lev = lp - centre
-                    rows.append([dl[0], dl[1], dl[1] * lev[0] - dl[0] * lev[1]])
-                    res.append(dl @ (gends[e] - lp))
-        if not rows:
+        """Along-line measurements from ends that are real edges in both the map and the scan.
+
+        Each pair's ends are matched in the scan segment's sense (the map segment's ends swapped when it runs the
+        other way); an end gives a row when it is a real edge in both and the two lie within ``edge_match``.
+        Rows come pair by pair, start before end.
+        """
+        if len(gi) == 0:
             return None
-        return np.array(rows), np.array(res)
+        ls, le = Lw.start[li], Lw.end[li]
+        dl = le - ls
+        dl = dl / np.hypot(dl[:, 0], dl[:, 1])[:, None]
+        gs, ge = Gn.start[gi], Gn.end[gi]
+        same = np.einsum("ij,ij->i", ge - gs, dl) >= 0
+        g_first = np.where(same[:, None], gs, ge)
+        g_last = np.where(same[:, None], ge, gs)
+        gflags = np.where(same[:, None], Gn.edge[gi], Gn.edge[gi][:, ::-1])
+        gends = np.stack([g_first, g_last], axis=1).reshape(-1, 2)  # pair by pair: start, end
+        lends = np.stack([ls, le], axis=1).reshape(-1, 2)
+        ok = (Lw.edge[li].reshape(-1) > 0) & (gflags.reshape(-1) > 0)
+        if ok.any():
+            ok[ok] = self.geo.distance_rows(gends[ok], lends[ok]) < self.params.edge_match
+        if not ok.any():
+            return None
+        d = np.repeat(dl, 2, axis=0)[ok]
+        lev = lends[ok] - centre
+        rows = np.column_stack([d[:, 0], d[:, 1], d[:, 1] * lev[:, 0] - d[:, 0] * lev[:, 1]])
+        return rows, d[:, 0] * (gends[ok, 0] - lends[ok, 0]) + d[:, 1] * (gends[ok, 1] - lends[ok, 1])
 
     def _gate(self, dth, vt, off, vo, h, cov):
         """Pairs whose innovation (angle, offset) lies within ``gate`` of zero in the Mahalanobis sense.

@@ -27,6 +27,7 @@ RMS).  Here the thesis's measurements are the rows of one estimate:
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -165,32 +166,58 @@ def _huber(u, k):
     return np.where(a <= k, 1.0, k / np.maximum(a, 1e-300))
 
 
+def _eigen_extremes(A):
+    """Smallest and largest eigenvalue of a symmetric 3 x 3 matrix, in closed form (the trigonometric solution
+    of the characteristic cubic); their absolute error is a few ulps of the largest."""
+    (a, b, c), (_, d, e), (_, _, f) = A.tolist()
+    q = (a + d + f) / 3.0
+    a0, d0, f0 = a - q, d - q, f - q
+    p2 = (a0 * a0 + d0 * d0 + f0 * f0 + 2.0 * (b * b + c * c + e * e)) / 6.0
+    if p2 <= 0.0:
+        return q, q
+    p = math.sqrt(p2)
+    det = a0 * (d0 * f0 - e * e) - b * (b * f0 - e * c) + c * (b * e - d0 * c)
+    phi = math.acos(min(1.0, max(-1.0, det / (2.0 * p2 * p)))) / 3.0
+    return q + 2.0 * p * math.cos(phi + 2.0 * math.pi / 3.0), q + 2.0 * p * math.cos(phi)
+
+
+def _fixed_directions(A, b):
+    """``(rank, x)``: the least-squares solution of ``A x = b`` in the directions ``A`` fixes (eigenvalues above
+    1e-9 of the largest).  A matrix clearly of full rank (ten times above that cut) is solved directly; the
+    eigen-decomposition is needed only near and below it (a corridor, a single line)."""
+    lo, hi = _eigen_extremes(A)
+    if lo > 1e-8 * hi > 0.0:
+        return 3, np.linalg.solve(A, b)
+    vals, vecs = np.linalg.eigh(A)
+    keep = vals > 1e-9 * max(vals[-1], 1e-300)
+    return int(keep.sum()), vecs[:, keep] @ ((vecs[:, keep].T @ b) / vals[keep])
+
+
 def _solve_robust(meas: Measurements, kernel, iterations, prior_factor):
     """IRLS of the measurements alone: (information A, rhs b, weights, s^2, dof, residuals at the estimate)."""
     H, z, var = meas.H, meas.z, meas.var
+    Hz = np.column_stack([H, z])  # one product gives both A = H' W H and b = H' W z
+    sd = np.sqrt(var)
     w = np.ones(len(z))
     s2 = prior_factor
     n_groups = meas.group.max() + 1
     for _ in range(iterations + 1):
         info = w / (s2 * var)
-        A = (H * info[:, None]).T @ H
-        b = (H * info[:, None]).T @ z
-        vals, vecs = np.linalg.eigh(A)
-        keep = vals > 1e-9 * max(vals[-1], 1e-300)
-        x = vecs[:, keep] @ ((vecs[:, keep].T @ b) / vals[keep])  # least squares in the directions fixed
+        Ab = (Hz * info[:, None]).T @ Hz
+        rank, x = _fixed_directions(Ab[:3, :3], Ab[:3, 3])
         res = z - H @ x
-        u = res / np.sqrt(var)  # in units of the stated sigma
-        dof = len(z) - int(keep.sum())
+        u = res / sd  # in units of the stated sigma
+        dof = len(z) - rank
         # the variance factor: the scan's residuals pooled with the running factor (PRIOR_DOF of evidence)
-        s2 = max((float(np.sum(w * u**2)) + PRIOR_DOF * prior_factor) / (max(dof, 0) + PRIOR_DOF), 1.0)
-        g = _huber(u / np.sqrt(s2), kernel)
+        s2 = max((float(w @ (u * u)) + PRIOR_DOF * prior_factor) / (max(dof, 0) + PRIOR_DOF), 1.0)
+        g = _huber(u / math.sqrt(s2), kernel)
         gw = np.ones(n_groups)  # one weight per correspondence: its rows stand or fall together
         np.minimum.at(gw, meas.group, g)
+        if np.array_equal(gw[meas.group], w):
+            break  # the weights are a fixed point: another round would repeat this one exactly
         w = gw[meas.group]
-    info = w / (s2 * var)
-    A = (H * info[:, None]).T @ H
-    b = (H * info[:, None]).T @ z
-    return A, b, w, s2, dof, res
+    Ab = (Hz * (w / (s2 * var))[:, None]).T @ Hz
+    return Ab[:3, :3], Ab[:3, 3], w, s2, dof, res
 
 
 def estimate_correction(
@@ -255,6 +282,21 @@ def estimate_correction(
         raise InvalidInputError("estimate_correction: need at least one measurement, each with a variance > 0")
     A, b, w, s2, dof, res = _solve_robust(meas, kernel, iterations, prior_factor)
     P_inv = np.linalg.inv(prior_cov)
+    lo, hi = _eigen_extremes(A)
+    if lo > 1e-8 * hi > 0.0:
+        # the lines fix every direction (the usual case): the same estimate in the standard basis, no
+        # eigen-decomposition (the innovation's law is the same in any orthonormal basis)
+        rank, V = 3, np.eye(3)
+        A_inv = np.linalg.inv(A)
+        y = A_inv @ b
+        S = A_inv + model_cov
+        g = y - p
+        nis = float(g @ np.linalg.solve(S + prior_cov, g))
+        S_inv = np.linalg.inv(S)
+        cov = np.linalg.inv(S_inv + P_inv)
+        delta = cov @ (S_inv @ y + P_inv @ p)
+        return Correction(delta, cov, nis <= _chi2_quantile(level, 3), nis, _chi2_quantile(level, 3), 3, V, g, S, s2,
+                          dof, w, res)  # fmt: skip
     # the measurement-only estimate in the directions the lines fix (eigenvectors V of A), with covariance
     # diag(1 / lambda) plus the registration's own error V' model_cov V
     vals, vecs = np.linalg.eigh(A)

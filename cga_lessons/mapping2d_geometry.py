@@ -210,6 +210,11 @@ class PlainGeometry:
         """Euclidean distance of two points."""
         return float(np.hypot(*(np.asarray(p) - np.asarray(q))))
 
+    def distance_rows(self, P, Q):
+        """:meth:`distance` of ``P[i]`` and ``Q[i]``, shape (n,)."""
+        D = np.asarray(P, float) - np.asarray(Q, float)
+        return np.hypot(D[:, 0], D[:, 1])
+
     def fuse_ends(self, g_start, g_end, l_start, l_end):
         """End points of the fusion of two corresponding segments (3.20-3.21).
 
