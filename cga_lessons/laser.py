@@ -43,6 +43,7 @@ __all__ = [
     "simulate_odometry",
     "CarmenLog",
     "read_carmen_log",
+    "no_return_codes",
 ]
 
 
@@ -428,6 +429,9 @@ class CarmenLog:
     timestamps : ndarray, shape (T,)
     laser_offset : float
         ``robot_frontlaser_offset`` from the log's PARAM lines (m), 0 if absent.
+    no_return_codes : tuple of float
+        The values the log uses to say "no return" that :func:`no_return_codes` found (their readings, and all
+        readings above the smallest, are ``inf`` in ``ranges``).
     """
 
     ranges: np.ndarray
@@ -436,6 +440,7 @@ class CarmenLog:
     odometry: np.ndarray
     timestamps: np.ndarray
     laser_offset: float = 0.0
+    no_return_codes: tuple = ()
 
     @property
     def scans(self) -> list:
@@ -446,7 +451,46 @@ class CarmenLog:
         return len(self.ranges)
 
 
-def read_carmen_log(path, *, no_return_range: float = 80.0, fov: float = np.pi) -> CarmenLog:
+def no_return_codes(ranges, *, min_beams: int = 10, band: float = 0.01) -> tuple:
+    """The values a laser log uses for "no return", found in its readings.
+
+    Some drivers write a fixed value where a beam returned nothing: ACES's log
+    reports exactly 50.00 m in 620 beams, Örebro's SICK scanner the codes
+    32.759-32.767 m (just below 2^15 mm) in 968.  A real surface at the laser's
+    largest distance does not give one millimetre value in many beams (in the
+    four other bundled logs no value within 1 % of the largest reading occurs
+    more than three times).  So a value within ``band`` (relative) of the
+    log's largest finite reading that at least ``min_beams`` beams share is a
+    code.
+
+    Parameters
+    ----------
+    ranges : array_like
+        All readings of the log (any shape; ``inf`` for no return).
+
+    Returns
+    -------
+    tuple of float
+        The codes found, ascending (empty when none).
+
+    >>> r = np.array([1.0, 2.5, 7.25] + [50.0] * 12 + [49.8])
+    >>> no_return_codes(r)
+    (50.0,)
+    >>> no_return_codes(np.array([1.0, 2.5, 50.0]))
+    ()
+    """
+    r = np.asarray(ranges, float).ravel()
+    r = r[np.isfinite(r)]
+    if len(r) == 0:
+        return ()
+    top = r[r >= (1.0 - band) * r.max()]
+    values, counts = np.unique(top, return_counts=True)
+    return tuple(float(v) for v in values[counts >= min_beams])
+
+
+def read_carmen_log(
+    path, *, no_return_range: float = 80.0, fov: float = np.pi, detect_codes: bool = True
+) -> CarmenLog:
     """Read the FLASER lines of a CARMEN log (plain text or gzip).
 
     Each line ``FLASER n r_1 ... r_n x y theta odom_x odom_y odom_theta
@@ -464,6 +508,9 @@ def read_carmen_log(path, *, no_return_range: float = 80.0, fov: float = np.pi) 
         (SICK scanners in these logs report about 81.9 m).
     fov : float
         Field of view (radians) assumed for beam counts other than 180, 181, 360, 361.
+    detect_codes : bool
+        Also find the log's own "no return" values (:func:`no_return_codes`): their readings and any above the
+        smallest become ``inf`` (recorded in ``CarmenLog.no_return_codes``).
 
     Returns
     -------
@@ -524,7 +571,11 @@ def read_carmen_log(path, *, no_return_range: float = 80.0, fov: float = np.pi) 
     odom = np.array(odom)
     poses[:, 2] = wrap_angle(poses[:, 2])
     odom[:, 2] = wrap_angle(odom[:, 2])
-    return CarmenLog(np.array(ranges), _carmen_angles(n_beams, fov), poses, odom, np.array(stamps), offset)
+    ranges = np.array(ranges)
+    codes = no_return_codes(ranges) if detect_codes else ()
+    if codes:
+        ranges[ranges >= codes[0]] = np.inf
+    return CarmenLog(ranges, _carmen_angles(n_beams, fov), poses, odom, np.array(stamps), offset, codes)
 
 
 def _carmen_angles(n: int, fov: float) -> np.ndarray:

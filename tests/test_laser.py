@@ -170,6 +170,33 @@ def test_read_carmen_log_malformed_line_names_the_line(tmp_path, bad, match):
         read_carmen_log(_write(tmp_path, GOOD + bad + GOOD))
 
 
+def test_read_carmen_log_finds_the_drivers_no_return_value(tmp_path):
+    """A value the driver writes for "no return" (here 50.00 m, as in ACES's log) becomes inf; a real far wall
+    read once stays; the raw values are kept with detect_codes=False."""
+    walls = 49.6 + 0.01 * np.arange(12)  # a far wall, read at a different distance in each scan
+    text = "".join(f"FLASER 4 1.0 {w:.2f} 50.0 2.0 0 0 0 0 0 0 1 host 1\n" for w in walls)
+    log = read_carmen_log(_write(tmp_path, text))
+    assert log.no_return_codes == (50.0,)
+    assert np.isinf(log.ranges[:, 2]).all() and np.allclose(log.ranges[:, 1], walls)
+    raw = read_carmen_log(_write(tmp_path, text), detect_codes=False)
+    assert raw.no_return_codes == () and np.allclose(raw.ranges[:, 2], 50.0)
+    few = read_carmen_log(_write(tmp_path, "".join(text.splitlines(keepends=True)[:3])))  # 50 m in 3 beams: a wall
+    assert few.no_return_codes == () and np.isfinite(few.ranges).all()
+
+
+def test_the_bundled_logs_no_return_values_read_from_their_files():
+    """Counted in the files' own text: ACES writes 50.00 in 620 beams, Örebro the SICK codes 32.759-32.767 m."""
+    for name, codes in (("aces", {50.0}), ("orebro", {32.759, 32.763, 32.765, 32.767})):
+        with gzip.open(data_path("carmen", f"{name}-corrected.log.gz"), "rt") as f:
+            fields = [line.split() for line in f if line.startswith("FLASER")]
+        raw = [t[2 : 2 + int(t[1])] for t in fields]
+        n_code = sum(float(v) in codes for r in raw for v in r)
+        log = read_carmen_log(data_path("carmen", f"{name}-corrected.log.gz"))
+        n_raw_inf = sum(float(v) >= 80 or float(v) <= 0 for r in raw for v in r)
+        assert int(np.isinf(log.ranges).sum()) == n_raw_inf + n_code
+        assert n_code == {"aces": 620, "orebro": 968}[name]
+
+
 def test_read_carmen_log_empty_or_missing(tmp_path):
     with pytest.raises(InvalidInputError, match="no FLASER"):
         read_carmen_log(_write(tmp_path, "PARAM a 1 x 0\n"))
