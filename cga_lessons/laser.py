@@ -26,6 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from .algebra import InvalidInputError
+from .laser_facts import no_return_codes
 
 __all__ = [
     "Scene",
@@ -449,43 +450,6 @@ class CarmenLog:
 
     def __len__(self):
         return len(self.ranges)
-
-
-def no_return_codes(ranges, *, min_beams: int = 10, band: float = 0.01) -> tuple:
-    """The values a laser log uses for "no return", found in its readings.
-
-    Some drivers write a fixed value where a beam returned nothing: ACES's log
-    reports exactly 50.00 m in 620 beams, Örebro's SICK scanner the codes
-    32.759-32.767 m (just below 2^15 mm) in 968.  A real surface at the laser's
-    largest distance does not give one millimetre value in many beams (in the
-    four other bundled logs no value within 1 % of the largest reading occurs
-    more than three times).  So a value within ``band`` (relative) of the
-    log's largest finite reading that at least ``min_beams`` beams share is a
-    code.
-
-    Parameters
-    ----------
-    ranges : array_like
-        All readings of the log (any shape; ``inf`` for no return).
-
-    Returns
-    -------
-    tuple of float
-        The codes found, ascending (empty when none).
-
-    >>> r = np.array([1.0, 2.5, 7.25] + [50.0] * 12 + [49.8])
-    >>> no_return_codes(r)
-    (50.0,)
-    >>> no_return_codes(np.array([1.0, 2.5, 50.0]))
-    ()
-    """
-    r = np.asarray(ranges, float).ravel()
-    r = r[np.isfinite(r)]
-    if len(r) == 0:
-        return ()
-    top = r[r >= (1.0 - band) * r.max()]
-    values, counts = np.unique(top, return_counts=True)
-    return tuple(float(v) for v in values[counts >= min_beams])
 
 
 def read_carmen_log(

@@ -24,6 +24,7 @@ import numpy as np
 
 from .algebra import InvalidInputError
 from .laser import Scene, simulate_scan
+from .laser_facts import returns_reach
 from .relocalization import ReferenceMap, pose_error, prepare_map, relocalize
 from .relocalization_coverage import build_coverage
 from .relocalization_logmap import line_map_from_scans
@@ -333,7 +334,7 @@ def evaluate_log(
     *,
     exclude: int = 2,
     map_step: int = 2,
-    max_range: float = 8.0,
+    max_range: float | None = None,
     coverage: bool = True,
     **relocalize_kw,
 ):
@@ -342,7 +343,10 @@ def evaluate_log(
     The map uses every ``map_step``-th scan that is more than ``exclude``
     scans away from every test scan; the truth is the logged pose.  With
     ``coverage`` the map carries the coverage grid of its scans
-    (:func:`reference_from_log`).
+    (:func:`reference_from_log`).  ``max_range`` (m) is the laser's reach for
+    the map and the scans; None: the log's own
+    (:func:`cga_lessons.laser_facts.returns_reach`, the distance within which
+    99 % of its returns fall).
 
     Returns
     -------
@@ -353,6 +357,7 @@ def evaluate_log(
     test = np.asarray(test_indices, int)
     if test.size == 0 or test.min() < 0 or test.max() >= len(log):
         raise InvalidInputError(f"evaluate_log: test_indices must be non-empty and within 0..{len(log) - 1}")
+    max_range = returns_reach(log.ranges) if max_range is None else max_range
     ref = reference_from_log(
         log, held_out_map_indices(len(log), test, exclude, map_step), max_range=max_range, coverage=coverage
     )

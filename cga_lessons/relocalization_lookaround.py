@@ -25,6 +25,7 @@ import numpy as np
 
 from .algebra import InvalidInputError
 from .laser import OdometryModel, Scene, compose, relative, simulate_odometry, simulate_scan, wrap_angle
+from .laser_facts import returns_reach
 from .relocalization import pose_error, prepare_map
 from .relocalization_eval import (
     HEADING_TOLERANCE,
@@ -171,7 +172,7 @@ def evaluate_log_sequences(
     stride: int = 3,
     exclude: int = 2,
     map_step: int = 2,
-    max_range: float = 8.0,
+    max_range: float | None = None,
     odometry=None,
     coverage: bool = True,
     **relocalizer_kw,
@@ -186,7 +187,9 @@ def evaluate_log_sequences(
     :func:`cga_lessons.relocalization_eval.reference_from_log`); the truth is
     the logged (corrected) pose of each run's last scan.  ``odometry`` (T, 3)
     replaces the logged odometry (the corrected logs log the poses there: pass
-    :func:`cga_lessons.laser.simulate_odometry` of the truth).
+    :func:`cga_lessons.laser.simulate_odometry` of the truth).  ``max_range``
+    (m) is the laser's reach for the map and the scans; None: the log's own
+    (:func:`cga_lessons.laser_facts.returns_reach`).
 
     Returns
     -------
@@ -207,6 +210,7 @@ def evaluate_log_sequences(
     if odo.shape != (len(log), 3):
         raise InvalidInputError(f"evaluate_log_sequences: odometry must have shape ({len(log)}, 3), got {odo.shape}")
     idx = held_out_map_indices(len(log), runs, exclude, map_step)
+    max_range = returns_reach(log.ranges) if max_range is None else max_range
     ref = reference_from_log(log, idx, max_range=max_range, coverage=coverage)
     segs = ref.segments
     rows = []
