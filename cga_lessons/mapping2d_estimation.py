@@ -295,8 +295,8 @@ def estimate_correction(
         S_inv = np.linalg.inv(S)
         cov = np.linalg.inv(S_inv + P_inv)
         delta = cov @ (S_inv @ y + P_inv @ p)
-        return Correction(delta, cov, nis <= _chi2_quantile(level, 3), nis, _chi2_quantile(level, 3), 3, V, g, S, s2,
-                          dof, w, res)  # fmt: skip
+        threshold = _chi2_quantile(level, 3)
+        return Correction(delta, cov, nis <= threshold, nis, threshold, 3, V, g, S, s2, dof, w, res)
     # the measurement-only estimate in the directions the lines fix (eigenvectors V of A), with covariance
     # diag(1 / lambda) plus the registration's own error V' model_cov V
     vals, vecs = np.linalg.eigh(A)

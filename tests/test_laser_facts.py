@@ -42,6 +42,7 @@ def test_the_bundled_logs_return_from_far_less_than_their_scanners_are_specified
         ([1.0, 2.0], 1.5, "coverage must lie in"),
         ([1.0, 2.0], float("nan"), "coverage must lie in"),
         ([1.0, 2.0], "0.9", "coverage must lie in"),
+        ([1.0, 2.0], True, "coverage must lie in"),
     ],
 )
 def test_returns_reach_refuses_bad_input(ranges, coverage, match):
@@ -51,3 +52,18 @@ def test_returns_reach_refuses_bad_input(ranges, coverage, match):
 
 def test_no_return_codes_of_a_log_without_returns_is_empty():
     assert no_return_codes([np.inf, np.inf]) == () and no_return_codes([]) == ()
+
+
+@pytest.mark.parametrize(
+    "kw, match",
+    [
+        (dict(min_beams=1), "min_beams must be an integer >= 2"),
+        (dict(min_beams=2.5), "min_beams must be an integer >= 2"),
+        (dict(band=float("nan")), "band must lie in"),
+        (dict(band=1.0), "band must lie in"),
+        (dict(band=-0.1), "band must lie in"),
+    ],
+)
+def test_no_return_codes_refuses_bad_settings(kw, match):
+    with pytest.raises(InvalidInputError, match=f"no_return_codes: {match}"):
+        no_return_codes([1.0, 2.0], **kw)
