@@ -11,7 +11,8 @@ import time
 
 import numpy as np
 
-from cga_lessons import data_path, laser, lines, mapping2d
+from cga_lessons import data_path, mapping2d
+from cga_lessons.mapping2d import laser, lines
 
 
 def extraction_rate(scans, repeat=3):

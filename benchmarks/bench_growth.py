@@ -30,11 +30,12 @@ from collections import defaultdict
 
 import numpy as np
 
-from cga_lessons import data_path, laser, mapping2d
-from cga_lessons import mapping2d_builder as builder_mod
-from cga_lessons import mapping2d_correction as correction_mod
-from cga_lessons import mapping2d_graph as graph_mod
-from cga_lessons import mapping2d_loops as loops_mod
+from cga_lessons import data_path, mapping2d
+from cga_lessons.mapping2d import builder as builder_mod
+from cga_lessons.mapping2d import correction as correction_mod
+from cga_lessons.mapping2d import graph as graph_mod
+from cga_lessons.mapping2d import laser
+from cga_lessons.mapping2d import loops as loops_mod
 
 LOGS = ("intel", "aces", "csail", "freiburg-101", "seattle", "orebro")
 MAX_RANGE = 8.0
@@ -157,7 +158,7 @@ def run(name, laps, seed, block, limit=None, profile=False):
         lines = [ln for ln in out.getvalue().splitlines() if ln.strip()]
         start = next(i for i, ln in enumerate(lines) if "ncalls" in ln)
         print("cProfile, top 15 by own time (s; the stage timer's wrappers included):")
-        print("\n".join(lines[start:start + 16]))
+        print("\n".join(lines[start : start + 16]))
     return ms, result, truth, odometry
 
 

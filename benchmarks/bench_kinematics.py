@@ -44,7 +44,7 @@ sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1]))  # run from
 
 from cga_lessons import conformal as cga  # noqa: E402
 from cga_lessons import kinematics as kin  # noqa: E402
-from cga_lessons.kinematics_arms import UR5_DH, ur5  # noqa: E402
+from cga_lessons.kinematics.arms import UR5_DH, ur5  # noqa: E402
 
 D, A, ALPHA = np.array(UR5_DH.d), np.array(UR5_DH.a), np.array(UR5_DH.alpha)
 
@@ -129,10 +129,12 @@ def peer_cases(ch, q):
         N = len(q)
         zeros = np.zeros(N)
         dq = ptr.dual_quaternions_from_screw_parameters(
-            np.broadcast_to(points[0], (N, 3)), np.broadcast_to(dirs[0], (N, 3)), zeros, q[:, 0].copy())
+            np.broadcast_to(points[0], (N, 3)), np.broadcast_to(dirs[0], (N, 3)), zeros, q[:, 0].copy()
+        )
         for i in range(1, ch.n):
             dqi = ptr.dual_quaternions_from_screw_parameters(
-                np.broadcast_to(points[i], (N, 3)), np.broadcast_to(dirs[i], (N, 3)), zeros, q[:, i].copy())
+                np.broadcast_to(points[i], (N, 3)), np.broadcast_to(dirs[i], (N, 3)), zeros, q[:, i].copy()
+            )
             dq = ptr.batch_concatenate_dual_quaternions(dq, dqi)
         return ptr.transforms_from_dual_quaternions(ptr.batch_concatenate_dual_quaternions(dq, np.tile(dq0, (N, 1))))
 
@@ -180,11 +182,13 @@ def main(n: int = 10_000, rounds: int = 30, seed: int = 0, out=None):
     checks = {name: float(np.abs(fn() - truth).max()) for name, fn in cases.items()
               if "coefficients" not in name}  # fmt: skip
     checks["kinematics.forward_coefficients (motor numbers)"] = float(
-        np.abs(kin.coefficients_to_matrix(kin.forward_coefficients(ch, q)) - truth).max())
+        np.abs(kin.coefficients_to_matrix(kin.forward_coefficients(ch, q)) - truth).max()
+    )
     small = q[:500]
     Mv = multivector_product(ch, small)
     checks["package Multivector product (500 configurations)"] = float(
-        np.abs(kin.coefficients_to_matrix(kin.motor_coefficients(Mv)) - truth[:500]).max())
+        np.abs(kin.coefficients_to_matrix(kin.motor_coefficients(Mv)) - truth[:500]).max()
+    )
     print(f"forward kinematics of the UR5 (6 joints), N = {n:,} configurations, {rounds} rounds, one BLAS thread")
     print("\nlargest deviation from the NumPy 4x4 DH chain (every entry of the 4x4 matrices):")
     for name, dev in checks.items():

@@ -40,8 +40,9 @@ from pathlib import Path
 
 import numpy as np
 
-from cga_lessons import data_path, laser, mapping2d
-from cga_lessons.trajectories import absolute_trajectory_error, relative_pose_error
+from cga_lessons import data_path, mapping2d
+from cga_lessons.mapping2d import laser
+from cga_lessons.mapping2d.trajectories import absolute_trajectory_error, relative_pose_error
 
 LOGS = ("intel", "aces", "csail", "freiburg-101", "seattle", "orebro")
 TARGET_RATIO, TARGET_RATIO_INTEL, TARGET_MAP_CM, TARGET_HELD_CM, TARGET_MS = 20.0, 100.0, 6.0, 5.0, 15.0

@@ -10,24 +10,25 @@ Protocol, for each log (``data/carmen/<name>-corrected.log.gz``):
 
 * the log is cut into blocks of ``LENGTH`` (10) consecutive scans; fold ``f`` of ``FOLDS`` (7) holds out the
   blocks ``b`` with ``b % FOLDS == f``, and the map (lines and coverage grid,
-  :func:`cga_lessons.relocalization_eval.reference_from_log`) is built at the logged poses from every
+  :func:`cga_lessons.relocalization.eval.reference_from_log`) is built at the logged poses from every
   other scan, as ``benchmarks/bench_reloc_logs.py`` builds its maps from the scans it does not test (a
   seventh of the log held out there too);
 * the laser's reach, for the map and the filter's beam model, is the log's own
-  (:func:`cga_lessons.laser_facts.returns_reach`: the distance within which 99 % of its returns fall, 13.5-30.6 m;
+  (:func:`cga_lessons.mapping2d.laser_facts.returns_reach`: the distance within which 99 % of its returns fall,
+  13.5-30.6 m;
   ``--max-range R`` sets one reach for all logs, as the table stored before did with 8 m);
 * each held-out block is one sequence: the filter
-  (:class:`cga_lessons.relocalization_mcl.MonteCarloLocalizer`) starts globally and takes the block's scans
-  one by one with odometry simulated from the logged poses (:func:`cga_lessons.laser.simulate_odometry`, the
+  (:class:`cga_lessons.relocalization.mcl.MonteCarloLocalizer`) starts globally and takes the block's scans
+  one by one with odometry simulated from the logged poses (:func:`cga_lessons.mapping2d.laser.simulate_odometry`, the
   project's drift model; the corrected logs log the poses as odometry), one drift per seed;
 * the office scene: sequences of ``LENGTH`` poses along its trajectory (a start every 20 poses), scans
-  simulated with :func:`cga_lessons.laser.simulate_scan` (1 cm noise, 5 m), the scene's walls as the map.
+  simulated with :func:`cga_lessons.mapping2d.laser.simulate_scan` (1 cm noise, 5 m), the scene's walls as the map.
 
 A sequence is *located* after ``k`` scans when the filter says it has converged and its estimate is within
 10 cm and 2 degrees of the logged pose of the ``k``-th scan; *confidently wrong* when, at any scan, it says
 converged and is not within them.  Side by side, chapter 5 on the same scans: the ``k``-th scan relocalized
 alone (:func:`cga_lessons.relocalization.relocalize`, located = ``"ok"`` and within the tolerance), and the
-first three scans as one run (:func:`cga_lessons.relocalization_sequence.relocalize_sequence`).
+first three scans as one run (:func:`cga_lessons.relocalization.sequence.relocalize_sequence`).
 
 Two diagnostics, which change no success criterion: *wrong vs map* counts the confidently wrong sequences whose
 wrong estimate is also outside the tolerance of the logged pose refined on the map by chapter 5's point
@@ -51,16 +52,17 @@ from pathlib import Path
 
 import numpy as np
 
-from cga_lessons import data_path, laser
-from cga_lessons.laser_facts import returns_reach
+from cga_lessons import data_path
+from cga_lessons.mapping2d import laser
+from cga_lessons.mapping2d.laser_facts import returns_reach
 from cga_lessons.relocalization import pose_error, relocalize
-from cga_lessons.relocalization_eval import HEADING_TOLERANCE, POSITION_TOLERANCE, reference_from_log
-from cga_lessons.relocalization_geometry import Observation, check_scan
-from cga_lessons.relocalization_likelihood import BeamModel
-from cga_lessons.relocalization_mcl import MCLConfig, MonteCarloLocalizer
-from cga_lessons.relocalization_sampling import KLDConfig
-from cga_lessons.relocalization_sequence import relocalize_sequence
-from cga_lessons.relocalization_verify import refine_pose_points
+from cga_lessons.relocalization.eval import HEADING_TOLERANCE, POSITION_TOLERANCE, reference_from_log
+from cga_lessons.relocalization.geometry import Observation, check_scan
+from cga_lessons.relocalization.likelihood import BeamModel
+from cga_lessons.relocalization.mcl import MCLConfig, MonteCarloLocalizer
+from cga_lessons.relocalization.sampling import KLDConfig
+from cga_lessons.relocalization.sequence import relocalize_sequence
+from cga_lessons.relocalization.verify import refine_pose_points
 
 LOGS = ("intel", "aces", "csail", "freiburg-101", "seattle", "orebro")
 LENGTH, FOLDS, CHECK = 10, 7, (1, 3, 10)
@@ -122,7 +124,7 @@ def run_sequence(ref, scans, truth, odo, config, seed, walls=None):
 
 def map_consistent(mcl, scan, pose, max_range):
     """The logged ``pose`` refined on the map by chapter 5's point-to-wall Gauss-Newton
-    (:func:`cga_lessons.relocalization_verify.refine_pose_points`, independent of the filter): where the map and
+    (:func:`cga_lessons.relocalization.verify.refine_pose_points`, independent of the filter): where the map and
     the logged pose disagree (a time skew in a turn, a residual of the log's own SLAM), the pose the map says."""
     obs = Observation.from_scan(*check_scan(scan), max_range)
     return refine_pose_points(mcl.reference.lines, obs, np.asarray(pose, float)[None])[0]

@@ -172,8 +172,9 @@ def main(n: int = 100_000, seed: int = 0, rounds: int = 25):
     if k is not None:
         K, km, kx, kx1, kl, kname = k
         kres = km >> kx
-        ky = np.stack([np.broadcast_to(np.asarray(getattr(kres, kname(b)), dtype=float), (n,))
-                       for b in (1, 2, 4, 8, 16)], axis=-1)
+        ky = np.stack(
+            [np.broadcast_to(np.asarray(getattr(kres, kname(b)), dtype=float), (n,)) for b in (1, 2, 4, 8, 16)], axis=-1
+        )
         w = ky[:, 4] - ky[:, 3]
         checks["kingdon M >> X"] = dev(ky[:, :3] / w[:, None])
         batch["kingdon M >> X  [array coefficients]"] = (lambda: km >> kx, nb)
@@ -229,31 +230,45 @@ def main(n: int = 100_000, seed: int = 0, rounds: int = 25):
     print()
     ours = res_b["cga.apply_to_points(M, x)  [3x4 affine]"]
     conf = res_b["cga.apply(M, X)  [conformal, 5x5]"]
-    print(f"targets: batched motor within 1.3x of the floor (median ratio): apply_to_points {ours[2]:.2f}x, "
-          f"apply {conf[2]:.2f}x")
+    print(
+        f"targets: batched motor within 1.3x of the floor (median ratio): apply_to_points {ours[2]:.2f}x, "
+        f"apply {conf[2]:.2f}x"
+    )
     kb = res_b.get("kingdon M >> X  [array coefficients]")
     if kb is not None:
-        print(f"         >= 2x faster than kingdon's M >> X (ratio of the median ratios): "
-              f"apply_to_points {kb[2] / ours[2]:.1f}x, apply {kb[2] / conf[2]:.1f}x")
+        print(
+            f"         >= 2x faster than kingdon's M >> X (ratio of the median ratios): "
+            f"apply_to_points {kb[2] / ours[2]:.1f}x, apply {kb[2] / conf[2]:.1f}x"
+        )
     for name in ("M >> X", "cga.apply(M, X)"):
         t, tb, r, _ = res_s[name]
         floor_t = res_s["numpy 4x4 @ homogeneous point (floor)"][0]
-        print(f"         one point <= 20 us: {name}: median {t * 1e6:.1f} us, best {tb * 1e6:.1f} us, "
-              f"{r:.1f} x the floor's median {floor_t * 1e6:.2f} us = {r * floor_t * 1e6:.1f} us")
-    rt = (res_b["round trip: cga.down(cga.apply(M, cga.up(P)))"][2]
-          / res_b["round trip: numpy [x 1] @ H^T, divide (floor)"][2])
+        print(
+            f"         one point <= 20 us: {name}: median {t * 1e6:.1f} us, best {tb * 1e6:.1f} us, "
+            f"{r:.1f} x the floor's median {floor_t * 1e6:.2f} us = {r * floor_t * 1e6:.1f} us"
+        )
+    rt = (
+        res_b["round trip: cga.down(cga.apply(M, cga.up(P)))"][2]
+        / res_b["round trip: numpy [x 1] @ H^T, divide (floor)"][2]
+    )
     print(f"         round trip down(apply(M, up(P))) <= 1.5x its floor (median ratios): {rt:.2f}x")
     kr = res_b.get("round trip: kingdon point, M >> X, divide")
     if kr is not None:
-        print(f"         round trip >= 2x faster than kingdon's (median ratios): "
-              f"{kr[2] / res_b['round trip: cga.down(cga.apply(M, cga.up(P)))'][2]:.1f}x")
+        print(
+            f"         round trip >= 2x faster than kingdon's (median ratios): "
+            f"{kr[2] / res_b['round trip: cga.down(cga.apply(M, cga.up(P)))'][2]:.1f}x"
+        )
         one = res_s["round trip: cga.down(cga.apply(M, cga.up(x)))"][2]
-        print(f"         one point, round trip, at most half of kingdon's time: ours / kingdon "
-              f"{one / res_s['round trip: kingdon point, M >> X, divide'][2]:.2f}")
+        print(
+            f"         one point, round trip, at most half of kingdon's time: ours / kingdon "
+            f"{one / res_s['round trip: kingdon point, M >> X, divide'][2]:.2f}"
+        )
     ks = res_s.get("kingdon M >> X")
     if ks is not None:
-        print(f"         kingdon's M >> X on one point: median {ks[0] * 1e6:.1f} us, best {ks[1] * 1e6:.1f} us "
-              f"(ratio to ours, median ratios: {ks[2] / res_s['M >> X'][2]:.1f}x)")
+        print(
+            f"         kingdon's M >> X on one point: median {ks[0] * 1e6:.1f} us, best {ks[1] * 1e6:.1f} us "
+            f"(ratio to ours, median ratios: {ks[2] / res_s['M >> X'][2]:.1f}x)"
+        )
 
 
 if __name__ == "__main__":

@@ -21,12 +21,13 @@ import time
 
 import numpy as np
 
-from cga_lessons import data_path, laser
-from cga_lessons.laser import Scene
+from cga_lessons import data_path
+from cga_lessons.mapping2d import laser
+from cga_lessons.mapping2d.laser import Scene
 from cga_lessons.relocalization import pose_error, prepare_map, relocalize
-from cga_lessons.relocalization_eval import evaluate_log, evaluate_poses, random_free_poses
-from cga_lessons.relocalization_hough import hough_set, vote_matrix, vote_matrix_indexed
-from cga_lessons.relocalization_lookaround import evaluate_log_sequences, evaluate_look_around
+from cga_lessons.relocalization.eval import evaluate_log, evaluate_poses, random_free_poses
+from cga_lessons.relocalization.hough import hough_set, vote_matrix, vote_matrix_indexed
+from cga_lessons.relocalization.lookaround import evaluate_log_sequences, evaluate_look_around
 
 
 def tiled(walls, k, period=(24.2, 14.2)):

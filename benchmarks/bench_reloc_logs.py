@@ -4,22 +4,22 @@ Run: ``python benchmarks/bench_reloc_logs.py [log ...] [--sparse] [--before] [--
 CARMEN logs; ``--before``: the method without the coverage grid and the deficit rule of ``tie_bar``, for comparison).
 Prints numbers only; nothing here is asserted.
 
-The laser's reach is each log's own (:func:`cga_lessons.laser_facts.returns_reach`: the distance within which 99 %
-of its returns fall, 13.5-30.6 m on these logs; the maps use the same reach); ``--max-range R`` sets one reach for
-all (the table stored before measured 8 m: single scans 73.4 %, runs 76.9 %, wrong 1.6 %).
+The laser's reach is each log's own (:func:`cga_lessons.mapping2d.laser_facts.returns_reach`: the distance within
+which 99 % of its returns fall, 13.5-30.6 m on these logs; the maps use the same reach); ``--max-range R`` sets one
+reach for all (the table stored before measured 8 m: single scans 73.4 %, runs 76.9 %, wrong 1.6 %).
 
 For each log (``data/carmen/<name>-corrected.log.gz``, the shared copy until it is there):
 
 * single scans: every 7th scan (from the 4th) is held out, the map (lines and coverage grid,
-  :func:`cga_lessons.relocalization_eval.reference_from_log`) is built at the logged poses from all
+  :func:`cga_lessons.relocalization.eval.reference_from_log`) is built at the logged poses from all
   the other scans, and each held-out scan is relocalized alone;
 * runs of three: the scans ``k-2, k-1, k`` for every held-out ``k`` are held out, the map is built
-  from the rest, and each run is relocalized with :func:`cga_lessons.relocalization_sequence.relocalize_sequence`
-  on odometry simulated from the logged poses (:func:`cga_lessons.laser.simulate_odometry`, the
+  from the rest, and each run is relocalized with :func:`cga_lessons.relocalization.sequence.relocalize_sequence`
+  on odometry simulated from the logged poses (:func:`cga_lessons.mapping2d.laser.simulate_odometry`, the
   project's drift model; the corrected logs log the poses as odometry), one drift per seed.
 
 With ``--sparse`` the map leaves out two scans either side of every held-out scan and uses every
-second of the rest (the defaults of :func:`cga_lessons.relocalization_eval.evaluate_log`): maps
+second of the rest (the defaults of :func:`cga_lessons.relocalization.eval.evaluate_log`): maps
 with holes where the held-out scans are.
 
 The full runs write their table to ``benchmarks/bench_reloc_logs[_sparse][_before].json`` (notebook 09 shows it).
@@ -39,10 +39,11 @@ from pathlib import Path
 
 import numpy as np
 
-from cga_lessons import data_path, laser
-from cga_lessons.laser_facts import returns_reach
-from cga_lessons.relocalization_eval import evaluate_log
-from cga_lessons.relocalization_lookaround import evaluate_log_sequences
+from cga_lessons import data_path
+from cga_lessons.mapping2d import laser
+from cga_lessons.mapping2d.laser_facts import returns_reach
+from cga_lessons.relocalization.eval import evaluate_log
+from cga_lessons.relocalization.lookaround import evaluate_log_sequences
 
 LOGS = ("intel", "aces", "csail", "freiburg-101", "seattle", "orebro")
 EVERY, FIRST, RUN = 7, 3, 3

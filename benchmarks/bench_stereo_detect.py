@@ -5,7 +5,7 @@ Run: ``python benchmarks/bench_stereo_detect.py`` (add ``--quick`` for 3 seeds i
 notebook 11 reads).  Prints numbers only; nothing here is asserted.
 
 1. Precision / recall per kind over seeds and noise levels: scenes of 3 planes, 3 spheres, 3 circles and
-   3 lines with 300 clutter points (:mod:`cga_lessons.stereo_detect_scenes`), seen through the simulated
+   3 lines with 300 clutter points (:mod:`cga_lessons.stereo.detect_scenes`), seen through the simulated
    stereo head (0.25-2 px) with the triangulation covariances as the sensor fact; and as clouds with
    isotropic noise that the detector estimates itself.
 2. The bundled head of ``data/stereo_rig.json`` (12 cm baseline, 700 px) on nearer scenes.
@@ -22,9 +22,9 @@ from pathlib import Path
 
 import numpy as np
 
-from cga_lessons import stereo_detect as sd
-from cga_lessons import stereo_detect_scenes as ss
-from cga_lessons.stereo_rig import load_rig
+from cga_lessons.stereo import detect as sd
+from cga_lessons.stereo import detect_scenes as ss
+from cga_lessons.stereo.rig import load_rig
 
 QUICK = "--quick" in sys.argv
 SEEDS = range(3) if QUICK else range(10)
@@ -100,9 +100,9 @@ def timing():
 
 
 def motorcycle(step=6, sigma_px=0.5):
-    from cga_lessons import stereo_detect_models as dm
-    from cga_lessons import stereo_real as real
-    from cga_lessons.stereo_detect_noise import triangulation_covariance
+    from cga_lessons.stereo import detect_models as dm
+    from cga_lessons.stereo import real as real
+    from cga_lessons.stereo.detect_noise import triangulation_covariance
 
     try:
         _, _, disp, calib = real.load_motorcycle()
@@ -124,9 +124,24 @@ def motorcycle(step=6, sigma_px=0.5):
         found = {k: sum(e.kind == k for e in ents) for k in KINDS}
         cover = sum(len(e.inliers) for e in ents) / len(X)
         print(f"  {label}: {dt:.1f} s, {len(ents)} entities {found}, {cover:.0%} of the points on one")
-        RESULTS["motorcycle"]["runs"].append(dict(label=label, seconds=dt, found=found, cover=cover, entities=[
-            dict(kind=e.kind, inliers=len(e.inliers), rms=e.rms, chi2=e.chi2,
-                 params={k: np.asarray(v).tolist() for k, v in e.params.items()}) for e in ents]))
+        RESULTS["motorcycle"]["runs"].append(
+            dict(
+                label=label,
+                seconds=dt,
+                found=found,
+                cover=cover,
+                entities=[
+                    dict(
+                        kind=e.kind,
+                        inliers=len(e.inliers),
+                        rms=e.rms,
+                        chi2=e.chi2,
+                        params={k: np.asarray(v).tolist() for k, v in e.params.items()},
+                    )
+                    for e in ents
+                ],
+            )
+        )
         floor = floor or ents[0]  # the largest plane of the planes-only run: the floor (normal along image y)
         for e in ents[:6]:
             if e.kind == "plane":

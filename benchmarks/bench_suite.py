@@ -60,8 +60,10 @@ def main(args: list[str]) -> int:
     for item, sec in items.items():
         files[item.split("::")[0]] += sec
     counted = sum(items.values())
-    print(f"\nwhole suite: {wall:.1f} s wall ({wall / BUDGET_S:.2f} of the {BUDGET_S:.0f} s budget); "
-          f"items sum to {counted:.1f} s (the rest is start-up, collection and kernels)")
+    print(
+        f"\nwhole suite: {wall:.1f} s wall ({wall / BUDGET_S:.2f} of the {BUDGET_S:.0f} s budget); "
+        f"items sum to {counted:.1f} s (the rest is start-up, collection and kernels)"
+    )
     print("pytest:", summary[-1].strip("= ") if summary else f"exit code {proc.returncode}")
     failed = [ln.split(" - ")[0] for ln in out.splitlines() if ln.startswith(("FAILED ", "ERROR "))]
     for ln in failed[:25]:

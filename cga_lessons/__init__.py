@@ -1,12 +1,7 @@
 """cga-lessons: conformal geometric algebra for robot mapping, as a runnable course."""
 
-from pathlib import Path
+from .paths import data_path
 
 __version__ = "0.1.0"
 
-_ROOT = Path(__file__).resolve().parent.parent
-
-
-def data_path(*parts: str) -> Path:
-    """Path of a file in the project's ``data/`` folder."""
-    return _ROOT.joinpath("data", *parts)
+__all__ = ["data_path", "__version__"]

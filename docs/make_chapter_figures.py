@@ -32,8 +32,11 @@ PICTURES = {
     "00_start_here": ('boxes = {"01"', 0, "how the chapters depend on each other"),
     "01_geometric_algebra": ("a_num, b_num = G2.vector", 0, "bivectors: oriented areas, a ^ b = -b ^ a"),
     "02_conformal_model": ("ch2.fig_entities(", 0, "the conformal entities of table 2.1"),
-    "03_conformal_transformations": ("center, radius = np.array([0.3, 0.2, 0.0]), 1.0", 0,
-                                     "a grid of lines under an inversion in a sphere (2.88)"),
+    "03_conformal_transformations": (
+        "center, radius = np.array([0.3, 0.2, 0.0]), 1.0",
+        0,
+        "a grid of lines under an inversion in a sphere (2.88)",
+    ),
     "04_entity_properties": ("separations = np.logspace(", 0, "the accuracy of the point-pair extraction (2.131)"),
     "05_laser_line_maps": ("draw.map_figure(result.segments", 0, "the line map of the office and the trajectories"),
     "06_conformal_line_maps": ("draw.draw_point_pair_spheres([g, l]", 0, "the five sphere cases of (3.19)"),

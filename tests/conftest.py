@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from hypothesis import settings
 
-from cga_lessons.laser import Scene
+from cga_lessons.mapping2d.laser import Scene
 
 settings.register_profile("cga-lessons", derandomize=True)
 settings.load_profile("cga-lessons")

@@ -232,7 +232,7 @@ def test_symbolic_matches_numeric():
     A = G41.blade("e1", x) + G41.blade("e2+", y)
     B = G41.blade("e1-", y) + G41.blade("e+", 2 * x)
     P = (A * B).expand()
-    num = (A.subs({x: 0.3, y: -1.2}) * B.subs({x: 0.3, y: -1.2}))
+    num = A.subs({x: 0.3, y: -1.2}) * B.subs({x: 0.3, y: -1.2})
     assert P.subs({x: 0.3, y: -1.2}).map(float).isclose(num.map(float))
 
 
@@ -253,8 +253,9 @@ def test_random_products_agree_with_kingdon():
     rng = np.random.default_rng(7)
 
     def to_k(M):
-        return K.multivector({f"e{''.join(str(i + 1) for i in range(5) if b >> i & 1)}" if b else "e": v
-                              for b, v in M.coeffs.items()})
+        return K.multivector(
+            {f"e{''.join(str(i + 1) for i in range(5) if b >> i & 1)}" if b else "e": v for b, v in M.coeffs.items()}
+        )
 
     def from_k(km):
         return Multivector(G41, {int(k): float(v) for k, v in zip(km.keys(), km.values())})

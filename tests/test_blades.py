@@ -16,7 +16,7 @@ from kingdon import Algebra as KingdonAlgebra
 
 from cga_lessons import conformal as cga
 from cga_lessons.algebra import Algebra, DegenerateGeometryError, InvalidInputError, Multivector
-from cga_lessons.blades import (
+from cga_lessons.conformal.blades import (
     blade_factors,
     dual,
     is_blade,
@@ -32,7 +32,7 @@ from cga_lessons.blades import (
     scalar_product,
     undual,
 )
-from cga_lessons.blades_classify import BladeKind, classify, intersect
+from cga_lessons.conformal.blades_classify import BladeKind, classify, intersect
 
 G = cga.G41
 K = KingdonAlgebra(4, 1)  # e1 e2 e3 e4 e5 with e4^2 = +1, e5^2 = -1: ours are e1 e2 e3 e+ e-

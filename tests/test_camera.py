@@ -9,11 +9,11 @@ import cv2
 import numpy as np
 import pytest
 
-from cga_lessons import camera as cam
-from cga_lessons import epipolar as epi
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
+from cga_lessons.stereo import camera as cam
+from cga_lessons.stereo import epipolar as epi
 from cga_lessons.stereo import observe, random_rig, rotation_matrix
-from cga_lessons.stereo_experiments import random_points_in_view
+from cga_lessons.stereo.experiments import random_points_in_view
 
 SEEDS = range(8)
 

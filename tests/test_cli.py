@@ -18,7 +18,9 @@ import nbformat
 import numpy as np
 import pytest
 
-from cga_lessons import cli, data_path, equations, laser
+from cga_lessons import data_path, equations
+from cga_lessons.cli import commands as cli
+from cga_lessons.mapping2d import laser
 
 ROOT = Path(__file__).resolve().parents[1]
 NO_RETURN = 81.83  # what the SICK scanners of the CARMEN logs report for no return
@@ -361,7 +363,7 @@ def test_relocalize_finds_the_scans_pose_on_a_map_from_map2d(room_log, tmp_path,
 
 
 def test_relocalize_a_sequence_of_scans_with_the_logs_odometry(room_log, tmp_path, capsys):
-    pytest.importorskip("cga_lessons.relocalization_sequence")
+    pytest.importorskip("cga_lessons.relocalization.sequence")
     path, _, truth, _ = room_log
     assert run(["map2d", path, "--out-dir", tmp_path, "--odometry", "poses"], capsys)[0] == 0
     ks = [20, 25, 30]
@@ -392,7 +394,7 @@ def test_relocalize_bad_inputs_are_clear_errors(room_log, tmp_path, capsys):
 
 
 def test_segments_csv_round_trip(tmp_path):
-    from cga_lessons.lines import Segment
+    from cga_lessons.mapping2d.lines import Segment
 
     segs = [Segment([0.0, 0.0], [2.0, 1.0], 30, None, True, False), Segment([1.0, -1.0], [1.0, 3.0], 5)]
     cli.write_segments_csv(tmp_path / "s.csv", segs)

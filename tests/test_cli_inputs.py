@@ -1,4 +1,4 @@
-"""The command line against hostile inputs and output paths (cga_lessons.cli, cga_lessons.cli_io).
+"""The command line against hostile inputs and output paths (cga_lessons.cli, cga_lessons.cli.io).
 
 Every case must give exit status 1 and a one-line error on stderr naming the problem, no traceback, and leave
 the file system as it was: no partial file, the user's files intact, no symbolic link followed.  The truth is
@@ -13,9 +13,12 @@ import nbformat
 import numpy as np
 import pytest
 
-from cga_lessons import cli, cli_io, laser, segments_csv
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.lines import Segment
+from cga_lessons.cli import commands as cli
+from cga_lessons.cli import io as cli_io
+from cga_lessons.cli import segments_csv
+from cga_lessons.mapping2d import laser
+from cga_lessons.mapping2d.lines import Segment
 
 HEADER = ",".join(cli.SEGMENT_COLUMNS)
 

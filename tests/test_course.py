@@ -4,7 +4,7 @@ from pathlib import Path
 
 import nbformat
 
-from cga_lessons import course
+from cga_lessons.equations import course
 
 ROOT = Path(__file__).resolve().parents[1]
 

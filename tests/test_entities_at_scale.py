@@ -6,8 +6,8 @@ library, square roots in mpmath at 50 digits.  Shapes are well conditioned (a ji
 of size 0.1-100) and placed at up to 1e6 from the origin.
 
 Every property is held to 1e-9 relative, with two documented exceptions that are limits of the float64 e+/e-
-storage of G(4,1), not of the formulas (see :mod:`cga_lessons.entities_frame`): a round at distance |c| holds its
-squared size (rho^2, a pair's separation^2) only to about eps (|c|^2 + size^2) absolute, and its e0 part (the
+storage of G(4,1), not of the formulas (see :mod:`cga_lessons.conformal.entities_frame`): a round at distance |c| holds
+its squared size (rho^2, a pair's separation^2) only to about eps (|c|^2 + size^2) absolute, and its e0 part (the
 normal of a circle, the direction of a point pair) to about eps (|c|^2 + size^2) relative.  Those properties are
 held to 1e-9 plus that bound (``store``); positions get a floor of a few ulp of the coordinates themselves.
 """
@@ -177,8 +177,16 @@ def test_plane_far_eq_2_77_2_89(cfg):
     c, size, pts = layout(*cfg, k=3)
     nv = cross(sub(fr(pts[1]), fr(pts[0])), sub(fr(pts[2]), fr(pts[0])))
     delta = dot(nv, fr(pts[0]))
-    d_true = float(mpmath.sign(delta) * mpmath.sqrt(mpmath.mpf((delta * delta / dot(nv, nv)).numerator)
-                                                    / (delta * delta / dot(nv, nv)).denominator)) if delta else 0.0
+    d_true = (
+        float(
+            mpmath.sign(delta)
+            * mpmath.sqrt(
+                mpmath.mpf((delta * delta / dot(nv, nv)).numerator) / (delta * delta / dot(nv, nv)).denominator
+            )
+        )
+        if delta
+        else 0.0
+    )
     n, d = cga.plane_normal_distance(cga.plane_from_points(*pts))
     assert np.linalg.norm(n - unit(nv)) <= REL
     assert close_pos([d], [d_true], max(abs(d_true), size), c)

@@ -9,7 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from cga_lessons import equations, symbolic
+from cga_lessons import symbolic
+from cga_lessons.equations import core as equations
 
 ROOT = Path(__file__).resolve().parents[1]
 

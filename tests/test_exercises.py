@@ -14,10 +14,11 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from cga_lessons import camera, epipolar, exercises
 from cga_lessons import conformal as cga
-from cga_lessons import exploration_path as ep
 from cga_lessons.algebra import Algebra, InvalidInputError, exp
+from cga_lessons.exercises import checking as exercises
+from cga_lessons.exploration import path as ep
+from cga_lessons.stereo import camera, epipolar
 
 ROOT = Path(__file__).resolve().parents[1]
 G3, G4 = Algebra(3), Algebra(4)

@@ -1,4 +1,4 @@
-"""Tests of the exercises of chapter 6, the future work (cga_lessons.exercises_ch6).
+"""Tests of the exercises of chapter 6, the future work (cga_lessons.exercises.ch6).
 
 Right answers are computed here the way a student would, with the library (the kinematic chain's product of
 motors, its finite-difference Jacobian, the filter's KLD bound); the checkers use closed forms. The truths
@@ -13,7 +13,7 @@ import pytest
 
 from cga_lessons import exercises
 from cga_lessons import kinematics as kin
-from cga_lessons.relocalization_sampling import kld_bound
+from cga_lessons.relocalization.sampling import kld_bound
 
 Q = np.array([math.pi / 3, -math.pi / 2])
 

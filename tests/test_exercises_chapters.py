@@ -1,4 +1,4 @@
-"""Tests of the exercises of chapters 3-5 (cga_lessons.exercises_ch3, _ch4, _ch5).
+"""Tests of the exercises of chapters 3-5 (cga_lessons.exercises.ch3, _ch4, _ch5).
 
 Right answers are computed here the way a student would, with the library's functions (the map builder's
 corrections, point pairs, the motor chains, the Hough steps of chapter 5); the checkers use closed forms and
@@ -17,12 +17,13 @@ import pytest
 import sympy as sp
 
 from cga_lessons import conformal as cga
-from cga_lessons import exercises, laser, lines, mapping2d
-from cga_lessons import mapping2d_conformal as cmap
-from cga_lessons import relocalization_hough as hough
-from cga_lessons import relocalization_thesis as thesis
-from cga_lessons import robot as rb
-from cga_lessons.map3d_tour import homogeneous_chains
+from cga_lessons import exercises, mapping2d
+from cga_lessons.map3d import robot as rb
+from cga_lessons.map3d.tour import homogeneous_chains
+from cga_lessons.mapping2d import conformal as cmap
+from cga_lessons.mapping2d import laser, lines
+from cga_lessons.relocalization import hough as hough
+from cga_lessons.relocalization import thesis as thesis
 
 ROOT = Path(__file__).resolve().parents[1]
 PARTS = ("ch3", "ch4", "ch5")
@@ -118,6 +119,7 @@ def test_right_answers_are_right(exercise_id):
 
 # --------------------------------------------------------------------------- the truths against the library
 
+
 def test_symmetric_room_scans_are_identical_from_the_two_poses():
     room = laser.load_scene("room")
     a = laser.simulate_scan(room, np.array([1.0, 2.5, -0.7]), None, range_noise=0.0)
@@ -140,8 +142,9 @@ def test_printed_laser_chain_misses_by_the_closed_form():
         correct = homogeneous_chains(g, x=x, y=y, theta=theta)["laser"][:3, 3]
         expected = 2 * math.hypot(x, y) * math.sin(phi / 2)
         assert np.linalg.norm(printed - correct) == pytest.approx(expected, rel=1e-9)
-        got = exercises.evaluate("ch4.2", 2 * sp.sqrt(sp.Symbol("x") ** 2 + sp.Symbol("y") ** 2) * sp.sin(
-            sp.Symbol("phi") / 2))
+        got = exercises.evaluate(
+            "ch4.2", 2 * sp.sqrt(sp.Symbol("x") ** 2 + sp.Symbol("y") ** 2) * sp.sin(sp.Symbol("phi") / 2)
+        )
         assert got.verdict == "right"
 
 
@@ -268,8 +271,11 @@ WRONG = [
     ("ch5.1", [1.0, 1.5, 0.7], "mirror"),
     ("ch5.1", [9.0, 2.5, 0.4], "outside"),
     ("ch5.1", [3.0, 2.0, 0.4], "looks different"),
-    ("ch5.2", np.linalg.solve(np.column_stack([np.cos(scan5[:, 1]), np.sin(scan5[:, 1])]), map5[:, 0] - scan5[:, 0]),
-     "turn them"),
+    (
+        "ch5.2",
+        np.linalg.solve(np.column_stack([np.cos(scan5[:, 1]), np.sin(scan5[:, 1])]), map5[:, 0] - scan5[:, 0]),
+        "turn them",
+    ),
     ("ch5.2", -_translation_from_pairs(), "sign"),
     ("ch5.3", 0.0, "exact"),
     ("ch5.3", -_printed_shift_error(), "sign"),

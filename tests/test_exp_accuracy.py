@@ -1,6 +1,6 @@
 """Accuracy of exp (2.37) against independent truths, over every kind of bivector of G(4,1).
 
-Truths, none of which uses the closed form of :mod:`cga_lessons.algebra_exp`:
+Truths, none of which uses the closed form of :mod:`cga_lessons.algebra.exponential`:
 
 * ``_series_exp``: the series (2.37) summed with scaling and squaring,
   ``exp(B) = exp(B/2^k)^(2^k)``, in 40-digit decimal arithmetic, the product
@@ -27,7 +27,7 @@ from hypothesis import strategies as st
 
 from cga_lessons import conformal as cga
 from cga_lessons.algebra import Algebra, InvalidInputError, Multivector, exp
-from cga_lessons.versor_log import motor_log
+from cga_lessons.conformal.versor_log import motor_log
 
 G41 = cga.G41
 BIV = G41.grade_blades[2]

@@ -16,9 +16,9 @@ import pytest
 
 from cga_lessons import conformal as cga
 from cga_lessons import exploration as ex
-from cga_lessons import exploration_cases as cases
-from cga_lessons import exploration_path as ep
 from cga_lessons.algebra import DegenerateGeometryError, GeometryError, InvalidInputError
+from cga_lessons.exploration import cases as cases
+from cga_lessons.exploration import path as ep
 
 
 # ------------------------------------------------------------ independent truth
@@ -490,7 +490,7 @@ def test_detour_straight_when_clear_and_errors():
 
 
 def test_registry_entries_resolve():
-    from cga_lessons.registry.exploration import ENTRIES
+    from cga_lessons.equations.registry.exploration import ENTRIES
 
     assert sorted(e.label for e in ENTRIES) == ["3.1", "3.2", "3.3"]
     for e in ENTRIES:

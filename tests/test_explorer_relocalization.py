@@ -14,8 +14,8 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 from matplotlib.colors import to_rgba  # noqa: E402
 
-from cga_lessons.relocalization_eval import HEADING_TOLERANCE, POSITION_TOLERANCE  # noqa: E402
-from cga_lessons.relocalization_hough import hough_set  # noqa: E402
+from cga_lessons.relocalization.eval import HEADING_TOLERANCE, POSITION_TOLERANCE  # noqa: E402
+from cga_lessons.relocalization.hough import hough_set  # noqa: E402
 from cga_lessons.viz.explore_relocalization import RelocalizationExplorer, true_partners  # noqa: E402
 
 MEETING_ROOM = (8.0, 3.5, np.radians(30.0))  # the explorer's default, in the open
@@ -150,8 +150,10 @@ def test_an_update_is_fast_enough_for_a_slider():
     assert np.median(times) < 1.5  # about 0.3 s on one core; generous for a shared machine
 
 
-@pytest.mark.parametrize("change, name", [({"x": np.nan}, "x"), ({"y": float("inf")}, "y"),
-                                          ({"theta_deg": np.nan}, "theta_deg"), ({"x": "left"}, "x")])
+@pytest.mark.parametrize(
+    "change, name",
+    [({"x": np.nan}, "x"), ({"y": float("inf")}, "y"), ({"theta_deg": np.nan}, "theta_deg"), ({"x": "left"}, "x")],
+)
 def test_bad_slider_values_raise_naming_the_function_and_the_argument(change, name):
     ex = RelocalizationExplorer(pose=MEETING_ROOM)
     before = ex.pose.copy()

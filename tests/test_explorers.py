@@ -16,8 +16,16 @@ def _axis_distance(points, point, direction):
     return np.linalg.norm(rel - np.outer(rel @ d, d), axis=1)
 
 
-@pytest.mark.parametrize("change", [{}, {"angle": -200.0, "pitch": -0.5, "azimuth": 100.0}, {"angle": 360.0},
-                                    {"angle": 0.0, "pitch": 1.0}, {"elevation": -30.0, "angle": 45.0}])
+@pytest.mark.parametrize(
+    "change",
+    [
+        {},
+        {"angle": -200.0, "pitch": -0.5, "azimuth": 100.0},
+        {"angle": 360.0},
+        {"angle": 0.0, "pitch": 1.0},
+        {"elevation": -30.0, "angle": 45.0},
+    ],
+)
 def test_the_screw_explorer_moves_the_tool_along_the_true_helix(change):
     ex = ScrewExplorer()
     ex.update(**change)

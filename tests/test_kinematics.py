@@ -6,7 +6,7 @@ The truths are independent of the code under test:
   (standard DH for the UR5, modified DH for the Panda);
 * a peer library, pytransform3d (product of exponentials with its own exponential map, and its logarithm);
 * central finite differences of the forward kinematics for the Jacobian;
-* the robot geometer's motors as today's ``cga_lessons.robot`` builds them (4.1-4.10);
+* the robot geometer's motors as today's ``cga_lessons.map3d.robot`` builds them (4.1-4.10);
 * the package's own G(4,1) products, rotors about lines (2.109), translators (2.100) and logarithms.
 """
 
@@ -14,12 +14,13 @@ import numpy as np
 import pytest
 
 from cga_lessons import conformal as cga
-from cga_lessons import kinematics as kin
-from cga_lessons import robot as rb
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.kinematics_arms import DHParameters, dh_chain, geometer_chains, panda, ur5
-from cga_lessons.kinematics_ik import IKOptions, inverse_kinematics, twist_error
-from cga_lessons.versor_log import motor_log
+from cga_lessons.conformal.versor_log import motor_log
+from cga_lessons.kinematics import motor_chain as kin
+from cga_lessons.kinematics.arms import DHParameters, dh_chain, panda, ur5
+from cga_lessons.kinematics.ik import IKOptions, inverse_kinematics, twist_error
+from cga_lessons.map3d import geometer_chains
+from cga_lessons.map3d import robot as rb
 
 N = 1000
 TOL = 1e-12

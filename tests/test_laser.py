@@ -1,4 +1,4 @@
-"""Tests of the laser simulator, odometry model and CARMEN log reader (cga_lessons.laser)."""
+"""Tests of the laser simulator, odometry model and CARMEN log reader (cga_lessons.mapping2d.laser)."""
 
 import gzip
 
@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 
 from cga_lessons import data_path
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.laser import (
+from cga_lessons.mapping2d.laser import (
     OdometryModel,
     Scene,
     beam_angles,
@@ -59,8 +59,15 @@ def test_simulate_scan_closed_form_ranges_in_the_room():
     # general beam: distance to the first wall crossed, computed independently
     for i in range(0, 361, 7):
         c, s = np.cos(a[i]), np.sin(a[i])
-        t = [d for d in ((6 - 3) / c if c > 1e-12 else np.inf, (4 - 2) / s if s > 1e-12 else np.inf,
-                         (0 - 2) / s if s < -1e-12 else np.inf) if d > 0]
+        t = [
+            d
+            for d in (
+                (6 - 3) / c if c > 1e-12 else np.inf,
+                (4 - 2) / s if s > 1e-12 else np.inf,
+                (0 - 2) / s if s < -1e-12 else np.inf,
+            )
+            if d > 0
+        ]
         assert np.isclose(r[i], min(t))
 
 

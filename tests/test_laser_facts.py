@@ -1,4 +1,4 @@
-"""What a log says about its laser (cga_lessons.laser_facts): its reach, checked against counts made here."""
+"""What a log says about its laser (cga_lessons.mapping2d.laser_facts): its reach, checked against counts made here."""
 
 import math
 
@@ -7,8 +7,8 @@ import pytest
 
 from cga_lessons import data_path
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.laser import read_carmen_log
-from cga_lessons.laser_facts import no_return_codes, returns_reach
+from cga_lessons.mapping2d.laser import read_carmen_log
+from cga_lessons.mapping2d.laser_facts import no_return_codes, returns_reach
 
 
 def test_returns_reach_is_the_range_within_which_the_share_of_returns_falls():

@@ -1,4 +1,4 @@
-"""Tests of line extraction (cga_lessons.lines, thesis 3.1-3.5)."""
+"""Tests of line extraction (cga_lessons.mapping2d.lines, thesis 3.1-3.5)."""
 
 import numpy as np
 import pytest
@@ -6,8 +6,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.laser import load_scene, simulate_scan
-from cga_lessons.lines import (
+from cga_lessons.mapping2d.laser import load_scene, simulate_scan
+from cga_lessons.mapping2d.lines import (
     TWO_PI,
     Segment,
     _diff_theta_as_printed,

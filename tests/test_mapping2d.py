@@ -5,16 +5,6 @@ import pytest
 
 from cga_lessons import data_path
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.laser import (
-    compose,
-    load_scene,
-    read_carmen_log,
-    relative,
-    scans_to_world,
-    simulate_odometry,
-    simulate_scans,
-)
-from cga_lessons.lines import Segment, diff_theta, extract_segments
 from cga_lessons.mapping2d import (
     MapBuilder,
     MapParams,
@@ -31,7 +21,17 @@ from cga_lessons.mapping2d import (
     theta_correction,
     translation_correction,
 )
-from cga_lessons.mapping2d_hypotheses import loop_hypotheses
+from cga_lessons.mapping2d.hypotheses import loop_hypotheses
+from cga_lessons.mapping2d.laser import (
+    compose,
+    load_scene,
+    read_carmen_log,
+    relative,
+    scans_to_world,
+    simulate_odometry,
+    simulate_scans,
+)
+from cga_lessons.mapping2d.lines import Segment, diff_theta, extract_segments
 
 
 def _set(*pairs):
@@ -391,7 +391,7 @@ def test_build_map_rejects_bad_input():
 # ---------------------------------------------------------------- the conformal version (3.13-3.21)
 
 from cga_lessons import conformal as cga  # noqa: E402
-from cga_lessons.mapping2d_conformal import (  # noqa: E402
+from cga_lessons.mapping2d.conformal import (  # noqa: E402
     ConformalGeometry,
     c2e,
     e2c,

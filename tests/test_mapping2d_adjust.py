@@ -4,12 +4,12 @@ import numpy as np
 import pytest
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.laser import OdometryModel, compose, load_scene, relative, simulate_odometry, simulate_scans
-from cga_lessons.lines import Segment
 from cga_lessons.mapping2d import MapParams, build_map, map_errors, pose_errors
-from cga_lessons.mapping2d_adjust import AdjustParams, adjust_map
-from cga_lessons.mapping2d_corrections import chain_covariance
-from cga_lessons.mapping2d_geometry import SegmentSet
+from cga_lessons.mapping2d.adjust import AdjustParams, adjust_map
+from cga_lessons.mapping2d.corrections import chain_covariance
+from cga_lessons.mapping2d.geometry import SegmentSet
+from cga_lessons.mapping2d.laser import OdometryModel, compose, load_scene, relative, simulate_odometry, simulate_scans
+from cga_lessons.mapping2d.lines import Segment
 
 MOUNT = np.array([0.2, 0.05, 0.1])
 
@@ -158,7 +158,7 @@ def test_adjust_map_and_learn_lag_refuse_bad_input():
 def test_the_adjustment_brings_a_real_log_closer_to_its_corrected_poses():
     """Intel's first 300 scans with drifting odometry: against the log's own corrected poses."""
     from cga_lessons import data_path
-    from cga_lessons.laser import read_carmen_log
+    from cga_lessons.mapping2d.laser import read_carmen_log
 
     log = read_carmen_log(data_path("carmen", "intel-corrected.log.gz"))
     n = 300
@@ -174,7 +174,7 @@ def test_the_adjustment_brings_a_real_log_closer_to_its_corrected_poses():
 def test_solve_spd_solves_a_sparse_positive_definite_system_and_reports_a_singular_one():
     from scipy import sparse
 
-    from cga_lessons.mapping2d_adjust import solve_spd
+    from cga_lessons.mapping2d.adjust import solve_spd
 
     rng = np.random.default_rng(5)
     J = sparse.random(300, 120, density=0.05, random_state=6, format="csr") + sparse.eye(300, 120)

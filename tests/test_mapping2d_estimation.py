@@ -1,4 +1,4 @@
-"""Tests of the chapter 3 corrector as an estimator (cga_lessons.mapping2d_noise, _estimation, _correction).
+"""Tests of the chapter 3 corrector as an estimator (cga_lessons.mapping2d.noise, _estimation, _correction).
 
 Independent truths: the simulator's range noise, noise drawn with a known law (the chi-square law of the test,
 the variances the floors and the innovation model must recover), closed-form pose offsets of known lines, and
@@ -8,9 +8,13 @@ the poses of the CARMEN logs (a corrector fed them as odometry must leave them w
 import numpy as np
 import pytest
 
-from cga_lessons import data_path, mapping2d_loops
+from cga_lessons import data_path
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.laser import (
+from cga_lessons.mapping2d import build_map, map_errors, pose_errors
+from cga_lessons.mapping2d import loops as mapping2d_loops
+from cga_lessons.mapping2d.estimation import Measurements, estimate_correction
+from cga_lessons.mapping2d.geometry import SegmentSet
+from cga_lessons.mapping2d.laser import (
     compose,
     load_scene,
     read_carmen_log,
@@ -19,11 +23,8 @@ from cga_lessons.laser import (
     simulate_scan,
     simulate_scans,
 )
-from cga_lessons.lines import Segment, extract_segments
-from cga_lessons.mapping2d import build_map, map_errors, pose_errors
-from cga_lessons.mapping2d_estimation import Measurements, estimate_correction
-from cga_lessons.mapping2d_geometry import SegmentSet
-from cga_lessons.mapping2d_noise import InnovationModel, NoiseFloors, scan_range_noise, segment_residual_sigma
+from cga_lessons.mapping2d.lines import Segment, extract_segments
+from cga_lessons.mapping2d.noise import InnovationModel, NoiseFloors, scan_range_noise, segment_residual_sigma
 
 
 def _segment_with_noise(rng, n, sigma, length=2.0, angle=0.3):

@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from cga_lessons.laser import compose, relative
 from cga_lessons.mapping2d import MapParams, PlainGeometry, SegmentSet
-from cga_lessons.mapping2d_builder import MapBuilder
-from cga_lessons.mapping2d_graph import PoseGraph
-from cga_lessons.mapping2d_observations import Growing, PathLog
+from cga_lessons.mapping2d.builder import MapBuilder
+from cga_lessons.mapping2d.graph import PoseGraph
+from cga_lessons.mapping2d.laser import compose, relative
+from cga_lessons.mapping2d.observations import Growing, PathLog
 
 
 def _loop_poses(n, radius=3.0):

@@ -8,13 +8,13 @@ import numpy as np
 import pytest
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.laser import compose, load_scene, simulate_scans
-from cga_lessons.lines import extract_segments
 from cga_lessons.mapping2d import MapParams, PlainGeometry, SegmentSet
-from cga_lessons.mapping2d_builder import MapBuilder
-from cga_lessons.mapping2d_geometry import _close_angle_pairs
-from cga_lessons.mapping2d_hypotheses import angle_density
-from cga_lessons.mapping2d_index import SegmentIndex, sphere_boxes
+from cga_lessons.mapping2d.builder import MapBuilder
+from cga_lessons.mapping2d.geometry import _close_angle_pairs
+from cga_lessons.mapping2d.hypotheses import angle_density
+from cga_lessons.mapping2d.index import SegmentIndex, sphere_boxes
+from cga_lessons.mapping2d.laser import compose, load_scene, simulate_scans
+from cga_lessons.mapping2d.lines import extract_segments
 
 
 def _random_segments(rng, n, size=40.0, scale=2.0):

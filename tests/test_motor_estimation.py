@@ -8,7 +8,7 @@ from scipy.spatial.transform import Rotation
 
 from cga_lessons import conformal as cga
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector
-from cga_lessons.motor_estimation import (
+from cga_lessons.conformal.motor_estimation import (
     mean_motor,
     motor_from_lines,
     motor_from_points,

@@ -5,7 +5,7 @@ import pytest
 
 from cga_lessons import conformal as cga
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
-from cga_lessons.object_motors import motor_between
+from cga_lessons.conformal.object_motors import motor_between
 
 
 def _unit(X):

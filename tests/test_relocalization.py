@@ -11,12 +11,12 @@ import pytest
 
 from cga_lessons import data_path
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.laser import compose, load_scene, read_carmen_log, simulate_scan, wrap_angle
-from cga_lessons.lines import Segment, diff_theta, extract_segments
+from cga_lessons.mapping2d.laser import compose, load_scene, read_carmen_log, simulate_scan, wrap_angle
+from cga_lessons.mapping2d.lines import Segment, diff_theta, extract_segments
 from cga_lessons.relocalization import ReferenceMap, prepare_map, relocalize
-from cga_lessons.relocalization_eval import evaluate_log, evaluate_poses, random_free_poses
-from cga_lessons.relocalization_geometry import MapLines, Observation, ScanLines, first_hits, pose_error
-from cga_lessons.relocalization_hough import (
+from cga_lessons.relocalization.eval import evaluate_log, evaluate_poses, random_free_poses
+from cga_lessons.relocalization.geometry import MapLines, Observation, ScanLines, first_hits, pose_error
+from cga_lessons.relocalization.hough import (
     THETA_XI,
     hough_comparison,
     hough_differences,
@@ -26,8 +26,8 @@ from cga_lessons.relocalization_hough import (
     vote_matrix,
     vote_matrix_indexed,
 )
-from cga_lessons.relocalization_search import pose_hypotheses, propose_rotations
-from cga_lessons.relocalization_thesis import (
+from cga_lessons.relocalization.search import pose_hypotheses, propose_rotations
+from cga_lessons.relocalization.thesis import (
     correspondences_from_votes,
     mean_angle,
     rotate_entities,
@@ -35,7 +35,7 @@ from cga_lessons.relocalization_thesis import (
     translate_entities,
     translation_from_lines,
 )
-from cga_lessons.relocalization_verify import NO_RETURN_WEIGHT, refine_pose_points, score_pose
+from cga_lessons.relocalization.verify import NO_RETURN_WEIGHT, refine_pose_points, score_pose
 
 
 def _rot(t):

@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.laser import OdometryModel, Scene, compose, relative, simulate_scan
-from cga_lessons.relocalization_chain import refine_chains
-from cga_lessons.relocalization_geometry import Observation, prepare_map
-from cga_lessons.relocalization_odometry import odometry_misfit
+from cga_lessons.mapping2d.laser import OdometryModel, Scene, compose, relative, simulate_scan
+from cga_lessons.relocalization.chain import refine_chains
+from cga_lessons.relocalization.geometry import Observation, prepare_map
+from cga_lessons.relocalization.odometry import odometry_misfit
 
 REACH = 8.0
 

@@ -5,16 +5,16 @@ import numpy as np
 import pytest
 
 from cga_lessons import data_path
-from cga_lessons import relocalization_verify as verify
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.laser import CarmenLog, read_carmen_log, simulate_odometry
+from cga_lessons.mapping2d.laser import CarmenLog, read_carmen_log, simulate_odometry
 from cga_lessons.relocalization import RelocParams, prepare_map, relocalize
-from cga_lessons.relocalization_coverage import FREE, UNKNOWN, WALL, build_coverage, map_noise
-from cga_lessons.relocalization_eval import evaluate_log, held_out_map_indices, reference_from_log
-from cga_lessons.relocalization_geometry import Observation, pose_error
-from cga_lessons.relocalization_logmap import merge_segments, robust_end
-from cga_lessons.relocalization_lookaround import evaluate_log_sequences
-from cga_lessons.relocalization_verify import score_poses, tie_bar
+from cga_lessons.relocalization import verify as verify
+from cga_lessons.relocalization.coverage import FREE, UNKNOWN, WALL, build_coverage, map_noise
+from cga_lessons.relocalization.eval import evaluate_log, held_out_map_indices, reference_from_log
+from cga_lessons.relocalization.geometry import Observation, pose_error
+from cga_lessons.relocalization.logmap import merge_segments, robust_end
+from cga_lessons.relocalization.lookaround import evaluate_log_sequences
+from cga_lessons.relocalization.verify import score_poses, tie_bar
 
 # --------------------------------------------------------------------------- the coverage grid
 

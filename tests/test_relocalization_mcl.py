@@ -1,19 +1,19 @@
 """Monte Carlo localization in a line map (relocalization_likelihood, relocalization_sampling, relocalization_mcl).
 
 The truth is independent of the filter: the simulator's poses on the office scene (scans by
-:func:`cga_lessons.laser.simulate_scan`, drift by :func:`cga_lessons.laser.simulate_odometry`), and the beam
-model written out by hand for single beams against one wall.
+:func:`cga_lessons.mapping2d.laser.simulate_scan`, drift by :func:`cga_lessons.mapping2d.laser.simulate_odometry`),
+and the beam model written out by hand for single beams against one wall.
 """
 
 import numpy as np
 import pytest
 
-from cga_lessons import laser
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.relocalization_coverage import build_coverage
-from cga_lessons.relocalization_likelihood import BeamModel, LikelihoodField, beam_likelihood
-from cga_lessons.relocalization_mcl import MCLConfig, MonteCarloLocalizer
-from cga_lessons.relocalization_sampling import KLDConfig, kld_bound, kld_resample, low_variance_indices
+from cga_lessons.mapping2d import laser
+from cga_lessons.relocalization.coverage import build_coverage
+from cga_lessons.relocalization.likelihood import BeamModel, LikelihoodField, beam_likelihood
+from cga_lessons.relocalization.mcl import MCLConfig, MonteCarloLocalizer
+from cga_lessons.relocalization.sampling import KLDConfig, kld_bound, kld_resample, low_variance_indices
 
 TOL_XY, TOL_TH = 0.10, np.radians(2.0)
 WALL = np.array([[[2.0, -5.0], [2.0, 5.0]]])  # one wall, x = 2, facing a laser at the origin
@@ -203,7 +203,7 @@ def test_bad_inputs_raise(office):
 
 
 def test_coarse_search_finds_the_pose_and_weighs_back_to_the_uniform_prior(office):
-    from cga_lessons.relocalization_mcl_search import CoarseSearch
+    from cga_lessons.relocalization.mcl_search import CoarseSearch
 
     field = LikelihoodField(office.walls)
     search = CoarseSearch(field, field.free_space(0.2))
@@ -248,7 +248,7 @@ def test_a_symmetric_room_is_reported_ambiguous_not_converged():
 def test_an_ambiguous_answer_confirms_only_when_every_rival_lost():
     from types import SimpleNamespace
 
-    from cga_lessons.relocalization_mcl_proposal import Proposal, confirms
+    from cga_lessons.relocalization.mcl_proposal import Proposal, confirms
 
     mode, rival = np.array([1.0, 2.0, 0.3]), np.array([7.0, 2.0, 0.3 + np.pi])
     groups = [np.arange(0, 10), np.arange(10, 20)]

@@ -10,7 +10,7 @@ import pytest
 
 from cga_lessons import data_path
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.laser import (
+from cga_lessons.mapping2d.laser import (
     OdometryModel,
     Scene,
     compose,
@@ -21,10 +21,10 @@ from cga_lessons.laser import (
     simulate_scan,
 )
 from cga_lessons.relocalization import pose_error, relocalize
-from cga_lessons.relocalization_eval import held_out_map_indices, random_free_poses, reference_from_log
-from cga_lessons.relocalization_lookaround import evaluate_look_around, look_around
-from cga_lessons.relocalization_odometry import ODOMETRY_GATE, REGISTRATION_XY, odometry_misfit
-from cga_lessons.relocalization_sequence import Relocalizer, relocalize_sequence
+from cga_lessons.relocalization.eval import held_out_map_indices, random_free_poses, reference_from_log
+from cga_lessons.relocalization.lookaround import evaluate_look_around, look_around
+from cga_lessons.relocalization.odometry import ODOMETRY_GATE, REGISTRATION_XY, odometry_misfit
+from cga_lessons.relocalization.sequence import Relocalizer, relocalize_sequence
 
 
 @pytest.fixture(scope="module")

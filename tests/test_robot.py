@@ -1,4 +1,4 @@
-"""Tests of the robot geometer's motor chains (cga_lessons.robot, thesis 4.1-4.10).
+"""Tests of the robot geometer's motor chains (cga_lessons.map3d.robot, thesis 4.1-4.10).
 
 The truth is the same mechanism written with plain 4x4 homogeneous matrices
 (Rodrigues rotations), built here from scratch; motors are compared through
@@ -11,9 +11,9 @@ import numpy as np
 import pytest
 
 from cga_lessons import conformal as cga
-from cga_lessons import robot as rb
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
-from cga_lessons.mapping2d_conformal import laser_motor
+from cga_lessons.map3d import robot as rb
+from cga_lessons.mapping2d.conformal import laser_motor
 
 N = 1000
 TOL = 1e-12

@@ -3,9 +3,10 @@
 import numpy as np
 import pytest
 
-from cga_lessons import data_path, laser
+from cga_lessons import data_path
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
-from cga_lessons.scan_registration import IcpParams, register_scans
+from cga_lessons.mapping2d import laser
+from cga_lessons.mapping2d.scan_registration import IcpParams, register_scans
 
 
 def _points(scan, max_range=np.inf):

@@ -18,7 +18,9 @@ import numpy as np
 import pytest
 from headless import require_chromium, run_chromium
 
-from cga_lessons import cli, cli_export, site_math
+from cga_lessons import cli
+from cga_lessons.cli import export as cli_export
+from cga_lessons.cli import site_math
 
 FORMULA = r"$\mathbf{e}_+$"
 
@@ -221,8 +223,16 @@ class VisibleText(HTMLParser):
 
 def chromium_dom_and_screenshot(url, png, size=(900, 700), timeout=90):
     """The page's final DOM and its picture; MathJax's timers run in virtual time, and no host name resolves."""
-    return run_chromium(url, screenshot=png, size=size, budget_ms=60000, dump_dom=True, timeout=timeout,
-                        extra=("--host-resolver-rules=MAP * ~NOTFOUND",))
+    return run_chromium(
+        url,
+        screenshot=png,
+        size=size,
+        budget_ms=60000,
+        dump_dom=True,
+        timeout=timeout,
+        extra=("--host-resolver-rules=MAP * ~NOTFOUND",),
+    )
+
 
 def test_formulas_are_typeset_offline_in_headless_chromium(nbdir, tmp_path, capsys):
     from PIL import Image

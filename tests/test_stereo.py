@@ -12,14 +12,14 @@ import scipy.linalg
 from hypothesis import given, settings
 from hypothesis import strategies as hst
 
-from cga_lessons import camera as cam
 from cga_lessons import conformal as cga
 from cga_lessons import stereo as st
-from cga_lessons import stereo_experiments as ex
-from cga_lessons import stereo_fit as sf
-from cga_lessons import stereo_real as real
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
-from cga_lessons.stereo_render import render_views
+from cga_lessons.conformal import fitting as sf
+from cga_lessons.stereo import camera as cam
+from cga_lessons.stereo import experiments as ex
+from cga_lessons.stereo import real as real
+from cga_lessons.stereo.render import render_views
 
 KEYS = ["points", "segment", "circle_key", "plane_key", "sphere_key"]
 

@@ -1,6 +1,6 @@
 """Automatic registration of conformal entities (future work 6.2.2): detection in point clouds.
 
-Truth: the seeded scene generator (:mod:`cga_lessons.stereo_detect_scenes`)
+Truth: the seeded scene generator (:mod:`cga_lessons.stereo.detect_scenes`)
 knows every entity and which points it made; scenes are seen through a
 simulated stereo head with 0.5 and 1 px noise and triangulated (A.14).
 Independent checks: Monte-Carlo spreads for the predicted covariances (of the
@@ -12,15 +12,15 @@ line of :mod:`cga_lessons.map3d`, and the conformal blades read back with
 import numpy as np
 import pytest
 
-from cga_lessons import camera as cam
 from cga_lessons import map3d
 from cga_lessons import stereo as st
-from cga_lessons import stereo_detect as sd
-from cga_lessons import stereo_detect_ml as dml
-from cga_lessons import stereo_detect_models as dm
-from cga_lessons import stereo_detect_noise as dn
-from cga_lessons import stereo_detect_scenes as ss
 from cga_lessons.algebra import InvalidInputError
+from cga_lessons.stereo import camera as cam
+from cga_lessons.stereo import detect as sd
+from cga_lessons.stereo import detect_ml as dml
+from cga_lessons.stereo import detect_models as dm
+from cga_lessons.stereo import detect_noise as dn
+from cga_lessons.stereo import detect_scenes as ss
 
 SEEDS = range(5)
 KINDS = ss.KINDS
@@ -200,7 +200,7 @@ def test_model_selection_on_single_objects(name, expected):
 
 
 def test_non_maximum_suppression_merges_the_halves_of_one_plane_only():
-    from cga_lessons.stereo_detect_search import Search, merge
+    from cga_lessons.stereo.detect_search import Search, merge
 
     rng = np.random.default_rng(3)
     sigma = 0.003

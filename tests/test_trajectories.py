@@ -1,4 +1,4 @@
-"""Tests of cga_lessons.trajectories: ATE, RPE per metre, TUM files.
+"""Tests of cga_lessons.mapping2d.trajectories: ATE, RPE per metre, TUM files.
 
 Independent truths: closed forms (a trajectory shifted by a known offset, odometry that turns a known angle too far
 each step or overshoots each step by a known factor) and evo, the field's own evaluation tool, as the peer library
@@ -13,9 +13,10 @@ from evo.core import metrics
 from evo.core.trajectory import PoseTrajectory3D
 from evo.tools import file_interface
 
-from cga_lessons import data_path, laser
+from cga_lessons import data_path
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.trajectories import (
+from cga_lessons.mapping2d import laser
+from cga_lessons.mapping2d.trajectories import (
     AbsoluteTrajectoryError,
     RelativePoseError,
     TrajectoryFileExistsError,

@@ -126,13 +126,19 @@ def mp_rigid(M):
     r0, r12, r13, r23 = (c.get(b, mpmath.mpf(0)) for b in (0, 3, 5, 6))
     n1, n2, n3, n123 = (-c.get(b, mpmath.mpf(0)) for b in (17, 18, 20, 23))
     rr = r0**2 + r12**2 + r13**2 + r23**2
-    t = [2 * (n1 * r0 + n2 * r12 + n3 * r13 + n123 * r23) / rr,
-         2 * (n2 * r0 - n1 * r12 + n3 * r23 - n123 * r13) / rr,
-         2 * (n3 * r0 - n1 * r13 - n2 * r23 + n123 * r12) / rr]
+    t = [
+        2 * (n1 * r0 + n2 * r12 + n3 * r13 + n123 * r23) / rr,
+        2 * (n2 * r0 - n1 * r12 + n3 * r23 - n123 * r13) / rr,
+        2 * (n3 * r0 - n1 * r13 - n2 * r23 + n123 * r12) / rr,
+    ]
     w, x, y, z = (v / mpmath.sqrt(rr) for v in (r0, -r23, r13, -r12))
-    R = mpmath.matrix([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-                       [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-                       [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+    R = mpmath.matrix(
+        [
+            [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+            [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+            [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
+        ]
+    )
     return R, mpmath.matrix(t)
 
 

@@ -28,7 +28,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError  # noqa: E402
 from cga_lessons.viz.meshcat_scene import (  # noqa: E402
     ViewerError,
-    Visualizer,  # meshcat's class, imported there without meshcat's pyzmq deprecation warning
+    Visualizer,
     close_viewer,
     export_html,
     open_viewer,
@@ -465,6 +465,7 @@ def test_server_dies_with_a_jupyter_kernel_stopped_like_nbval():
 def chromium_screenshot(url, png_path, size=(640, 480), timeout=60):
     code, _, err = run_chromium(url, screenshot=png_path, size=size, timeout=timeout)
     return code, err
+
 
 @pytest.mark.parametrize("source", ["export", "live"])
 def test_scene_draws_in_headless_chromium(tmp_path, source):

@@ -188,9 +188,16 @@ def screenshot(url, png_path, size=(1000, 800), budget_ms=10000, timeout=90):
     is.  A sandboxed iframe gets a process of its own, whose frames a busy machine may not have drawn by the time the
     page's virtual time is up: it is kept in the page's process.
     """
-    code, _, err = run_chromium(url, screenshot=png_path, size=size, budget_ms=budget_ms, timeout=timeout,
-                                extra=("--disable-features=IsolateSandboxedIframes", "--disable-site-isolation-trials"))
+    code, _, err = run_chromium(
+        url,
+        screenshot=png_path,
+        size=size,
+        budget_ms=budget_ms,
+        timeout=timeout,
+        extra=("--disable-features=IsolateSandboxedIframes", "--disable-site-isolation-trials"),
+    )
     return code, err
+
 
 def _sky(img):
     """meshcat's background, a gradient from light to dark blue: blue well above red."""

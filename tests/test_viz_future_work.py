@@ -16,15 +16,16 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
 from cga_lessons import kinematics as kin  # noqa: E402
-from cga_lessons import laser  # noqa: E402
 from cga_lessons.algebra import InvalidInputError  # noqa: E402
-from cga_lessons.kinematics_arms import PANDA_DH as PANDA_TABLE  # noqa: E402
-from cga_lessons.kinematics_arms import UR5_DH as UR5_TABLE  # noqa: E402
-from cga_lessons.kinematics_arms import geometer_chains, panda, ur5  # noqa: E402
-from cga_lessons.relocalization_mcl import MCLConfig, MonteCarloLocalizer  # noqa: E402
-from cga_lessons.relocalization_sampling import KLDConfig  # noqa: E402
-from cga_lessons.stereo_detect import DetectedEntity  # noqa: E402
-from cga_lessons.stereo_detect_scenes import TruthEntity  # noqa: E402
+from cga_lessons.kinematics.arms import PANDA_DH as PANDA_TABLE  # noqa: E402
+from cga_lessons.kinematics.arms import UR5_DH as UR5_TABLE  # noqa: E402
+from cga_lessons.kinematics.arms import panda, ur5  # noqa: E402
+from cga_lessons.map3d import geometer_chains  # noqa: E402
+from cga_lessons.mapping2d import laser  # noqa: E402
+from cga_lessons.relocalization.mcl import MCLConfig, MonteCarloLocalizer  # noqa: E402
+from cga_lessons.relocalization.sampling import KLDConfig  # noqa: E402
+from cga_lessons.stereo.detect import DetectedEntity  # noqa: E402
+from cga_lessons.stereo.detect_scenes import TruthEntity  # noqa: E402
 from cga_lessons.viz import future_work as fw  # noqa: E402
 from cga_lessons.viz import future_work_arms as fwa  # noqa: E402
 from cga_lessons.viz import future_work_stereo as fws  # noqa: E402
@@ -220,9 +221,15 @@ def _cloud(rng):
     sphere = np.array([2.0, 0.5, 0.5]) + 0.3 * u / np.linalg.norm(u, axis=1, keepdims=True)
     X = np.vstack([plane, sphere, rng.uniform(-1, 3, (20, 3))])
     labels = np.r_[np.zeros(100, int), np.ones(80, int), -np.ones(20, int)]
-    truth = [TruthEntity("plane", {"normal": np.array([0, 0, 1.0]), "center": np.array([0.5, 0.5, 0]),
-                                   "distance": 0.0}, 0.7, np.arange(100)),
-             TruthEntity("sphere", {"center": np.array([2.0, 0.5, 0.5]), "radius": 0.3}, 0.3, np.arange(100, 180))]
+    truth = [
+        TruthEntity(
+            "plane",
+            {"normal": np.array([0, 0, 1.0]), "center": np.array([0.5, 0.5, 0]), "distance": 0.0},
+            0.7,
+            np.arange(100),
+        ),
+        TruthEntity("sphere", {"center": np.array([2.0, 0.5, 0.5]), "radius": 0.3}, 0.3, np.arange(100, 180)),
+    ]
     ents = [DetectedEntity("sphere", dict(truth[1].params), None, np.arange(100, 180), np.eye(4),
                            ("center_x", "center_y", "center_z", "radius"), 0.001, 1.0),
             DetectedEntity("plane", dict(truth[0].params), None, np.arange(0, 90), np.eye(4),
@@ -286,8 +293,22 @@ def test_tables_format_the_records(tmp_path):
                               "seq3": 0.75}}}  # fmt: skip
     text = tables.mcl_table(mcl)
     assert "intel" in text and " 50.0%" in text and "100.0%" in text and "1/0" in text and "75.0%" in text
-    stereo = {"kinds": ["plane"], "sections": [{"title": "t", "rows": [
-        {"label": "x", "kinds": {"plane": {"tp": 3, "detected": 4, "truth": 6}}, "points": 10, "seconds": 1.0}]}]}
+    stereo = {
+        "kinds": ["plane"],
+        "sections": [
+            {
+                "title": "t",
+                "rows": [
+                    {
+                        "label": "x",
+                        "kinds": {"plane": {"tp": 3, "detected": 4, "truth": 6}},
+                        "points": 10,
+                        "seconds": 1.0,
+                    }
+                ],
+            }
+        ],
+    }
     assert "  0.75   0.50" in tables.stereo_table(stereo, 1)
     path = tmp_path / "r.json"
     path.write_text(json.dumps(mcl))

@@ -21,8 +21,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.patches import FancyArrowPatch, Polygon
 
-from .. import conformal as cga
-from ..algebra import Algebra, GeometryError
+from cga_lessons import conformal as cga
+from cga_lessons.algebra import Algebra, GeometryError
 
 __all__ = [
     "DPI",

@@ -10,7 +10,7 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ..exploration import ANALYSED, LABEL_NAMES, NOT_SEEN, OCCUPIED, SEEN
+from cga_lessons.exploration import ANALYSED, LABEL_NAMES, NOT_SEEN, OCCUPIED, SEEN
 
 __all__ = ["plot_scenario", "plot_nodes", "plot_occupancy_steps", "plot_disagreements", "plot_detour"]
 

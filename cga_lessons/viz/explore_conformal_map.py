@@ -24,13 +24,14 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from .. import conformal as cga
-from .. import laser, lines
-from .. import mapping2d_conformal as cmap
-from ..algebra import InvalidInputError, Multivector
-from ..algebra_errors import finite_real
-from ..mapping2d_corrections import theta_correction, translation_correction
-from ..mapping2d_geometry import SegmentSet
+from cga_lessons import conformal as cga
+from cga_lessons.algebra import InvalidInputError, Multivector
+from cga_lessons.errors import finite_real
+from cga_lessons.mapping2d import conformal as cmap
+from cga_lessons.mapping2d import laser, lines
+from cga_lessons.mapping2d.corrections import theta_correction, translation_correction
+from cga_lessons.mapping2d.geometry import SegmentSet
+
 from .controls import slider_panel
 from .laser import draw_scene
 

@@ -18,8 +18,9 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from .. import conformal as cga
-from ..algebra import GeometryError
+from cga_lessons import conformal as cga
+from cga_lessons.algebra import GeometryError
+
 from .controls import slider_panel
 
 __all__ = ["PairExplorer", "pair_readback"]

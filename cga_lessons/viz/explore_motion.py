@@ -22,7 +22,8 @@ from dataclasses import dataclass, replace
 import matplotlib.pyplot as plt
 import numpy as np
 
-from .. import conformal as cga
+from cga_lessons import conformal as cga
+
 from .controls import slider_panel
 from .motions import tool_outline
 

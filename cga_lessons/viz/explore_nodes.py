@@ -1,6 +1,6 @@
 """An explorer for notebook 10: the cameras' heading, field of view and the obstacle's size against the nodes' labels.
 
-:class:`NodeExplorer` runs one scenario of the second document (:func:`cga_lessons.exploration_cases.run_scenario`:
+:class:`NodeExplorer` runs one scenario of the second document (:func:`cga_lessons.exploration.cases.run_scenario`:
 nodes seen / not seen in the field of view, occluded by the sphere, occupied by its points) and draws its x-y view
 (:func:`cga_lessons.viz.exploration.plot_nodes`).  :meth:`update` changes the heading, the field of view or the
 sphere's diameter and redraws; :meth:`widget` adds sliders for a live session.
@@ -17,7 +17,8 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from .. import exploration_cases as cases
+from cga_lessons.exploration import cases as cases
+
 from .controls import slider_panel
 from .exploration import plot_nodes
 

@@ -16,7 +16,8 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from .. import conformal as cga
+from cga_lessons import conformal as cga
+
 from .controls import slider_panel
 
 __all__ = ["StereographicExplorer"]
@@ -43,8 +44,9 @@ class StereographicExplorer:
         self.ax.set_ylabel("e+")
         self.ax.legend(loc="lower right", fontsize=8)
         s = np.linspace(-4.2, 4.2, 200)
-        self.ax_cone.plot(s, (s**2 + 1) / 2, "-", color="0.7",
-                          label="null vectors with X.e = -1: the conformal points (2.61, 2.62)")
+        self.ax_cone.plot(
+            s, (s**2 + 1) / 2, "-", color="0.7", label="null vectors with X.e = -1: the conformal points (2.61, 2.62)"
+        )
         (self._cone_pt,) = self.ax_cone.plot([], [], "o", color="tab:red", ms=8)
         self.ax_cone.set_xlim(-4.2, 4.2)
         self.ax_cone.set_ylim(0, 10)

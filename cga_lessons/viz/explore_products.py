@@ -24,8 +24,9 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ..algebra import Algebra, InvalidInputError, Multivector
-from ..algebra_errors import finite_real
+from cga_lessons.algebra import Algebra, InvalidInputError, Multivector
+from cga_lessons.errors import finite_real
+
 from .controls import slider_panel
 
 __all__ = ["ProductExplorer", "geometric_product", "reflect"]

@@ -1,7 +1,7 @@
 """An explorer for notebook 09: the thesis's vote matrix and the ranked candidate poses as the robot moves.
 
 :class:`RelocalizationExplorer` puts the robot at a true pose in a simulated scene
-(:func:`cga_lessons.laser.simulate_scan`), relocalizes its scan in the scene's walls
+(:func:`cga_lessons.mapping2d.laser.simulate_scan`), relocalizes its scan in the scene's walls
 (:func:`cga_lessons.relocalization.relocalize`) and draws four panels:
 
 * the vote matrix ``V`` of Eq. (5.6), map lines down and scan lines across, with the thesis's picks (the column
@@ -29,13 +29,14 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.collections import LineCollection
 
-from .. import laser
-from ..algebra import InvalidInputError
-from ..algebra_errors import finite_real
-from ..relocalization import RelocParams, pose_error, prepare_map, relocalize
-from ..relocalization_eval import HEADING_TOLERANCE, POSITION_TOLERANCE
-from ..relocalization_geometry import transform_points
-from ..relocalization_hough import hough_set, shifted_set_corrected
+from cga_lessons.algebra import InvalidInputError
+from cga_lessons.errors import finite_real
+from cga_lessons.mapping2d import laser
+from cga_lessons.relocalization import RelocParams, pose_error, prepare_map, relocalize
+from cga_lessons.relocalization.eval import HEADING_TOLERANCE, POSITION_TOLERANCE
+from cga_lessons.relocalization.geometry import transform_points
+from cga_lessons.relocalization.hough import hough_set, shifted_set_corrected
+
 from .controls import slider_panel
 
 __all__ = ["RelocalizationExplorer", "true_partners"]
@@ -235,8 +236,11 @@ class RelocalizationExplorer:
 
     def update(self, x: float | None = None, y: float | None = None, theta_deg: float | None = None) -> None:
         """Move the true pose (metres, heading in degrees), rescan with the same noise, relocalize and redraw."""
-        given = {k: finite_real(v, "RelocalizationExplorer.update", k)
-                 for k, v in (("x", x), ("y", y), ("theta_deg", theta_deg)) if v is not None}  # all checked first
+        given = {
+            k: finite_real(v, "RelocalizationExplorer.update", k)
+            for k, v in (("x", x), ("y", y), ("theta_deg", theta_deg))
+            if v is not None
+        }  # all checked first
         if "x" in given:
             self.pose[0] = given["x"]
         if "y" in given:

@@ -4,13 +4,13 @@
 it (:func:`cga_lessons.viz.map3d.robot_primitives`: every pose read off a motor of the chains), with the left
 camera's line of sight, twice: in the room, and close up from the robot's front right (turning with it), where the
 pan and the tilt can be seen.  :meth:`update` changes some degrees of freedom through
-:meth:`cga_lessons.robot.Robot.update`, which recomputes only the motors they enter (their names are the close-up's
-title), and moves the robot's artists in place; :meth:`widget` adds sliders.  Given a meshcat viewer (``vis``), the
-robot moves there as well.
+:meth:`cga_lessons.map3d.robot.Robot.update`, which recomputes only the motors they enter (their names are the
+close-up's title), and moves the robot's artists in place; :meth:`widget` adds sliders.  Given a meshcat viewer
+(``vis``), the robot moves there as well.
 
     >>> import numpy as np
     >>> from cga_lessons.map3d import build_fused_map
-    >>> from cga_lessons.map3d_tour import simulate_tour
+    >>> from cga_lessons.map3d.tour import simulate_tour
     >>> tour = simulate_tour(np.random.default_rng(3), waypoints=((1.5, 1.5), (4.0, 1.5)), stops=(5,),
     ...                      pans=(0.4,), tilts=(0.3,))
     >>> ex = RobotExplorer(build_fused_map(tour))
@@ -27,9 +27,10 @@ import numpy as np
 from matplotlib.ticker import MaxNLocator
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
-from ..algebra import InvalidInputError
-from ..map3d import FusedMap
-from ..robot import DOFS, Robot, RobotState
+from cga_lessons.algebra import InvalidInputError
+from cga_lessons.map3d import FusedMap
+from cga_lessons.map3d.robot import DOFS, Robot, RobotState
+
 from .controls import slider_panel
 from .map3d import plot_fused_map, robot_primitives
 from .scene3d import FRAME_COLORS, Box, Cylinder, Frame, _box_faces, _cylinder_grid

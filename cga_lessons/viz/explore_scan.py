@@ -1,8 +1,8 @@
 """An explorer for notebook 05: a scan's segments in the world and in Hough space as the robot drives and turns.
 
 :class:`HoughExplorer` simulates one laser scan of a scene at a pose
-(:func:`cga_lessons.laser.simulate_scan`), splits it into segments (3.1-3.3,
-:func:`cga_lessons.lines.extract_segments`) and draws them twice: in the world
+(:func:`cga_lessons.mapping2d.laser.simulate_scan`), splits it into segments (3.1-3.3,
+:func:`cga_lessons.mapping2d.lines.extract_segments`) and draws them twice: in the world
 (moved by the pose, 3.4) and as points ``(theta, rho)`` of Hough space seen
 from the robot (3.3).  Turning the robot on the spot moves the points along
 ``theta`` only (section 5.1), driving changes their ``rho``.  :meth:`update`
@@ -19,7 +19,8 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from .. import laser, lines
+from cga_lessons.mapping2d import laser, lines
+
 from .controls import slider_panel
 from .laser import draw_scene
 
@@ -68,8 +69,10 @@ class HoughExplorer:
             ys += [s.start[1], s.end[1], np.nan]
         self._segs.set_data(xs, ys)
         c, s_ = np.cos(self.pose[2]), np.sin(self.pose[2])
-        tip, left, right = (self.pose[:2] + r * np.array([c * u - s_ * v, s_ * u + c * v])
-                            for r, (u, v) in ((1.0, (0.35, 0.0)), (1.0, (-0.15, 0.15)), (1.0, (-0.15, -0.15))))
+        tip, left, right = (
+            self.pose[:2] + r * np.array([c * u - s_ * v, s_ * u + c * v])
+            for r, (u, v) in ((1.0, (0.35, 0.0)), (1.0, (-0.15, 0.15)), (1.0, (-0.15, -0.15)))
+        )
         tri = np.array([tip, left, right, tip])
         self._robot.set_data(tri[:, 0], tri[:, 1])
         self._points.set_data(np.degrees(self.hough[:, 1]), self.hough[:, 0])

@@ -1,7 +1,7 @@
 """An explorer for notebook 07: the stereo rig's baseline, focal length and pixel noise against the depth error.
 
-:class:`DepthErrorExplorer` builds a parallel head (:func:`cga_lessons.stereo_rig.stereo_head`), triangulates
-noisy projections of points at several depths (A.14, :func:`cga_lessons.camera.triangulate`) and draws their RMS
+:class:`DepthErrorExplorer` builds a parallel head (:func:`cga_lessons.stereo.rig.stereo_head`), triangulates
+noisy projections of points at several depths (A.14, :func:`cga_lessons.stereo.camera.triangulate`) and draws their RMS
 depth error beside the first-order law ``sigma_Z = Z^2 sqrt(2) sigma / (f b)`` of a parallel rig.  :meth:`update`
 changes the rig or the noise and redraws in place; :meth:`widget` adds sliders for a live session.
 
@@ -15,8 +15,9 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from .. import camera as cam
-from ..stereo_rig import stereo_head
+from cga_lessons.stereo import camera as cam
+from cga_lessons.stereo.rig import stereo_head
+
 from .controls import slider_panel
 
 __all__ = ["DepthErrorExplorer"]

@@ -1,7 +1,7 @@
 """Figures for notebook 11 (the thesis's future work, chapter 6): Monte Carlo localization in a line map.
 
 :func:`mcl_figure` draws rows of snapshots of a particle filter
-(:class:`~cga_lessons.relocalization_mcl.MonteCarloLocalizer`) over the map: the particles (darker where they
+(:class:`~cga_lessons.relocalization.mcl.MonteCarloLocalizer`) over the map: the particles (darker where they
 weigh more), the log's pose and the filter's estimate with its covariance ellipse; a snapshot may zoom on the
 estimate, where the ellipse is centimetres wide.  :func:`error_trace_figure` plots the estimate's error per
 scan, with the scans where the filter said "converged" and where the robot was kidnapped.
@@ -18,8 +18,9 @@ from dataclasses import dataclass
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ..algebra import InvalidInputError
-from ..algebra_errors import finite_rows as as_points  # the shared check, under the name the figures use
+from cga_lessons.algebra import InvalidInputError
+from cga_lessons.errors import finite_rows as as_points  # the shared check, under the name the figures use
+
 from .laser import draw_walls
 
 __all__ = ["as_points", "metric_box", "Snapshot", "covariance_ellipse", "draw_particles", "draw_pose",
@@ -138,7 +139,7 @@ def draw_pose(ax, pose, color=TRUTH_COLOR, length: float = 0.6, label=None, **kw
 class Snapshot:
     """One panel of :func:`mcl_figure`: the particles (N, 3) and their log-weights after an update.
 
-    ``estimate`` is the filter's :class:`~cga_lessons.relocalization_mcl.MCLEstimate` (or None: not drawn),
+    ``estimate`` is the filter's :class:`~cga_lessons.relocalization.mcl.MCLEstimate` (or None: not drawn),
     ``truth`` the log's pose (or None), ``zoom`` the half-width (m) of a window around the estimate (None: the
     whole map).
     """
@@ -198,9 +199,11 @@ def mcl_figure(map_segments, rows, row_titles=None, n_sigma: float = 3.0, panel:
                 axes[i, j].set_axis_off()
         if row_titles is not None:
             axes[i, 0].set_ylabel(row_titles[i], fontsize=10)
-    handles = [plt.Line2D([], [], color=TRUTH_COLOR, lw=2, label="the log's pose"),
-               plt.Line2D([], [], color=ESTIMATE_COLOR, lw=2, label=f"estimate, {n_sigma:g}-sigma ellipse"),
-               plt.Line2D([], [], color="tab:blue", marker=".", lw=0, label="particles (darker: heavier)")]
+    handles = [
+        plt.Line2D([], [], color=TRUTH_COLOR, lw=2, label="the log's pose"),
+        plt.Line2D([], [], color=ESTIMATE_COLOR, lw=2, label=f"estimate, {n_sigma:g}-sigma ellipse"),
+        plt.Line2D([], [], color="tab:blue", marker=".", lw=0, label="particles (darker: heavier)"),
+    ]
     fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=9, frameon=False)
     fig.tight_layout(rect=(0, 0.04, 1, 1))
     return fig
@@ -230,8 +233,16 @@ def error_trace_figure(position_error, heading_error, converged, events=(), tole
         ax.axhline(tol * scale, ls="--", color="tab:green", lw=1, label="tolerance")
         for at, label in events:
             ax.axvline(at + 0.5, color="tab:purple", lw=1.2)
-            ax.text(at + 0.3, 0.97, label + " ", color="tab:purple", fontsize=8, va="top", ha="right",
-                    transform=ax.get_xaxis_transform())
+            ax.text(
+                at + 0.3,
+                0.97,
+                label + " ",
+                color="tab:purple",
+                fontsize=8,
+                va="top",
+                ha="right",
+                transform=ax.get_xaxis_transform(),
+            )
         ax.set_xlabel("update (scan)")
         ax.set_ylabel(f"error of the estimate ({unit})")
     axes[0].set_title("position", fontsize=10)

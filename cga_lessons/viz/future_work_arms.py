@@ -13,10 +13,11 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from .. import conformal as cga
-from .. import kinematics as kin
-from ..algebra import InvalidInputError
-from ..kinematics_arms import DHParameters
+from cga_lessons import conformal as cga
+from cga_lessons import kinematics as kin
+from cga_lessons.algebra import InvalidInputError
+from cga_lessons.kinematics.arms import DHParameters
+
 from .future_work import as_points, metric_box
 
 __all__ = ["dh_home_points", "chain_points", "axis_segments", "draw_arm", "draw_frame", "arm_figure", "ik_figure"]
@@ -27,7 +28,7 @@ _X, _Z = np.array([1.0, 0.0, 0.0]), np.array([0.0, 0.0, 1.0])
 def dh_home_points(p: DHParameters):
     """The origins of a DH arm's link frames at home, and after how many joints each one is fixed.
 
-    The frames are walked with motors as :func:`cga_lessons.kinematics_arms.dh_chain` walks them (standard:
+    The frames are walked with motors as :func:`cga_lessons.kinematics.arms.dh_chain` walks them (standard:
     ``Rz Tz Tx Rx`` per link, frame i fixed to link i; modified: ``Rx Tx Rz Tz``, then the flange).
 
     Returns

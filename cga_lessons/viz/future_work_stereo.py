@@ -1,7 +1,7 @@
 """Figures for notebook 11, section 6.2.2: conformal entities found automatically in stereo point clouds.
 
 :func:`detections_figure` shows a generated cloud twice, side by side: coloured by the entity each point was
-sampled from (the ground truth) and by the entity the detector (:func:`cga_lessons.stereo_detect.detect_entities`)
+sampled from (the ground truth) and by the entity the detector (:func:`cga_lessons.stereo.detect.detect_entities`)
 put it on, with the detected spheres, circles and lines drawn from their parameters; a detection matched to a true
 entity takes that entity's colour.  :func:`detections_on_image` paints the detections of a real pair over its
 left image, and :func:`depth_noise_figure` plots the depth noise of a stereo head against the distance.
@@ -13,9 +13,10 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.patches import Patch
 
-from .. import stereo as st
-from ..algebra import InvalidInputError
-from ..stereo_real import label_image
+from cga_lessons import stereo as st
+from cga_lessons.algebra import InvalidInputError
+from cga_lessons.stereo.real import label_image
+
 from .future_work import as_points, metric_box
 
 __all__ = ["PALETTE", "detections_figure", "detections_on_image", "depth_noise", "depth_noise_figure"]
@@ -64,9 +65,9 @@ def detections_figure(points, labels, truth, entities, matches=(), elev=22.0, az
     """Ground truth (left) and detections (right) of a cloud (N, 3) in 3D.
 
     ``labels`` (N,) holds each point's true entity (-1: clutter); ``truth`` the true entities (with ``kind``
-    and ``params``, as :class:`~cga_lessons.stereo_detect_scenes.TruthEntity`); ``entities`` the detections;
+    and ``params``, as :class:`~cga_lessons.stereo.detect_scenes.TruthEntity`); ``entities`` the detections;
     ``matches`` pairs ``(detection index, truth index, ...)`` as
-    :func:`cga_lessons.stereo_detect_scenes.evaluate` returns them.  In the right panel, the i-th scatter
+    :func:`cga_lessons.stereo.detect_scenes.evaluate` returns them.  In the right panel, the i-th scatter
     holds the points of detection i.  Returns the figure.
     """
     func = "detections_figure"

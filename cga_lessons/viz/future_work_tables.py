@@ -11,7 +11,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from ..algebra import InvalidInputError
+from cga_lessons.algebra import InvalidInputError
 
 __all__ = ["read_record", "mcl_table", "kinematics_table", "stereo_table"]
 

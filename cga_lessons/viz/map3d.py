@@ -14,9 +14,10 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from ..algebra import InvalidInputError
-from ..map3d import FusedMap
-from ..robot import Robot, RobotState
+from cga_lessons.algebra import InvalidInputError
+from cga_lessons.map3d import FusedMap
+from cga_lessons.map3d.robot import Robot, RobotState
+
 from .scene3d import Box, Cylinder, Frame, PointCloud, Polyline, Quad, Sphere, draw_matplotlib, scene_bounds
 
 __all__ = [

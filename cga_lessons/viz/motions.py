@@ -11,7 +11,8 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from .. import conformal as cga
+from cga_lessons import conformal as cga
+
 from .ch2 import set_equal_3d
 
 __all__ = ["tool_outline", "fig_motor_blend", "fig_scan_registration"]

@@ -5,8 +5,8 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from .. import epipolar as epi
-from .. import stereo as st
+from cga_lessons import stereo as st
+from cga_lessons.stereo import epipolar as epi
 
 __all__ = [
     "plot_views",

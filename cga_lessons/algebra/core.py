@@ -1,0 +1,290 @@
+"""The geometric algebra G(p, q, r) of chapter 2 (section 2.2).
+
+A basis blade is a bitmap: bit ``i`` set means the basis vector ``e_{i+1}`` is a
+factor, in increasing order.  The sign of the product of two blades comes from
+the axioms (2.10): reorder the factors (each swap of two different vectors
+flips the sign, ``e_i e_j = -e_j e_i``) and contract equal factors with their
+square (+1, -1 or 0).
+
+A :class:`Multivector` is a sparse map ``blade bitmap -> coefficient``.  The
+coefficient may be a Python/NumPy float, a NumPy array (a *batch*: one
+multivector per element, e.g. one conformal point per row of a point cloud) or
+a SymPy expression.  Every product runs over the non-zero blades only, with
+the (blade, blade, result, sign) terms found once per pair of blade sets and
+cached, so one code path serves the numeric chapters and the symbolic proofs.
+
+How a product runs (see :meth:`Algebra._product`; the routes agree to the bit
+except the float table, which agrees to round-off):
+
+* the first time a pair of blade sets meets, an interpreted loop over its terms;
+* from the second time on, compiled straight-line code, one Python expression
+  per result blade (the same code for floats, arrays and SymPy);
+* two single float multivectors with many terms (a motor times a point), one
+  small matrix product ``outer(a, b).ravel() @ table`` with a cached table of
+  signs, which costs a few NumPy calls instead of a Python operation per term.
+
+A versor acts linearly on each grade (2.82).  For a single numeric versor,
+:meth:`Algebra.versor_matrices` builds that action as one matrix per grade in
+closed form, from one cached bilinear table per blade set (no sandwich
+products), and :meth:`Algebra.apply_matrices` applies it to one entity or to a
+whole batch with one matrix product; ``V >> X`` and
+:func:`cga_lessons.conformal.versors.apply` take this route by themselves.
+
+Operators (the thesis's notation on the left)::
+
+    A B         A * B           geometric product (2.11)
+    A ^ B       A ^ B           outer product (2.14, 2.30)
+    A . B       A | B           the thesis's inner product (2.21-2.29), with
+                                scalar . M = 0 (2.28)
+    A _| B      A << B          left contraction (not the thesis's; offered
+                                because most modern texts use it)
+    M~          ~M              reverse (2.32-2.34)
+    M^          M.involute()    grade involution (2.35)
+    M*          M.dual()        dual M I^-1 (2.31)
+    M^-1        M.inv()         inverse (2.19; versors and general)
+    A x B       commutator(A,B) commutator product (2.36)
+    exp(B)      exp(B)          exponential of a bivector (2.37), closed form
+    <M>_k       M.grade(k)      grade projection (2.18)
+    V X V~      V >> X          sandwich product (2.98, 2.101, 2.103)
+
+The package's facade (:mod:`cga_lessons.algebra`) is the public home of all of these names: import them
+from there.  The code lives in one module per idea::
+
+    core.py                     Algebra: blades as bitmaps, signs (2.10), names, constructors
+    multivector.py              Multivector and its operators; commutator (2.36)
+    products.py                 cached product terms, compiled straight-line code, float tables
+    versor_matrices.py          versor matrices per grade in closed form (2.82), apply_matrices
+    inverse.py                  norms and the inverse (2.19)
+    display.py                  text and LaTeX display, SymPy helpers (simplify, expand, subs)
+    exponential.py              exp of a bivector (2.37)
+    coefficients.py             the three kinds of coefficient: float, array batch, SymPy
+
+and the errors (GeometryError, DegenerateGeometryError, InvalidInputError) in :mod:`cga_lessons.errors`.
+"""
+
+from __future__ import annotations
+
+import numbers
+from itertools import combinations
+
+import numpy as np
+
+from cga_lessons.errors import DegenerateGeometryError, GeometryError, InvalidInputError
+
+# The names below are re-exported: the rest of the package, the tests and the
+# notebooks import them from this module, their public home.
+from .coefficients import (  # noqa: F401
+    _FLOAT_TYPES,
+    _PLAIN_TYPES,
+    _REAL_TYPES,
+    _absmax,
+    _all_finite,
+    _any_sympy,
+    _is_float_single,
+    _is_real_batch,
+    _is_real_single,
+    _is_sympy,
+    _is_zero,
+)
+from .exponential import exp  # noqa: F401
+from .multivector import Multivector, _mv, _mv_pruned, commutator  # noqa: F401
+from .products import _CHUNK, _compile_product, _ProductTerms, _run_product  # noqa: F401
+from .versor_matrices import _stack_rows, _VersorMatrices  # noqa: F401
+
+__all__ = [
+    "Algebra",
+    "Multivector",
+    "GeometryError",
+    "DegenerateGeometryError",
+    "InvalidInputError",
+    "commutator",
+    "exp",
+]
+
+
+def _popcount(x: int) -> int:
+    return bin(x).count("1")
+
+
+def _reorder_sign(a: int, b: int) -> int:
+    """Sign from moving the factors of blade ``b`` past those of blade ``a``.
+
+    Counts, for every factor of ``b``, the factors of ``a`` with a higher index
+    that it has to pass (each pass is one anticommutation of (2.10)).
+    """
+    a >>= 1
+    swaps = 0
+    while a:
+        swaps += _popcount(a & b)
+        a >>= 1
+    return -1 if swaps & 1 else 1
+
+
+class Algebra(_ProductTerms, _VersorMatrices):
+    """The geometric algebra G(p, q, r), equations (2.9)-(2.10).
+
+    Parameters
+    ----------
+    p, q, r : int
+        Number of basis vectors squaring to +1, -1 and 0 (2.10).
+    labels : sequence of str, optional
+        One short label per basis vector, used in blade names: the vector
+        ``i`` is called ``"e" + labels[i]`` and a blade concatenates labels
+        (``"e12"``, ``"e1+"``, ``"e123+-"``).  Default ``"1", "2", ...``.
+
+    Examples
+    --------
+    >>> G2 = Algebra(2)
+    >>> e1, e2 = G2.basis_vectors()
+    >>> e1 * e2 == -(e2 * e1)
+    True
+    >>> float((e1 * e2) ** 2)
+    -1.0
+
+    The products come from :class:`~cga_lessons.algebra.products._ProductTerms`,
+    the versor matrices from :class:`~cga_lessons.algebra.versor_matrices._VersorMatrices`;
+    this class holds the sign table and the caches they read.
+    """
+
+    def __init__(self, p: int, q: int = 0, r: int = 0, labels=None):
+        for name, v in (("p", p), ("q", q), ("r", r)):
+            if not isinstance(v, numbers.Integral) or v < 0:
+                raise InvalidInputError(f"Algebra: {name} must be a non-negative integer, got {v!r}")
+        self.p, self.q, self.r = int(p), int(q), int(r)
+        self.n = n = self.p + self.q + self.r
+        if n > 10:
+            raise InvalidInputError(f"Algebra: dimension p+q+r = {n} is too large for this dense sign table (max 10)")
+        if labels is None:
+            labels = [str(i + 1) for i in range(n)] if n < 10 else [f"({i + 1})" for i in range(n)]
+        labels = list(labels)
+        if len(labels) != n or len(set(labels)) != n:
+            raise InvalidInputError(f"Algebra: need {n} distinct labels, got {labels!r}")
+        self.labels = labels
+        self.metric = tuple([1] * self.p + [-1] * self.q + [0] * self.r)
+        self.dim = 1 << n
+        # Product sign table (2.10): sign[a, b] in {-1, 0, 1}; result blade a ^ b.
+        sign = np.zeros((self.dim, self.dim), dtype=np.int8)
+        for a in range(self.dim):
+            for b in range(self.dim):
+                s = _reorder_sign(a, b)
+                common = a & b
+                i = 0
+                while common:
+                    if common & 1:
+                        s *= self.metric[i]
+                    common >>= 1
+                    i += 1
+                sign[a, b] = s
+        self._sign = sign
+        self._sign_list = sign.tolist()
+        self.grades = [_popcount(b) for b in range(self.dim)]
+        # Blades in the order of grade, then index (the order of (2.9)).
+        order = []
+        for k in range(n + 1):
+            for combo in combinations(range(n), k):
+                order.append(sum(1 << i for i in combo))
+        self.blade_order = order
+        self.blade_names = {b: self._make_name(b) for b in range(self.dim)}
+        self._name_to_blade = {}
+        for b, nm in self.blade_names.items():
+            self._name_to_blade[nm] = (b, 1)
+        self.pseudoscalar_blade = self.dim - 1
+        self._product_cache: dict = {}
+        self._table_cache: dict = {}
+        self._versor_cache: dict = {}
+        #: True where the reverse (2.32) flips the sign of a blade
+        self._rev_flip = [bool((g * (g - 1) // 2) & 1) for g in self.grades]
+        #: blades of each grade in the order of (2.9)
+        self.grade_blades = [[b for b in order if self.grades[b] == k] for k in range(n + 1)]
+
+    # ------------------------------------------------------------------ names
+    def _make_name(self, blade: int) -> str:
+        if blade == 0:
+            return "1"
+        return "e" + "".join(self.labels[i] for i in range(self.n) if blade >> i & 1)
+
+    def parse_blade(self, name: str) -> tuple[int, int]:
+        """Return ``(bitmap, sign)`` for a blade name, in any factor order.
+
+        ``"e31"`` gives the bitmap of ``e13`` and sign -1 (``e31 = -e13``).
+        A repeated factor is contracted with its square, so ``"e11"`` is the
+        scalar 1 in G(3).
+        """
+        if name in self._name_to_blade:
+            return self._name_to_blade[name]
+        if name in ("1", "", "scalar"):
+            return 0, 1
+        if not name.startswith("e"):
+            raise KeyError(f"{name!r} is not a blade name of G{self.signature}")
+        rest = name[1:]
+        factors = []
+        labels = sorted(self.labels, key=len, reverse=True)
+        while rest:
+            for lab in labels:
+                if rest.startswith(lab):
+                    factors.append(self.labels.index(lab))
+                    rest = rest[len(lab) :]
+                    break
+            else:
+                raise KeyError(f"{name!r} is not a blade name of G{self.signature} (labels {self.labels})")
+        blade, sign = 0, 1
+        for i in factors:
+            sign *= self._sign_list[blade][1 << i]
+            blade ^= 1 << i
+        if sign == 0:
+            raise KeyError(f"{name!r} is zero in G{self.signature} (a null vector squared)")
+        self._name_to_blade[name] = (blade, sign)
+        return blade, sign
+
+    @property
+    def signature(self) -> tuple[int, int, int]:
+        return (self.p, self.q, self.r)
+
+    def __repr__(self) -> str:
+        return f"Algebra({self.p}, {self.q}, {self.r})"
+
+    # ----------------------------------------------------------- constructors
+    def blade(self, name: str, coeff=1.0) -> Multivector:
+        """The basis blade called ``name`` (any factor order) times ``coeff``."""
+        b, s = self.parse_blade(name)
+        return Multivector(self, {b: coeff if s == 1 else -coeff})
+
+    def scalar(self, value) -> Multivector:
+        return Multivector(self, {0: value})
+
+    def basis_vectors(self) -> list[Multivector]:
+        """The n basis vectors e_1 ... e_n (2.9)."""
+        return [Multivector(self, {1 << i: 1.0}) for i in range(self.n)]
+
+    def vector(self, coeffs) -> Multivector:
+        """A grade-1 multivector from ``coeffs`` of shape (n,) or (N, n) (a batch)."""
+        arr = coeffs
+        if isinstance(arr, (list, tuple)) and arr and all(_is_sympy(c) for c in arr):
+            return Multivector(self, {1 << i: c for i, c in enumerate(arr) if not _is_zero(c)})
+        arr = np.asarray(coeffs)
+        if arr.shape[-1] != self.n:
+            raise InvalidInputError(f"vector: last axis must have length {self.n}, got shape {arr.shape}")
+        if arr.dtype == object:
+            return Multivector(self, {1 << i: arr[..., i] if arr.ndim > 1 else arr[i] for i in range(self.n)})
+        arr = arr.astype(float)
+        if arr.ndim == 1:
+            return Multivector(self, {1 << i: float(arr[i]) for i in range(self.n) if arr[i] != 0})
+        return Multivector(self, {1 << i: arr[..., i] for i in range(self.n)})
+
+    def pseudoscalar(self) -> Multivector:
+        """The unit pseudoscalar I = e_1 ^ ... ^ e_n (2.9)."""
+        return Multivector(self, {self.pseudoscalar_blade: 1.0})
+
+    def from_array(self, arr, blades=None) -> Multivector:
+        """Multivector from an array whose last axis runs over ``blades``.
+
+        ``blades`` defaults to all blades in the order of (2.9)
+        (``self.blade_order``).
+        """
+        blades = self.blade_order if blades is None else blades
+        arr = np.asarray(arr, dtype=float)
+        if arr.shape[-1] != len(blades):
+            raise InvalidInputError(f"from_array: last axis must have length {len(blades)}, got shape {arr.shape}")
+        if arr.ndim == 1:
+            return Multivector(self, {b: float(arr[i]) for i, b in enumerate(blades) if arr[i] != 0})
+        return Multivector(self, {b: arr[..., i] for i, b in enumerate(blades)})

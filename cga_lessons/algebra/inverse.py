@@ -1,0 +1,113 @@
+"""Norms and the inverse of a multivector (2.19).
+
+A versor or a blade M has ``M ~M`` a scalar, so its inverse is
+``M^-1 = ~M / (M ~M)`` (2.19; for a vector ``a^-1 = a / a^2``).  Any other
+invertible multivector is inverted by solving the linear system of
+``X -> M X`` over all blades (NumPy for numbers and batches, SymPy for
+symbols).  Zero, null and singular multivectors raise
+:class:`~cga_lessons.algebra.DegenerateGeometryError`.
+
+:class:`_NormsAndInverse` is mixed into
+:class:`~cga_lessons.algebra.multivector.Multivector`; it is not used alone.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from cga_lessons.errors import DegenerateGeometryError
+
+from .coefficients import _REAL_TYPES, _is_real_single, _is_sympy
+
+
+class _NormsAndInverse:
+    """Norms, normalization and the inverse (2.19) of :class:`~cga_lessons.algebra.multivector.Multivector`."""
+
+    __slots__ = ()  # Multivector keeps only its two slots, no __dict__
+
+    def norm2(self):
+        """Squared norm <M ~M>_0 (for a point pair or blade, the square; may be negative)."""
+        return self.scalar_product(~self)
+
+    def norm(self):
+        """sqrt(|<M ~M>_0|)."""
+        v = self.norm2()
+        if _is_sympy(v):
+            import sympy
+
+            return sympy.sqrt(v)
+        return np.sqrt(np.abs(v))
+
+    def normalized(self):
+        """M / norm(M); raises when the norm is zero."""
+        n = self.norm()
+        if not _is_sympy(n) and np.any(np.asarray(n) == 0):
+            raise DegenerateGeometryError("normalized: the multivector has zero norm")
+        return self / n
+
+    def inv(self):
+        """Inverse (2.19).  Versors and blades use M~ / (M M~); otherwise a linear solve."""
+        if not self._c:
+            raise DegenerateGeometryError("inv: the zero multivector has no inverse")
+        rev = ~self
+        mm = self * rev
+        if any(_is_sympy(v) for v in mm._c.values()):
+            mm = mm.expand()  # cancel before testing for a scalar, or a blade falls into the 32x32 solve
+        elif 0 in mm._c and len(mm._c) > 1:
+            # a versor's M ~M is a scalar up to round-off in the other blades
+            if _is_real_single(mm):
+                rest = max(abs(v) for b, v in mm._c.items() if b != 0) / max(abs(mm._c[0]), 1e-300)
+            else:
+                s0 = np.abs(np.asarray(mm._c[0], dtype=float))
+                rest = max(float(np.max(np.abs(v) / np.maximum(s0, 1e-300))) for b, v in mm._c.items() if b != 0)
+            if rest <= 1e-12:
+                mm = type(self)(self.algebra, {0: mm._c[0]})
+        if set(mm._c) <= {0}:
+            d = mm._c.get(0, 0)
+            if _is_sympy(d):
+                if d == 0:
+                    raise DegenerateGeometryError("inv: M ~M = 0, the multivector is null and has no inverse")
+            elif type(d) in _REAL_TYPES:
+                if d == 0:
+                    raise DegenerateGeometryError("inv: M ~M = 0, the multivector is null and has no inverse")
+            elif np.any(np.asarray(d) == 0):
+                raise DegenerateGeometryError("inv: M ~M = 0, the multivector is null and has no inverse")
+            return rev / d
+        # also try M^ ~M (covers M with mixed parity such as 1 + e when scalar)
+        return self._general_inverse()
+
+    def _general_inverse(self):
+        alg = self.algebra
+        vals = list(self._c.values())
+        if any(_is_sympy(v) for v in vals):
+            import sympy
+
+            mat = sympy.zeros(alg.dim, alg.dim)
+            pos = {b: i for i, b in enumerate(alg.blade_order)}
+            for j, b in enumerate(alg.blade_order):
+                for a, c in self._c.items():
+                    s = alg._sign_list[a][b]
+                    if s:
+                        mat[pos[a ^ b], j] += s * c
+            rhs = sympy.zeros(alg.dim, 1)
+            rhs[pos[0], 0] = 1
+            if mat.det() == 0:
+                raise DegenerateGeometryError("inv: the multivector is not invertible")
+            sol = mat.LUsolve(rhs)
+            return type(self)(alg, {b: sympy.simplify(sol[pos[b], 0]) for b in alg.blade_order}, _prune=True)
+        shape = self.shape
+        blades = alg.blade_order
+        pos = {b: i for i, b in enumerate(blades)}
+        mats = np.zeros(shape + (alg.dim, alg.dim))
+        for j, b in enumerate(blades):
+            for a, c in self._c.items():
+                s = alg._sign_list[a][b]
+                if s:
+                    mats[..., pos[a ^ b], j] += s * np.asarray(c, dtype=float)
+        rhs = np.zeros(shape + (alg.dim,))
+        rhs[..., pos[0]] = 1.0
+        try:
+            sol = np.linalg.solve(mats, rhs[..., None])[..., 0]
+        except np.linalg.LinAlgError as exc:
+            raise DegenerateGeometryError("inv: the multivector is not invertible") from exc
+        return alg.from_array(sol)

@@ -1,0 +1,605 @@
+"""A versor's action as one matrix per grade, built in closed form (2.82).
+
+A versor V acts linearly on each grade: ``X -> V X^ V^-1`` (2.82) maps grade-k
+blades to grade-k blades.  For a single numeric versor,
+:meth:`_VersorMatrices.versor_matrices` builds that action as one matrix per
+grade, from one cached bilinear table per blade set (no sandwich products):
+with ``v`` the coefficients of V, ``outer(v, v).ravel() @ T`` gives ``V ~V``
+and every matrix at once.  :meth:`_VersorMatrices.apply_matrices` then applies
+the matrices to one entity or to a whole batch with one matrix product per
+grade, so moving a million points by a motor costs one 5x5 matrix product.
+``V >> X`` (:meth:`~cga_lessons.algebra.multivector.Multivector.__rshift__`, the
+sandwich of (2.98, 2.101, 2.103)) and :func:`cga_lessons.conformal.versors.apply` take
+this route by themselves.
+
+Motors of G(4,1) (even, commuting with the point at infinity e, 2.102) take a
+route of their own, :meth:`_VersorMatrices.rigid_motion`: the rotor R and the
+translation t are read linearly off the coefficients (2.141-2.144), and the
+matrices are built in closed form from (R, t) in the null basis
+(e1, e2, e3, e, e0), where no entry is a difference of large terms, and applied
+there (:class:`VersorMatrices`).  In the e+/e- basis a motor translating by t
+has entries such as 1 - t^2/2 and a point at x has e+/e- coefficients of size
+x^2/2, so the plain product loses ~eps |t|^2 |x|^2 to cancellation.
+
+:class:`_VersorMatrices` is mixed into :class:`~cga_lessons.algebra.Algebra`,
+which owns the sign table and the caches it reads; it is not used alone.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+import threading
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from .coefficients import _is_real_single
+from .multivector import _mv, _mv_pruned
+
+if TYPE_CHECKING:
+    from .multivector import Multivector
+
+
+def _stack_rows(vals, shape: tuple) -> np.ndarray:
+    """Stack batch coefficients into a ``(k,) + shape`` array.
+
+    No copy when they already are the consecutive rows of one C-contiguous
+    float block (the layout :func:`~cga_lessons.conformal.model.up` and
+    :meth:`Algebra.apply_matrices` produce).
+    """
+    base = getattr(vals[0], "base", None)
+    if (
+        type(base) is np.ndarray
+        and base.dtype == np.float64
+        and base.shape == (len(vals),) + shape
+        and base.flags.c_contiguous
+    ):
+        step = base.strides[0]
+        p0 = base.__array_interface__["data"][0]
+        rest = base.strides[1:]
+        for i, v in enumerate(vals):
+            if (
+                type(v) is not np.ndarray
+                or v.base is not base
+                or v.shape != shape
+                or v.strides != rest
+                or v.__array_interface__["data"][0] != p0 + i * step
+            ):
+                break
+        else:
+            return base
+    rows = [
+        v if type(v) is np.ndarray and v.shape == shape else np.broadcast_to(np.asarray(v, float), shape) for v in vals
+    ]
+    return np.stack(rows)
+
+
+#: Relative tolerance of the versor tests (of ``V ~V`` against ``|v|^2``, of a motor's parts against its
+#: largest coefficient).
+VERSOR_TOLERANCE = 1e-12
+#: The most a motor's defects may reach, relative to its largest coefficient (see ``motor_tolerance``).
+MOTOR_TOLERANCE_CAP = 1e-8
+_EPS = sys.float_info.epsilon
+
+
+def motor_tolerance(vmax, n_norm, r_norm):
+    """How far ``M = R + e n`` may be from a motor: the bound on its defects (E parts, e+ != e- parts,
+    ``<n ~R>_3``), for floats or arrays.
+
+    ``VERSOR_TOLERANCE`` of the largest coefficient ``vmax``, plus the round-off
+    a product of motors leaves in the e+/e- basis: the e+ and e- parts of the
+    factors multiply into terms that cancel (e+ e+ = 1, e- e- = -1), so a
+    product carries defects of about ``eps (|n|/|R|)^2`` relative to its largest
+    coefficient, |n|/|R| being about |t|/2 (measured: at most 13 times that
+    for products of four motors); allowed 16 times, capped at
+    ``MOTOR_TOLERANCE_CAP``.  Beyond the cap (products of motors translating
+    by more than ~1e3) the multivector is no longer taken for a motor.
+    """
+    with np.errstate(over="ignore", invalid="ignore"):
+        ratio = n_norm / r_norm
+        rel = np.minimum(VERSOR_TOLERANCE + 16 * _EPS * ratio * ratio, MOTOR_TOLERANCE_CAP)
+    return rel * vmax
+
+
+#: The rotor blades 1 e12 e13 e23 of a motor M = R + e n of G(4,1) (bitmaps e1=1 e2=2 e3=4 e+=8 e-=16): R = (M ^ E) E
+#: (2.141).  n sits on e1- e2- e3- e123- (negated: e n = (e+ + e-) n, 2.53) and, equal, on e1+ e2+ e3+ e123+.
+_ROTOR_BLADES = (0, 3, 5, 6)
+
+#: Batches up to this many coefficients per grade (32 MB) reuse one scratch block per thread (``_scratch``).
+_SCRATCH_LIMIT = 1 << 22
+_LOCAL = threading.local()
+
+
+def _scratch(size: int) -> np.ndarray:
+    """A float scratch array of ``size`` elements, reused by the thread for batches up to ``_SCRATCH_LIMIT``.
+
+    A fresh block of megabytes costs a page fault per 4 kB page on first touch, which on some systems is
+    more than the arithmetic done in it.
+    """
+    if size > _SCRATCH_LIMIT:
+        return np.empty(size)
+    buf = getattr(_LOCAL, "buf", None)
+    if buf is None or buf.size < size:
+        buf = _LOCAL.buf = np.empty(max(size, 1 << 16))
+    return buf[:size]
+
+
+class VersorMatrices(dict):
+    """``{grade: k x k matrix}`` of a versor's action in the blade order of (2.9), e+/e- basis.
+
+    Returned by :meth:`Algebra.versor_matrices <_VersorMatrices.versor_matrices>`.  For a motor of G(4,1)
+    two more attributes are set (None otherwise): ``rigid``, the ``(R, t)`` of ``rigid_motion``, and
+    ``null``, the same action on the coordinates in which :meth:`apply_matrices` applies it (each pair of
+    e+/e- coefficients ``(a, b)`` taken as ``(a, b - a)``; see ``_motor_info``).  All arrays are read-only
+    (they are shared by a cache).
+    """
+
+    __slots__ = ("rigid", "null")
+
+    def __init__(self, mats, rigid=None, null=None):
+        super().__init__(mats)
+        self.rigid = rigid
+        self.null = null
+
+
+class _VersorMatrices:
+    """Versor matrices of :class:`~cga_lessons.algebra.Algebra` (mixed into it).
+
+    Reads the algebra's ``_sign_list`` (the signs of (2.10)), ``_rev_flip``,
+    ``grade_blades``, ``grades`` and the caches ``_table_cache`` and
+    ``_versor_cache``, all set by ``Algebra.__init__``.
+    """
+
+    def _sandwich_table(self, keys: tuple, grades: tuple):
+        """Bilinear table of the sandwich ``V X ~V`` for versors with blades ``keys``.
+
+        Returns ``(parity, T, slices)``: ``parity`` is 0 (all blades even), 1
+        (all odd) or None (mixed).  ``T`` has shape ``(m*m, dim + sum k_g^2)``
+        for the m blades in ``keys`` and the k_g blades of each grade g in
+        ``grades``, such that with ``v`` the coefficients of V in the order of
+        ``keys``, ``w = outer(v, v).ravel() @ T`` holds the coefficients of
+        ``V ~V`` (all ``dim`` blades) and then, for each grade, the k_g x k_g
+        matrix of ``X -> V X ~V`` (row-major) at ``w[slices[g]]``.
+        """
+        ck = (keys, grades)
+        hit = self._table_cache.get(ck)
+        if hit is not None:
+            return hit
+        sign, flip, dim, m = self._sign_list, self._rev_flip, self.dim, len(keys)
+        slices, width = {}, dim
+        for g in grades:
+            k = len(self.grade_blades[g])
+            slices[g] = slice(width, width + k * k)
+            width += k * k
+        T = np.zeros((m, m, width))
+        for ia, a in enumerate(keys):
+            for ib, b in enumerate(keys):
+                s = sign[a][b] * (-1 if flip[b] else 1)
+                if s:
+                    T[ia, ib, a ^ b] += s
+            for g in grades:
+                blades = self.grade_blades[g]
+                k, off = len(blades), slices[g].start
+                pos = {bl: i for i, bl in enumerate(blades)}
+                for j, x in enumerate(blades):
+                    s1 = sign[a][x]
+                    if not s1:
+                        continue
+                    r1 = a ^ x
+                    for ib, b in enumerate(keys):
+                        s2 = sign[r1][b]
+                        r = r1 ^ b
+                        if s2 and r in pos:
+                            T[ia, ib, off + pos[r] * k + j] += s1 * s2 * (-1 if flip[b] else 1)
+        parities = {self.grades[b] & 1 for b in keys}
+        parity = parities.pop() if len(parities) == 1 else None
+        hit = (parity, T.reshape(m * m, width), slices)
+        if len(self._table_cache) >= 128:  # up to ~270 kB each (16 blades, grade 2)
+            self._table_cache.clear()
+        self._table_cache[ck] = hit
+        return hit
+
+    def _versor_info(self, V: Multivector, grades: tuple):
+        """``(d, parity, raw, unit)`` for a single numeric versor V, else None (cached by value).
+
+        ``d = <V ~V>_0``; ``raw[g]`` is the matrix of ``X -> V X ~V`` and
+        ``unit[g]`` that of ``X -> V X^ V^-1`` (2.82) on grade g, both
+        :class:`VersorMatrices`.  A motor of G(4,1) (:meth:`rigid_motion`) gets
+        them in closed form from its rotation and translation.  Any other V is
+        a versor here when its blades have one parity and ``V ~V`` is a
+        non-zero scalar up to round-off: its other blades within
+        ``VERSOR_TOLERANCE |v|^2`` (|v|^2 the sum of the squared coefficients,
+        which bounds the sum of the |products| making up each entry of V ~V,
+        hence their round-off); in G(p, q) with p + q <= 5 that makes V an
+        element of the Clifford group, so it keeps grades.
+        """
+        c = V._c
+        if not c or not _is_real_single(V) or self.n > 5:
+            return None
+        ck = (tuple(c), tuple(c.values()), grades)
+        hit = self._versor_cache.get(ck)
+        if hit is not None:
+            return hit
+        rigid = self.rigid_motion(V)
+        if rigid is not None:
+            hit = self._motor_info(rigid, sum(float(c.get(b, 0.0)) ** 2 for b in _ROTOR_BLADES), grades)
+        else:
+            hit = self._table_info(ck, grades)
+        if hit is None:
+            return None
+        if len(self._versor_cache) >= 256:
+            self._versor_cache.clear()
+        self._versor_cache[ck] = hit
+        return hit
+
+    def _table_info(self, ck: tuple, grades: tuple):
+        """:meth:`_versor_info` of a general versor, from the bilinear table of (2.82)."""
+        parity, T, slices = self._sandwich_table(ck[0], grades)
+        if parity is None:
+            return None
+        v = np.array(ck[1], dtype=float)
+        with np.errstate(over="ignore", invalid="ignore"):
+            size = float(v @ v)
+            w = (v[:, None] * v).ravel() @ T
+        head = w[: self.dim].tolist()
+        d = head[0]
+        if not (math.isfinite(d) and d != 0 and math.isfinite(size)):
+            return None
+        if max(map(abs, head[1:]), default=0.0) > VERSOR_TOLERANCE * size:
+            return None
+        raw, unit = {}, {}
+        for g, sl in slices.items():
+            k = len(self.grade_blades[g])
+            raw[g] = mat = w[sl].reshape(k, k)
+            unit[g] = u = mat * ((-1.0 if parity and g & 1 else 1.0) / d)
+            u.flags.writeable = False  # shared through the cache
+        w.flags.writeable = False
+        return d, parity, VersorMatrices(raw), VersorMatrices(unit)
+
+    # ------------------------------------------------------------------ motors
+    def rigid_motion(self, V: Multivector):
+        """``(R, t)`` of a motor of G(4,1): V moves the point x to ``R x + t`` (2.102, 2.103); else None.
+
+        V is a single numeric multivector.  Written ``V = R + e n`` (2.140,
+        2.143), with R in the even subalgebra of G3 (scalar and e12, e13, e23:
+        the rotor ``(V ^ E) E`` of 2.141) and n in the odd one, V is a motor
+        when it is even and commutes with e: its e+ and e- parts are equal and
+        it has no E = e+e- part.  The parts that break this (the differences of
+        the e+ and e- coefficients, the E blades, and the trivector of ``n ~R``,
+        which must vanish for ``V ~V`` to be a scalar, 2.145) must be within
+        :func:`motor_tolerance` of the largest coefficient: ``VERSOR_TOLERANCE``
+        plus the round-off a product of motors leaves in its e+/e- terms, up to
+        ``MOTOR_TOLERANCE_CAP``.  A motor built by ``motor``, ``translator``,
+        ``rotor`` or ``matrix_to_motor`` has no defect at all, at any distance.
+
+        Both parts are read linearly off the coefficients: ``R`` is the
+        rotation matrix of the rotor part normalised by its own norm (2.141),
+        and ``t = 2 <n ~R>_1 / (R ~R)`` (2.142-2.144, divided by ``R ~R`` so that
+        a scaled motor ``s M``, the same versor action ``V X V^-1``, gives the
+        same motion), with n the negated e- coefficients.  So ``R x + t`` holds
+        to machine precision at any distance, where the e+/e- form of a point
+        at x holds ``x^2/2``.  Cached by value; the arrays are read-only.
+        """
+        c = V._c
+        if not c or not _is_real_single(V):
+            return None
+        key = ("rigid", tuple(c), tuple(c.values()))
+        hit = self._versor_cache.get(key, False)
+        if hit is not False:
+            return hit
+        hit = self._motor_parts(c) if self.signature == (4, 1, 0) else None
+        if len(self._versor_cache) >= 256:
+            self._versor_cache.clear()
+        self._versor_cache[key] = hit
+        return hit
+
+    def _motor_parts(self, c: dict):
+        """``(R, t)`` of :meth:`rigid_motion` from the coefficient map ``c``, or None."""
+        grades = self.grades
+        for b in c:
+            if grades[b] & 1:
+                return None
+        vmax = max([abs(float(v)) for v in c.values()])
+        if not (0.0 < vmax < math.inf):
+            return None
+        get = c.get
+        r0, r12, r13, r23 = float(get(0, 0.0)), float(get(3, 0.0)), float(get(5, 0.0)), float(get(6, 0.0))
+        rn = math.hypot(r0, r12, r13, r23)  # |R| = sqrt(R ~R) (2.141), no overflow
+        if rn == 0.0:
+            return None
+        q0, q12, q13, q23 = r0 / rn, r12 / rn, r13 / rn, r23 / rn
+        # e n = (e+ + e-) n puts -n on the e- blades e1- e2- e3- e123- (and on the e+ ones, for a motor)
+        m1, m2, m3, m123 = float(get(17, 0.0)), float(get(18, 0.0)), float(get(20, 0.0)), float(get(23, 0.0))
+        n1, n2, n3, n123 = -m1, -m2, -m3, -m123
+        nn = math.hypot(n1, n2, n3, n123)
+        tri = n123 * q0 - n1 * q23 + n2 * q13 - n3 * q12  # <n ~R>_3 / |R|, zero when n = t R / 2
+        anti = max(
+            abs(float(get(9, 0.0)) - m1),
+            abs(float(get(10, 0.0)) - m2),
+            abs(float(get(12, 0.0)) - m3),
+            abs(float(get(15, 0.0)) - m123),
+            abs(float(get(24, 0.0))),
+            abs(float(get(27, 0.0))),
+            abs(float(get(29, 0.0))),
+            abs(float(get(30, 0.0))),
+            abs(tri),
+        )
+        ratio = nn / rn
+        rel = min(VERSOR_TOLERANCE + 16 * _EPS * ratio * ratio, MOTOR_TOLERANCE_CAP)  # motor_tolerance, floats
+        if not anti <= rel * vmax:  # also refuses NaN
+            return None
+        s = 2.0 / rn  # t = 2 <n ~R>_1 / (R ~R)  (2.144)
+        t0 = s * (n1 * q0 + n2 * q12 + n3 * q13 + n123 * q23)
+        t1 = s * (n2 * q0 - n1 * q12 + n3 * q23 - n123 * q13)
+        t2 = s * (n3 * q0 - n1 * q13 - n2 * q23 + n123 * q12)
+        if not (math.isfinite(t0) and math.isfinite(t1) and math.isfinite(t2)):
+            return None
+        # The unit quaternion (w, x, y, z) of R = w - x e23 - y e31 - z e12 (2.96; e31 = -e13) and its matrix.
+        w, x, y, z = q0, -q23, q13, -q12
+        Rm = np.array(
+            [
+                [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - z * w), 2.0 * (x * z + y * w)],
+                [2.0 * (x * y + z * w), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - x * w)],
+                [2.0 * (x * z - y * w), 2.0 * (y * z + x * w), 1.0 - 2.0 * (x * x + y * y)],
+            ]
+        )
+        t = np.array([t0, t1, t2])
+        Rm.flags.writeable = t.flags.writeable = False
+        return Rm, t
+
+    def _null_tables(self, g: int):
+        """Index tables of grade g for the null basis (e1, e2, e3, e, e0) of G(4,1).
+
+        Returns ``(keep, pairs, P, Pinv, comp, sign)``: ``pairs`` the
+        positions ``(i, j)`` of the blades ``B e+`` and ``B e-``, ``keep`` the
+        others; ``P`` maps e+/e- coefficients to null-basis ones,
+        ``(a, b) -> ((a + b)/2, b - a)`` on each pair (``B e`` and ``B e0``,
+        since ``e = e+ + e-`` and ``e0 = (e- - e+)/2``, 2.53; ``B e+ e- = B e e0``
+        is unchanged), ``Pinv`` back.  ``comp``/``sign`` index the compound
+        matrices (below).
+        """
+        key = ("null-basis", g)
+        hit = self._table_cache.get(key)
+        if hit is not None:
+            return hit
+        blades = self.grade_blades[g]
+        k = len(blades)
+        pos = {b: i for i, b in enumerate(blades)}
+        ip = [i for i, b in enumerate(blades) if b & 8 and not b & 16]
+        im = [pos[blades[i] ^ 24] for i in ip]
+        keep = [i for i in range(k) if i not in ip and i not in im]
+        P, Pinv = np.eye(k), np.eye(k)
+        P[ip, ip], P[ip, im], P[im, ip], P[im, im] = 0.5, 0.5, -1.0, 1.0
+        Pinv[ip, ip], Pinv[ip, im], Pinv[im, ip], Pinv[im, im] = 1.0, -0.5, 1.0, 0.5
+
+        def bits(b):
+            return [i for i in range(self.n) if b >> i & 1]
+
+        comp = sign = None
+        if g == 2:
+            comp = np.array([bits(b) for b in blades], dtype=np.intp).T  # (2, 10): the index pairs
+        elif g in (3, 4):  # Jacobi: minors of N from the complementary minors of N^-1
+            other = {b: i for i, b in enumerate(self.grade_blades[self.n - g])}
+            comp = np.array([other[(self.dim - 1) ^ b] for b in blades], dtype=np.intp)
+            s = np.array([-1.0 if sum(bits(b)) & 1 else 1.0 for b in blades])
+            sign = s[:, None] * s[None, :]
+        hit = (keep, list(zip(ip, im)), P, Pinv, comp, sign)
+        self._table_cache[key] = hit
+        return hit
+
+    def _motor_info(self, rigid: tuple, d: float, grades: tuple):
+        """:meth:`_versor_info` of a motor, built in closed form from its ``(R, t)``.
+
+        In the null basis (e1, e2, e3, e, e0) the motor maps ``x -> R x + (R x . t) e``,
+        ``e -> e`` and ``e0 -> e0 + t + t^2/2 e`` (T up(x) ~T = up(x + t), 2.101, 2.62), so on grade 1::
+
+            N = [[R, 0, t], [(R^T t)^T, 1, t^2/2], [0, 0, 1]]
+
+        and on grade k its k-th compound (the outermorphism, 2.82): the 2x2
+        minors of N for k = 2, and for k = 3, 4 the complementary minors of
+        ``N^-1 = [[R^T, 0, -R^T t], [-t^T, 1, t^2/2], [0, 0, 1]]`` (Jacobi;
+        det N = 1).  No entry is a difference of large terms.  The e+/e-
+        matrices are ``Pinv C P`` (:meth:`_null_tables`), on grade 1 written
+        out: ``[[R, -t, t], [u^T, 1 - h, h], [u^T, -h, 1 + h]]`` with
+        ``u = R^T t``, ``h = t^2/2``.  A motor is even, so ``V X^ V^-1 = V X V^-1``
+        and ``V X ~V = d V X V^-1`` with ``d = R ~R``.
+
+        ``null[g]`` (what :meth:`apply_matrices` uses) is ``K = T_row C T_col``:
+        it takes each e+/e- pair of coefficients as ``(a, w) = (a, b - a)``
+        (the e coefficient is ``a + w/2``: T_col) and returns ``(a', w')``
+        with ``a' = c' - w'/2`` the e+ coefficient (T_row); then ``b' = a' + w'``.
+        So only ``b - a`` and ``a' + w'`` are computed outside the matrix
+        product: a point keeps its weight up to the one rounding of ``a' + w'``
+        (none at all when a' is a multiple of the spacing at ``a' + w'``, as for
+        a point far away unless ``a'`` lies within w' below a power of two).  The
+        large e+/e- coefficients of a point far away multiply only the entries
+        mapping e to e; on grade 1, K = N.
+        """
+        if not (math.isfinite(d) and d > 0):
+            return None
+        Rm, t = rigid
+        (a, b, c), (e, f, g_), (k, l, m) = Rm.tolist()
+        tx, ty, tz = t.tolist()
+        ux, uy, uz = a * tx + e * ty + k * tz, b * tx + f * ty + l * tz, c * tx + g_ * ty + m * tz  # R^T t
+        h = 0.5 * (tx * tx + ty * ty + tz * tz)
+        N = np.array(
+            [
+                [a, b, c, 0.0, tx],
+                [e, f, g_, 0.0, ty],
+                [k, l, m, 0.0, tz],
+                [ux, uy, uz, 1.0, h],
+                [0.0, 0.0, 0.0, 0.0, 1.0],
+            ]
+        )
+        null, unit = {}, {}
+        Ni = None
+        for g in grades:
+            _, _, P, Pinv, comp, sign = self._null_tables(g)
+            if g == 1:  # Pinv N P written out: the e+ column -t, 1 - h, -h; the e- column t, h, 1 + h
+                null[1] = N  # its K (below) is N itself
+                unit[1] = np.array(
+                    [
+                        [a, b, c, -tx, tx],
+                        [e, f, g_, -ty, ty],
+                        [k, l, m, -tz, tz],
+                        [ux, uy, uz, 1.0 - h, h],
+                        [ux, uy, uz, -h, 1.0 + h],
+                    ]
+                )
+                continue
+            if g in (3, 4) and Ni is None:
+                Ni = np.array(
+                    [
+                        [a, e, k, 0.0, -ux],
+                        [b, f, l, 0.0, -uy],
+                        [c, g_, m, 0.0, -uz],
+                        [-tx, -ty, -tz, 1.0, h],
+                        [0.0, 0.0, 0.0, 0.0, 1.0],
+                    ]
+                )
+            if g in (0, self.n):
+                C = np.ones((1, 1))
+            elif g == 2:
+                C = _minors2(N, comp)
+            elif g == 3:
+                C = sign * _minors2(Ni, self._null_tables(2)[4])[np.ix_(comp, comp)].T
+            else:
+                C = sign * Ni[np.ix_(comp, comp)].T
+            C = np.array(C)
+            unit[g] = Pinv @ C @ P
+            for i, j in self._null_tables(g)[1]:  # K: (a, b - a) -> (c - w/2, w), see the docstring
+                C[i] -= 0.5 * C[j]
+            for i, j in self._null_tables(g)[1]:
+                C[:, j] += 0.5 * C[:, i]
+            null[g] = C
+        raw, raw_null = unit, null
+        if d != 1.0:
+            raw = {g: d * mat for g, mat in unit.items()}
+            raw_null = {g: d * mat for g, mat in null.items()}
+        for mat in (*null.values(), *unit.values(), *raw.values(), *raw_null.values()):
+            mat.flags.writeable = False  # shared through the cache
+        return d, 0, VersorMatrices(raw, rigid, raw_null), VersorMatrices(unit, rigid, null)
+
+    def versor_matrices(self, V: Multivector, grades) -> dict | None:
+        """Matrices of ``X -> V X^ V^-1`` (2.82) on the given grades, or None.
+
+        For a single numeric versor V (real coefficients, ``V ~V`` a non-zero
+        scalar up to round-off) returns a :class:`VersorMatrices`,
+        ``{grade: k x k matrix}`` over the blades of that grade in the order of
+        (2.9) (``self.grade_blades``): the outermorphism of the versor, built
+        in closed form with no multivector products, for a motor of G(4,1)
+        from its rotation and translation (:meth:`rigid_motion`), otherwise
+        from one cached bilinear table per blade set (:meth:`_sandwich_table`).
+        X^ is the grade involution, applied when V is odd.  Returns None for
+        anything else (SymPy or batched coefficients, mixed parity, not a
+        versor); the caller then uses the plain sandwich.
+        """
+        info = self._versor_info(V, tuple(grades))
+        return None if info is None else info[3]
+
+    def apply_matrices(self, mats: dict, X: Multivector) -> Multivector:
+        """Apply per-grade matrices (from :meth:`versor_matrices`) to X, single or batched.
+
+        A batch costs, per grade, one ``(k, k) x (k, N)`` matrix product; when
+        X's coefficient arrays of that grade are consecutive rows of one
+        C-contiguous block (as :func:`~cga_lessons.conformal.model.up` and this method
+        return them) no copy is made.  Results come back as the rows of one
+        block.  Output blades whose matrix row is zero on X's blades are left
+        out; the others are kept even if their values happen to vanish.
+
+        The matrices of a motor (``mats.null`` set) are applied in the null
+        basis: each pair of e+/e- coefficients ``(a, b)`` becomes
+        ``((a + b)/2, b - a)`` (for a point, ``x^2/2`` and its weight, 2.111),
+        then the null-basis matrix, then ``(c, w) -> (c - w/2, c + w/2)`` back
+        (folded into the matrix, see ``_motor_info``), so that no large e+/e-
+        terms cancel and a point keeps its weight to one rounding.
+        """
+        c = X._c
+        batch = X.shape
+        null = getattr(mats, "null", None)
+        if not batch:
+            keys, vals = [], []
+            for g, mat in mats.items():
+                blades = self.grade_blades[g]
+                if null is None:
+                    vals += (mat @ np.array([c.get(b, 0.0) for b in blades], dtype=float)).tolist()
+                else:
+                    vals += self._apply_null_one(g, null[g], [float(c.get(b, 0.0)) for b in blades])
+                keys += blades
+            return _mv_pruned(self, keys, vals)
+        out = {}
+        for g, mat in mats.items():
+            blades = self.grade_blades[g]
+            idx = [j for j, b in enumerate(blades) if b in c]
+            if not idx:
+                continue
+            sub = mat if len(idx) == len(blades) else mat[:, idx]
+            if null is not None:
+                res = self._apply_null(g, null[g], [c.get(b) for b in blades], batch)
+            else:
+                block = _stack_rows([c[blades[j]] for j in idx], batch)
+                res = sub @ (block if len(batch) == 1 else block.reshape(len(idx), -1))
+            if len(batch) != 1:  # a batch of any shape: one (k, k) x (k, prod(shape)) product
+                res = res.reshape((len(blades),) + batch)
+            nz = np.any(sub != 0, axis=1)
+            for i, b in enumerate(blades):
+                if nz[i]:
+                    out[b] = res[i]
+        return _mv(self, out)
+
+    def _apply_null_one(self, g: int, K: np.ndarray, x: list) -> list:
+        """The motor's ``K`` (:meth:`_motor_info`) on the grade-g e+/e- coefficients of one entity (floats)."""
+        pairs = self._null_tables(g)[1]
+        for i, j in pairs:  # (a, b) -> (a, b - a)
+            x[j] -= x[i]
+        y = (K @ np.array(x)).tolist()
+        for i, j in pairs:  # (a', w') -> (a', a' + w')
+            y[j] += y[i]
+        return y
+
+    def _apply_null(self, g: int, K: np.ndarray, rows: list, shape: tuple) -> np.ndarray:
+        """The motor's ``K`` (:meth:`_motor_info`) on a batch: ``rows`` holds the coefficient of each
+        grade-g blade (an array of ``shape``, a number, or None when absent).  Returns the (k, prod(shape))
+        block of the e+/e- coefficients of the result.
+
+        The input goes into a scratch block reused by the thread (``_scratch``),
+        the e- rows as ``b - a``; after the product the e- rows get ``a' + w'``.
+        """
+        pairs = self._null_tables(g)[1]
+        k = len(rows)
+        size = math.prod(shape)
+        z = _scratch(k * size).reshape((k,) + shape)
+        minus = {j: i for i, j in pairs}
+        for p, v in enumerate(rows):
+            i = minus.get(p)
+            if i is None or rows[i] is None:
+                if v is None:
+                    z[p] = 0.0
+                else:
+                    np.copyto(z[p], v)
+            elif v is None:
+                np.negative(rows[i], out=z[p])
+            else:
+                np.subtract(v, rows[i], out=z[p])
+        zf = z.reshape(k, size)
+        if g == 1:  # K = d N: its e- row is (0, 0, 0, 0, d), so the product needs only the first four rows
+            y = np.empty((5, size))
+            np.matmul(K[:4], zf, out=y[:4])
+            d = K[4, 4]
+            if d == 1.0:
+                np.add(y[3], zf[4], out=y[4])
+            else:
+                np.multiply(zf[4], d, out=y[4])
+                y[4] += y[3]
+            return y
+        y = K @ zf
+        for i, j in pairs:
+            y[j] += y[i]
+        return y
+
+
+def _minors2(A: np.ndarray, pairs: np.ndarray) -> np.ndarray:
+    """The 2x2 minors ``det A[(i0, i1), (j0, j1)]`` over the index pairs ``pairs`` (2, m), as an (m, m) array."""
+    i0, i1 = pairs
+    return A[np.ix_(i0, i0)] * A[np.ix_(i1, i1)] - A[np.ix_(i0, i1)] * A[np.ix_(i1, i0)]

@@ -1,0 +1,59 @@
+"""The conformal model G(4,1): one import for the whole of chapter 2.
+
+``from cga_lessons import conformal as cga`` gives the basis and constants and
+up/down (:mod:`cga_lessons.conformal.model`, 2.52-2.67, 2.111-2.114), the entities of
+table 2.1 and their properties (:mod:`cga_lessons.conformal.entities`, section 2.4) and
+the versors of table 2.2 (:mod:`cga_lessons.conformal.versors`, 2.82-2.110, 2.135-2.145),
+and beyond the thesis the logarithm, roots and interpolation of motors and the
+dilator (:mod:`cga_lessons.conformal.versor_log`), contractions, duals, meet and join,
+projections and the classification of blades (:mod:`cga_lessons.conformal.blades`,
+:mod:`cga_lessons.conformal.blades_classify`), motors estimated from corresponding points
+or lines, their mean, and quaternions (:mod:`cga_lessons.conformal.motor_estimation`),
+and the motor between two objects (:mod:`cga_lessons.conformal.object_motors`).
+
+Basis vectors ``e1 e2 e3`` (Euclidean), ``ep`` (e+, squares to +1) and ``em``
+(e-, squares to -1), (2.52).  The null basis (2.53), with the thesis's signs::
+
+    eo   = (e- - e+)/2      the origin, e_0
+    einf = e- + e+          the point at infinity, e (the thesis writes plain e)
+
+``E = e+ e- = einf ^ eo`` (2.55, corrected), ``IE = e1 e2 e3``, ``Ic = E IE`` (2.60).
+
+    >>> from cga_lessons import conformal as cga
+    >>> X = cga.up([1.0, 2.0, 3.0])
+    >>> float(X | X), float(X | cga.einf)
+    (0.0, -1.0)
+    >>> cga.down(X)
+    array([1., 2., 3.])
+"""
+
+from cga_lessons.algebra import DegenerateGeometryError, GeometryError, InvalidInputError, Multivector, exp  # noqa: F401
+
+from .blades import *  # noqa: F403
+from .blades import __all__ as _blades_all
+from .blades_classify import *  # noqa: F403
+from .blades_classify import __all__ as _blades_classify_all
+from .entities import *  # noqa: F403
+from .entities import __all__ as _entities_all
+from .model import *  # noqa: F403
+from .model import __all__ as _model_all
+from .model import point_weight  # noqa: F401
+from .motor_estimation import *  # noqa: F403
+from .motor_estimation import __all__ as _motor_estimation_all
+from .object_motors import motor_between  # noqa: F401
+from .versor_log import *  # noqa: F403
+from .versor_log import __all__ as _versor_log_all
+from .versors import *  # noqa: F403
+from .versors import __all__ as _versors_all
+
+__all__ = (
+    list(_model_all)
+    + ["point_weight", "Multivector", "exp", "GeometryError", "DegenerateGeometryError", "InvalidInputError"]
+    + list(_entities_all)
+    + list(_versors_all)
+    + list(_versor_log_all)
+    + list(_blades_all)
+    + list(_blades_classify_all)
+    + list(_motor_estimation_all)
+    + ["motor_between"]
+)

@@ -1,0 +1,550 @@
+"""Conformal entities of table 2.1 and their properties (section 2.4).
+
+Naming follows the thesis: the *dual* form of an entity is the outer product
+of points (``a ^ b ^ c ^ d`` for a sphere, 2.75), the *standard* form is its
+dual ``X = X* Ic`` (vectors for spheres and planes, 2.72, 2.89).  Functions
+that read an entity accept either form and tell them apart by grade; they
+check the kind too (a circle is not a line, a sphere is not a plane).
+
+Every function takes NumPy points of shape (3,) or (N, 3) (a batch) or three
+SymPy expressions, and returns NumPy at the Euclidean edge.  SymPy input takes
+the printed formulas, exactly.
+
+**Accuracy far from the origin** (:mod:`cga_lessons.conformal.entities_frame`).  Float
+constructors build each shape at its points in closed form and store the e0
+part of a round exactly; readers take positions from the parts that hold them
+without cancellation.  Flats and centres are good to a few eps at any
+distance.  The squared size of a round (rho^2, a pair's separation^2) at
+distance |c| is held by the float blade only to ``~eps (|c|^2 + size^2 + 1)``
+absolute, a limit of the e+/e- storage (a unit sphere: 1e-10 at 1 km, 1e-4 at
+1000 km); its e0 part (a circle's normal, a pair's a - b) to ``~eps (|c|^2 + 1)``
+relative likewise.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector
+from cga_lessons.algebra.core import _is_sympy
+
+from . import entities_frame as _F
+from .model import (
+    G41,
+    IE,
+    E,
+    Ic,
+    _any_sym,
+    _check_points,
+    down,
+    einf,
+    ep,
+    euclidean,
+    exact_constants,
+    normalize_point,
+    up,
+    vector,
+)
+
+__all__ = [
+    "point_pair",
+    "point_pair_endpoints",
+    "point_pair_sphere",
+    "sphere",
+    "sphere_from_points",
+    "sphere_center_radius",
+    "point_sphere_side",
+    "plane",
+    "plane_from_points",
+    "plane_normal_distance",
+    "line_from_points",
+    "normalize_line",
+    "line_direction",
+    "line_moment",
+    "line_closest_point",
+    "point_line_distance",
+    "circle_from_points",
+    "circle_center_radius",
+    "circle_plane",
+    "standard_form",
+    "dual_form",
+]
+
+
+def _c(X: Multivector):
+    """Constants matching the coefficient kind of X (exact for SymPy)."""
+    if _any_sym(X):
+        return exact_constants()
+    return {"einf": einf, "E": E, "IE": IE, "Ic": Ic, "ep": ep}
+
+
+def _require_nonzero(X: Multivector, func: str, what: str) -> Multivector:
+    """X, unless it simplifies to zero (symbolic input)."""
+    if not X.simplify()._c:
+        raise DegenerateGeometryError(f"{func}: {what}")
+    return X
+
+
+def _grade_of(X: Multivector, func: str, allowed: tuple[int, ...], arg: str | None = None) -> int:
+    at = f"{func}: {arg}" if arg else func
+    if not isinstance(X, Multivector):
+        raise InvalidInputError(f"{at}: expected a Multivector, got {type(X).__name__}")
+    gs = X.grades_present()
+    if len(gs) != 1 or gs[0] not in allowed:
+        raise InvalidInputError(f"{at}: expected a blade of grade {' or '.join(map(str, allowed))}, got grades {gs}")
+    return gs[0]
+
+
+def standard_form(X: Multivector) -> Multivector:
+    """The standard form X = X* Ic of a dual-form entity (inverse of 2.31)."""
+    return X * _c(X)["Ic"]
+
+
+def dual_form(X: Multivector) -> Multivector:
+    """The dual X* = X Ic^-1 (2.31)."""
+    return X * (-_c(X)["Ic"])  # Ic^2 = -1, so Ic^-1 = -Ic
+
+
+def _euclid_point(x, func: str):
+    """Float coordinates of x (Euclidean, or a conformal point); None when symbolic."""
+    if isinstance(x, Multivector):
+        if _any_sym(x):
+            return None
+        _F.split(x, func, "x")  # NaN/inf check, named
+        return down(x)
+    pts = _F.points(func, "x", x)
+    return None if pts is None else pts[0]
+
+
+def _exact_up(x) -> Multivector:
+    """up(x) of a point given with SymPy entries, every entry made exact (ints as integers, floats as the simplest
+    rational that rounds to them), so that one float among symbols does not turn the result into floats."""
+    import sympy
+
+    if isinstance(x, Multivector):
+        return up(x)  # up raises the usual error
+    vals = list(x) if not isinstance(x, sympy.MatrixBase) else [x[i] for i in range(len(x))]
+    return up([v if _is_sympy(v) else sympy.nsimplify(v, rational=True) for v in vals])
+
+
+# --------------------------------------------------------------- point pairs
+def point_pair(a, b) -> Multivector:
+    """Point pair in dual form PP* = a ^ b of two conformal points, Eq. (2.68).
+
+    Floats: the closed form about the midpoint (or the end nearer the
+    origin), its e0 part ``a - b`` put on the grid of its e+/e- coefficients
+    (a change of ``~eps (|m|^2 + 1)`` relative) and stored exactly.  Raises
+    :class:`DegenerateGeometryError` when a and b coincide.
+    """
+    pts = _F.points("point_pair", "a, b", a, b)
+    if pts is None:
+        return _require_nonzero(_exact_up(a) ^ _exact_up(b), "point_pair", "the two points coincide")
+    return _F.point_pair(*pts, "point_pair")
+
+
+def point_pair_endpoints(PP: Multivector, min_separation: float | None = None):
+    """The two points of a point pair, Eqs. (2.131)-(2.133).
+
+    With B = PP* (grade 2; a grade-3 standard form is dualised first)::
+
+        p1 = (B - sqrt(B B)) (B . e)^-1        numerator p1 p2, (2.132)
+        p2 = (B + sqrt(B B)) (B . e)^-1        numerator -p2 p1, (2.133)
+
+    For ``PP = point_pair(a, b)`` this returns ``(a, b)`` in that order; the
+    orientation matters: ``-PP`` (that is ``b ^ a``) returns ``(b, a)``.
+    SymPy input takes (2.131) as printed; floats the same points from the
+    null parts of B, with Y = k (a - b) = B . e: the midpoint m from
+    ``Y . m`` and ``Y x m`` (no cancellation), the half separation^2
+    ``h^2 = 2 X . Y / |Y|^2 + m_par^2 - m_perp^2`` (X the e part; the
+    cancellation of ``B B``, a difference of |m|^2-sized terms).
+
+    Parameters
+    ----------
+    PP : Multivector
+        Point pair, dual form (grade 2) or standard form (grade 3); a batch is fine.
+    min_separation : float, optional
+        Refuse pairs closer than this.  Default: the separation the
+        coefficients resolve to ``entities_frame.PAIR_RTOL`` = 1e-6 of itself, about
+        ``4 |m| sqrt(eps / 1e-6)`` = 6e-5 |m| (h^2 carries a round-off of
+        about ``8 eps (|m|^2 + h^2)``).  The endpoints carry besides the
+        storage limit of the direction a - b, ``~eps (|m|^2 + 1)`` relative:
+        errors of about ``eps (|m|^2 + 1) (s + 1/s)`` for a separation s.
+        ``min_separation=0`` disables the guard.  A pair made by
+        products (``s1 ^ s2 ^ s3``) carries the round-off of those too.
+
+    Returns
+    -------
+    (p1, p2) : arrays of shape (3,) or (N, 3); 3x1 SymPy matrices when symbolic.
+
+    Raises
+    ------
+    DegenerateGeometryError
+        For an imaginary point pair (B B < 0), a single (tangent) point, or
+        points closer than the guard (the message gives both numbers).
+    """
+    g = _grade_of(PP, "point_pair_endpoints", (2, 3), "PP")
+    B = PP if g == 2 else dual_form(PP)
+    if _any_sym(B):
+        import sympy
+
+        c = _c(B)
+        root = sympy.sqrt(sympy.factor(sympy.simplify((B * B).scalar())))
+        inv = (B | c["einf"]).inv()
+
+        def endpoint(X):  # (2.131) is a vector: the other grades vanish once simplified
+            X = X.simplify()
+            rest = [b for b, v in X.coeffs.items() if G41.grades[b] != 1 and sympy.simplify(v) != 0]
+            if rest:
+                raise DegenerateGeometryError(
+                    f"point_pair_endpoints: PP: (2.131) did not simplify to a vector (blades {rest}); "
+                    "is the pair real (PP^2 > 0)?"
+                )
+            p = down(X.grade(1))
+            return p if isinstance(p, sympy.MatrixBase) else sympy.Matrix([sympy.nsimplify(float(v)) for v in p])
+
+        return endpoint((B - root) * inv), endpoint((B + root) * inv)
+    return _F.pair_points(B, min_separation, "point_pair_endpoints", "PP")
+
+
+def point_pair_sphere(PP: Multivector) -> Multivector:
+    """Smallest sphere through a point pair, S = PP* / (PP* ^ e), Eq. (2.134).
+
+    Returns the normalised standard form (grade 1, ``S . e = -1``): centre
+    the pair's midpoint, radius half their distance.  Floats read the
+    midpoint and h^2 as :func:`point_pair_endpoints` does (no guard).
+    """
+    g = _grade_of(PP, "point_pair_sphere", (2, 3), "PP")
+    B = PP if g == 2 else dual_form(PP)
+    if _any_sym(B):
+        S = (B * (B ^ _c(B)["einf"]).inv()).grade(1)
+        return normalize_point(S, "point_pair_sphere")
+    m, h2, _, _ = _F.read_pair(B, "point_pair_sphere", "PP")
+    return _F.sphere_std(m, _F.dot(m, m) - h2, 1.0, "point_pair_sphere", "PP")
+
+
+# ------------------------------------------------------------------- spheres
+def sphere(center, radius) -> Multivector:
+    """Sphere s = p - rho^2 e / 2 in standard form, Eq. (2.72).
+
+    ``center`` has shape (3,) or (N, 3); ``radius`` a scalar or (N,) array, >= 0.
+    In floats the weight 1 is stored exactly (``e- - e+`` is 1 to the bit);
+    beyond |p| ~ 1e8 that is impossible and the weight is the smallest power
+    of two that is.
+    """
+    pts = _F.points("sphere", "center", center)
+    if pts is None or _is_sympy(radius):
+        return up(center) - exact_constants()["einf"] * (radius**2 / 2)
+    r = np.asarray(radius, dtype=float)
+    if not np.all(np.isfinite(r)) or np.any(r < 0):
+        raise InvalidInputError(f"sphere: radius: must be finite and >= 0, got {radius!r}")
+    if np.any(r > _F.COORD_LIMIT):
+        raise InvalidInputError(f"sphere: radius: too large ({float(np.max(r)):.3g}): its square overflows")
+    p = pts[0]
+    return _F.sphere_std(p, _F.dot(p, p) - r * r, 1.0, "sphere", "center, radius")
+
+
+def sphere_from_points(a, b, c, d) -> Multivector:
+    """Sphere through four points in dual form s* = a ^ b ^ c ^ d, Eq. (2.75).
+
+    In floats: the circumcentre and the weight ``det[b - a, c - a, d - a]``
+    (that of a ^ b ^ c ^ d) are computed at ``a``, the blade in closed form
+    with its weight stored exactly; the scale equals that of the 4-blade up to
+    a factor 1 + O(eps |p|^2).  Raises :class:`DegenerateGeometryError` when
+    the points are coplanar (then the 4-blade is a plane or zero) or two of
+    them coincide.
+    """
+    pts = _F.points("sphere_from_points", "a, b, c, d", a, b, c, d)
+    if pts is None:
+        S = _exact_up(a) ^ _exact_up(b) ^ _exact_up(c) ^ _exact_up(d)
+        return _require_nonzero(S, "sphere_from_points", "the 4 points are coplanar, concyclic or coincident")
+    return dual_form(_F.sphere_from_points(*pts, "sphere_from_points"))
+
+
+def sphere_center_radius(S: Multivector):
+    """Centre and radius of a sphere, Eqs. (2.73), (2.115)-(2.117).
+
+    Accepts the standard form (grade 1) or the dual form (grade 4).
+    Normalises with (2.115), takes the centre as ``(s ^ E) E`` (2.116) and
+    the radius from ``s^2 = rho^2`` (2.73).  Floats: ``w = e- - e+`` (2.115),
+    centre = Euclidean part / w (a few eps), ``rho^2 = |p|^2 - 2 s_e / w``,
+    the factored ``s^2 / w^2`` (never the squares of the e+/e- coefficients),
+    to about ``8 eps (|p|^2 + rho^2 + 1)`` absolute: all the blade holds.
+
+    Returns
+    -------
+    center : array (3,) or (N, 3)
+    radius : float or array (N,)
+
+    Raises
+    ------
+    DegenerateGeometryError
+        For a plane (``s . e = 0``) or an imaginary sphere (``s^2 < 0``).
+    """
+    g = _grade_of(S, "sphere_center_radius", (1, 4), "S")
+    s = S if g == 1 else standard_form(S)
+    if _any_sym(s):
+        import sympy
+
+        s = normalize_point(s, "sphere_center_radius")
+        c = _c(s)
+        return euclidean((s ^ c["E"]) * c["E"]), sympy.sqrt(sympy.simplify((s * s).scalar()))
+    p, r2, _, tol = _F.read_sphere(s, "sphere_center_radius", "S")
+    if np.any(r2 < -(tol + 1e-12)):
+        raise DegenerateGeometryError("sphere_center_radius: S: s^2 < 0, the sphere is imaginary")
+    return p, _F.out(np.sqrt(np.maximum(r2, 0.0)))
+
+
+def point_sphere_side(x, S: Multivector, atol: float = 1e-9):
+    """Which side of a sphere a point lies on, Eq. (2.118).
+
+    Returns +1 inside, 0 on (|x . s| <= atol, in units of length^2), -1 outside,
+    from the sign of ``x . s = (rho^2 - |x - p|^2)/2`` with both normalised,
+    computed as that difference with |x - p| taken at the point.  Far from
+    the origin the sphere's rho^2 is known only to ``8 eps (|p|^2 + rho^2 + 1)``
+    (see :func:`sphere_center_radius`): points closer to the surface than
+    that, in length^2, get an arbitrary sign.
+    """
+    g = _grade_of(S, "point_sphere_side", (1, 4), "S")
+    s = S if g == 1 else standard_form(S)
+    xe = _euclid_point(x, "point_sphere_side")
+    if xe is None or _any_sym(s):
+        X = up(x) if not isinstance(x, Multivector) else normalize_point(x, "point_sphere_side")
+        v = np.asarray((X | normalize_point(s, "point_sphere_side")).scalar(), dtype=float)
+    else:
+        p, r2, _, _ = _F.read_sphere(s, "point_sphere_side", "S")
+        v = 0.5 * (r2 - _F.dot(xe - p, xe - p))
+    out = np.where(np.abs(v) <= atol, 0, np.sign(v)).astype(int)
+    return int(out) if out.ndim == 0 else out
+
+
+# -------------------------------------------------------------------- planes
+def plane(normal, distance) -> Multivector:
+    """Plane P = n + delta e in standard form, Eq. (2.89).
+
+    ``normal`` is normalised to unit length; ``distance`` is the signed
+    distance delta from the origin along it.
+    """
+    nv, sym = _check_points(normal, "plane", "normal")
+    if sym:
+        return vector(nv) + exact_constants()["einf"] * distance
+    norm = np.linalg.norm(nv, axis=-1)
+    if np.any(norm == 0):
+        raise DegenerateGeometryError("plane: normal: the normal is the zero vector")
+    d = np.asarray(distance, dtype=float)
+    if not np.all(np.isfinite(d)):
+        raise InvalidInputError("plane: distance: contains NaN or inf")
+    n = nv / (norm[..., None] if nv.ndim == 2 else norm)
+    return vector(n) + einf * (float(d) if d.ndim == 0 else d)
+
+
+def plane_from_points(a, b, c) -> Multivector:
+    """Plane through three points in dual form P* = e ^ a ^ b ^ c, Eq. (2.77).
+
+    In floats: ``N E - (q . N) e123 ^ e`` with ``N = (b - a) x (c - a)`` and q
+    the point nearest the origin, the closed form of the 4-blade.  Raises
+    :class:`DegenerateGeometryError` when the points are collinear.
+    """
+    pts = _F.points("plane_from_points", "a, b, c", a, b, c)
+    if pts is None:
+        P = exact_constants()["einf"] ^ _exact_up(a) ^ _exact_up(b) ^ _exact_up(c)
+        return _require_nonzero(P, "plane_from_points", "the 3 points are collinear")
+    return _F.plane(*pts, "plane_from_points")
+
+
+def plane_normal_distance(P: Multivector):
+    """Unit normal n and signed distance delta of a plane (inverse of 2.89).
+
+    Accepts the standard form (grade 1, ``n + delta e``) or the dual form
+    (grade 4, 2.77).  For ``plane_from_points(a, b, c)`` the normal is along
+    ``(b - a) x (c - a)``.  Raises :class:`InvalidInputError` for a sphere
+    (``e . P != 0``).
+    """
+    g = _grade_of(P, "plane_normal_distance", (1, 4), "P")
+    p = P if g == 1 else standard_form(P)
+    if g == 4:
+        p = -p  # e ^ a ^ b ^ c (2.77) dualises to -(N + d e) with N along (b-a)x(c-a)
+    if _any_sym(p):
+        import sympy
+
+        n = euclidean(p)
+        norm = sympy.sqrt(sum(v**2 for v in n))
+        return n / norm, p[16] / norm
+    n, delta = _F.read_plane(p, "plane_normal_distance", "P")
+    norm = _F.norm(n)
+    if np.any(norm <= 1e-300):
+        raise DegenerateGeometryError("plane_normal_distance: P: the input has no normal (not a plane)")
+    return n / norm[..., None], _F.out(delta / norm)
+
+
+# --------------------------------------------------------------------- lines
+def line_from_points(a, b) -> Multivector:
+    """Line through two points in dual form L* = e ^ a ^ b, Eq. (2.81).
+
+    In floats: the closed form ``(q x d) ^ e + d E`` (2.81, e M + r E) with
+    ``d = b - a`` and q the point nearer the origin.  Raises
+    :class:`DegenerateGeometryError` when a and b coincide.
+    """
+    pts = _F.points("line_from_points", "a, b", a, b)
+    if pts is None:
+        L = exact_constants()["einf"] ^ _exact_up(a) ^ _exact_up(b)
+        return _require_nonzero(L, "line_from_points", "the two points coincide")
+    return _F.line(*pts, "line_from_points")
+
+
+def _as_dual_line(L: Multivector, func: str) -> Multivector:
+    g = _grade_of(L, func, (2, 3), "L")
+    return L if g == 3 else dual_form(L)
+
+
+def _line_dm(L: Multivector, func: str):
+    """Direction d (length |a - b|) and moment a x d of a float line, checked to be a line."""
+    return _F.read_line(_as_dual_line(L, func), func, "L")
+
+
+def normalize_line(L: Multivector) -> Multivector:
+    """Unit line L* / sqrt(L* L*), Eq. (2.126) (L* L* = |a - b|^2 by 2.125).
+
+    Accepts the dual form (grade 3) or the standard form (grade 2) and
+    returns the same form.  In floats ``sqrt(L* L*)`` is read as the length of
+    the E part d (2.81), not summed from the squares of the coefficients.
+    """
+    Ld = _as_dual_line(L, "normalize_line")
+    if _any_sym(Ld):
+        import sympy
+
+        return L / sympy.sqrt((Ld * Ld).scalar())
+    d, _ = _F.read_line(Ld, "normalize_line", "L")
+    return L / _F.out(_F.norm(d))
+
+
+def line_direction(L: Multivector):
+    """Unit direction r = L* . E of a line, Eq. (2.127) (L normalised first, 2.126).
+
+    For ``line_from_points(a, b)`` this is ``(b - a)/|b - a|``.  Raises
+    :class:`InvalidInputError` for a circle (or any round).
+    """
+    if _any_sym(L):
+        Ln = normalize_line(L)
+        return euclidean(_as_dual_line(Ln, "line_direction") | _c(Ln)["E"])
+    d, _ = _line_dm(L, "line_direction")
+    return d / _F.norm(d)[..., None]
+
+
+def line_moment(L: Multivector):
+    """Moment vector m = e+ . (L* Ic^-1) = -e+ . L of a unit line, Eq. (2.128), corrected.
+
+    For the unit line through a with direction r this is the Pluecker moment
+    ``m = a x r``.  The printed ``m = e+ L`` (a geometric product, with the
+    standard form L = L* Ic of 2.31) gives -(a x r) as its vector part and
+    adds other grades; see the erratum in the registry.  In floats: the e
+    part of L* (``a x d``) over |d|.
+    """
+    if _any_sym(L):
+        Ln = normalize_line(_as_dual_line(L, "line_moment"))
+        return -euclidean(_c(Ln)["ep"] | standard_form(Ln))
+    d, mu = _line_dm(L, "line_moment")
+    return mu / _F.norm(d)[..., None]
+
+
+def line_closest_point(L: Multivector):
+    """Point of the line closest to the origin, p = -r . M with M = m I_E, Eq. (2.129) (= r x m)."""
+    if not _any_sym(L):
+        d, mu = _line_dm(L, "line_closest_point")
+        return np.cross(d, mu) / _F.dot(d, d)[..., None]
+    r, m = line_direction(L), line_moment(L)
+    c = exact_constants()
+    return -euclidean(vector(list(r)) | (vector(list(m)) * c["IE"])).applyfunc(lambda v: v.simplify())
+
+
+def point_line_distance(x, L: Multivector):
+    """Distance from point(s) x to a line, Eq. (2.130).
+
+    ``rho^2 = ((L* . x) / (L* . x . e))^2``: L* . x is the circle through x
+    centred on the line, L* . x . e its plane; their quotient squared is the
+    squared radius.  SymPy input takes that formula; floats take the same
+    distance at the point, ``|(x - p0) x r|`` with p0 the line's closest point
+    to the origin (2.129) and r its direction (2.127), which loses nothing to
+    the distance from the origin (the formula above loses eps |x|^2 / rho).
+    Returns a float (or an (N,) array); 0 for points on the line.
+    """
+    Ld = _as_dual_line(L, "point_line_distance")
+    xe = _euclid_point(x, "point_line_distance")
+    if not (xe is None or _any_sym(Ld)):
+        d, mu = _F.read_line(Ld, "point_line_distance", "L")
+        nd = _F.norm(d)
+        p0 = np.cross(d, mu) / (nd * nd)[..., None]
+        return _F.out(_F.norm(np.cross(xe - p0, d / nd[..., None])))
+    import sympy
+
+    Ln = normalize_line(Ld)
+    X = up(x) if not isinstance(x, Multivector) else normalize_point(x, "point_line_distance")
+    z = Ln | X
+    q = z * (z | _c(Ln)["einf"]).inv()
+    return sympy.sqrt(sympy.simplify((q * q).scalar()))
+
+
+# ------------------------------------------------------------------- circles
+def circle_from_points(a, b, c) -> Multivector:
+    """Circle through three points in dual form z* = a ^ b ^ c, Eq. (2.80).
+
+    In floats: from the circumcentre p, rho^2 and ``N = (b - a) x (c - a)``
+    in closed form, ``(p . N) e123 + xi ^ e + N ^ e0 + (p x N) E`` with
+    ``xi = (rho^2 - p^2) N/2 + (p . N) p`` (bivectors written as their dual
+    vectors), its e0 part N stored exactly.  Raises
+    :class:`DegenerateGeometryError` when the points are collinear (the blade
+    would be a line) or coincide.
+    """
+    pts = _F.points("circle_from_points", "a, b, c", a, b, c)
+    if pts is None:
+        Z = _require_nonzero(
+            _exact_up(a) ^ _exact_up(b) ^ _exact_up(c), "circle_from_points", "the 3 points are collinear or coincide"
+        )
+        if not (Z ^ exact_constants()["einf"]).simplify().coeffs:  # z* ^ e = 0: a flat, the points are collinear
+            raise DegenerateGeometryError("circle_from_points: a, b, c: the 3 points are collinear (a line, no circle)")
+        return Z
+    return _F.circle(*pts, "circle_from_points")
+
+
+def circle_plane(Z: Multivector) -> Multivector:
+    """Plane of a circle, P_z* = z* ^ e (dual form), Eq. (2.119)."""
+    g = _grade_of(Z, "circle_plane", (2, 3), "Z")
+    Zd = Z if g == 3 else dual_form(Z)
+    return Zd ^ _c(Zd)["einf"]
+
+
+def circle_center_radius(Z: Multivector):
+    """Centre, radius and unit normal of a circle, Eqs. (2.119)-(2.124).
+
+    Accepts the dual form z* = a ^ b ^ c (grade 3) or the standard form z
+    (grade 2).  The sphere with the circle's centre and radius is
+    ``s_z = (e . z) z`` (2.123, with z the standard form); its centre and
+    radius come from :func:`sphere_center_radius`.  The radius agrees with the
+    corrected (2.122), ``rho^2 = -z^2 / (e ^ z)^2``.  SymPy input takes that
+    route; floats read the same centre and radius from the null parts of z*
+    (see :func:`circle_from_points`): ``p = ((p . N) N + N x (p x N)) / |N|^2``
+    without cancellation, rho^2 to about ``8 eps (|p|^2 + rho^2 + 1)``
+    absolute and the normal to ``~eps (|p|^2 + 1)``: limits of the storage.
+
+    Returns
+    -------
+    center : array (3,) or (N, 3)
+    radius : float or (N,)
+    normal : array (3,) or (N, 3), unit normal of the circle's plane (2.119),
+        along (b - a) x (c - a) for ``circle_from_points(a, b, c)``.
+
+    Raises
+    ------
+    DegenerateGeometryError
+        For a line (``z* ^ e = 0``) or an imaginary circle.
+    """
+    g = _grade_of(Z, "circle_center_radius", (2, 3), "Z")
+    Zd = Z if g == 3 else dual_form(Z)
+    if _any_sym(Zd):
+        z = standard_form(Zd)
+        center, radius = sphere_center_radius(((_c(z)["einf"] | z) * z).grade(1))
+        n, _ = plane_normal_distance(-circle_plane(z))  # z* ^ e = -(e ^ a ^ b ^ c)
+        return center, radius, n
+    p, r2, n, tol = _F.read_circle(Zd, "circle_center_radius", "Z")
+    if np.any(r2 < -(tol + 1e-12)):
+        raise DegenerateGeometryError("circle_center_radius: Z: rho^2 < 0, the circle is imaginary")
+    return p, _F.out(np.sqrt(np.maximum(r2, 0.0))), n

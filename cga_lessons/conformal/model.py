@@ -1,0 +1,351 @@
+"""The conformal model G(4,1) of section 2.3: basis, null vectors, points.
+
+(Re-exported by :mod:`cga_lessons.conformal`, which is the module to import.)
+
+Basis vectors ``e1 e2 e3`` (Euclidean), ``ep`` (e+, squares to +1) and ``em``
+(e-, squares to -1), (2.52).  The null basis (2.53), kept with the thesis's
+signs::
+
+    eo   = (e- - e+)/2      the origin, e_0
+    einf = e- + e+          the point at infinity, e (the thesis writes plain e)
+
+``E = e+ e- = einf ^ eo`` is the Minkowski plane's pseudoscalar (2.55; the
+printed ``e0 ^ e`` has the wrong sign, see the erratum in the registry),
+``IE = e1 e2 e3`` and ``Ic = E IE`` (2.60).
+
+This module also re-exports the entities (:mod:`cga_lessons.conformal.entities`) and the
+versors (:mod:`cga_lessons.conformal.versors`), so ``from cga_lessons import conformal as
+cga`` gives everything::
+
+    >>> import numpy as np
+    >>> from cga_lessons import conformal as cga
+    >>> X = cga.up([1.0, 2.0, 3.0])
+    >>> float(X | X), float(X | cga.einf)
+    (0.0, -1.0)
+    >>> cga.down(X)
+    array([1., 2., 3.])
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+
+import numpy as np
+
+from cga_lessons.algebra import Algebra, DegenerateGeometryError, InvalidInputError, Multivector
+from cga_lessons.algebra.core import _REAL_TYPES, _absmax, _all_finite, _is_real_single, _is_sympy
+
+__all__ = [
+    "G41",
+    "e1",
+    "e2",
+    "e3",
+    "ep",
+    "em",
+    "einf",
+    "eo",
+    "E",
+    "IE",
+    "Ic",
+    "up",
+    "down",
+    "vector",
+    "euclidean",
+    "normalize_point",
+    "exact_constants",
+]
+
+#: The conformal algebra G(4,1) with basis e1, e2, e3, e+, e- (2.60).
+G41 = Algebra(4, 1, labels=["1", "2", "3", "+", "-"])
+
+e1, e2, e3, ep, em = G41.basis_vectors()
+#: e, the point at infinity (2.53)
+einf = em + ep
+#: e_0, the origin (2.53)
+eo = 0.5 * (em - ep)
+#: E = e+ e- = e ^ e0, pseudoscalar of the Minkowski plane (2.55, corrected)
+E = ep * em
+#: I_E = e1 e2 e3, pseudoscalar of G3
+IE = e1 * e2 * e3
+#: I_c = E I_E = e+-123, pseudoscalar of G(4,1) (2.60)
+Ic = E * IE
+
+_EXACT = None
+
+
+def exact_constants() -> dict:
+    """The constants with SymPy rational coefficients (for symbolic work).
+
+    Returns a dict with keys ``e1 e2 e3 ep em einf eo E IE Ic``.
+    """
+    global _EXACT
+    if _EXACT is None:
+        import sympy
+
+        one = sympy.Integer(1)
+        b = [Multivector(G41, {1 << i: one}) for i in range(5)]
+        half = sympy.Rational(1, 2)
+        einf_s = b[4] + b[3]
+        eo_s = (b[4] - b[3]) * half
+        E_s = b[3] * b[4]
+        IE_s = b[0] * b[1] * b[2]
+        _EXACT = {
+            "e1": b[0],
+            "e2": b[1],
+            "e3": b[2],
+            "ep": b[3],
+            "em": b[4],
+            "einf": einf_s,
+            "eo": eo_s,
+            "E": E_s,
+            "IE": IE_s,
+            "Ic": E_s * IE_s,
+        }
+    return _EXACT
+
+
+# ----------------------------------------------------------------- helpers
+#: Largest coordinate a conformal point can hold: up(x) stores x^2 / 2, which overflows a float beyond ~1.3e154.
+COORD_LIMIT = 1e153
+
+
+def _check_points(x, func: str, name: str = "x"):
+    """Validate Euclidean point(s): returns (array or list, symbolic flag).
+
+    Accepts shape (3,) or (N, 3) numbers, or a length-3 sequence of SymPy
+    expressions.  Raises :class:`InvalidInputError` on wrong shape or NaN/inf.
+    """
+    if isinstance(x, Multivector):
+        raise InvalidInputError(f"{func}: {name} must be Euclidean coordinates, got a Multivector (use down() first)")
+    if isinstance(x, (list, tuple)) and len(x) == 3 and any(_is_sympy(c) for c in x):
+        return list(x), True
+    if hasattr(x, "shape") and not isinstance(x, np.ndarray) and _is_sympy_matrix(x):
+        return [x[i] for i in range(3)], True
+    try:
+        arr = np.asarray(x, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise InvalidInputError(f"{func}: {name} must be numbers of shape (3,) or (N, 3), got {x!r}") from exc
+    if arr.ndim not in (1, 2) or arr.shape[-1] != 3:
+        raise InvalidInputError(f"{func}: {name} must have shape (3,) or (N, 3), got {arr.shape}")
+    if not _all_finite(arr):
+        raise InvalidInputError(f"{func}: {name} contains NaN or inf")
+    return arr, False
+
+
+def _is_sympy_matrix(x) -> bool:
+    try:
+        import sympy
+
+        return isinstance(x, sympy.MatrixBase) and len(x) == 3
+    except ImportError:  # pragma: no cover
+        return False
+
+
+def vector(x, func: str = "vector", name: str = "x") -> Multivector:
+    """Euclidean vector(s) x1 e1 + x2 e2 + x3 e3 of G(4,1); x of shape (3,) or (N, 3)."""
+    arr, sym = _check_points(x, func, name)
+    if sym:
+        return Multivector(G41, {1: arr[0], 2: arr[1], 4: arr[2]}, _prune=True)
+    if arr.ndim == 1:
+        return Multivector(G41, {1 << i: float(arr[i]) for i in range(3) if arr[i] != 0})
+    return Multivector(G41, {1: arr[:, 0].copy(), 2: arr[:, 1].copy(), 4: arr[:, 2].copy()})
+
+
+def up(x) -> Multivector:
+    """Conformal point x + x^2 e/2 + e0 of a Euclidean point, Eq. (2.62).
+
+    Parameters
+    ----------
+    x : array-like, shape (3,) or (N, 3), or three SymPy expressions
+        Euclidean coordinates (metres).  A (N, 3) array gives a batch of N
+        points (array coefficients).
+
+    Returns
+    -------
+    Multivector
+        Grade-1 null vector with ``X^2 = 0`` and ``X . e = -1`` (2.61).
+
+    Examples
+    --------
+    >>> X = up([3.0, 0.0, 4.0])
+    >>> X["e+"], X["e-"]  # (x^2 - 1)/2 and (x^2 + 1)/2, Eq. (2.63)
+    (12.0, 13.0)
+    """
+    arr, sym = _check_points(x, "up")
+    if not sym and arr.size and float(np.max(np.abs(arr))) > COORD_LIMIT:
+        raise InvalidInputError(
+            f"up: x: coordinates up to {float(np.max(np.abs(arr))):.3g}: beyond {COORD_LIMIT:.0e} their squares "
+            "(the e+ and e- coefficients of a conformal point, 2.62) overflow"
+        )
+    if sym:
+        c = exact_constants()
+        v = vector(arr, "up")
+        x2 = sum(ci**2 for ci in arr)
+        return v + c["einf"] * (x2 / 2) + c["eo"]
+    if arr.ndim == 1:
+        a0, a1, a2 = arr.tolist()
+        x2 = a0 * a0 + a1 * a1 + a2 * a2  # the order of np.sum: the same bits
+        coeffs = {1: a0, 2: a1, 4: a2, 8: 0.5 * (x2 - 1.0), 16: 0.5 * (x2 + 1.0)}
+        return Multivector(G41, {k: v for k, v in coeffs.items() if v != 0})
+    # The five coefficient arrays are the rows of one (5, N) block, so that a versor applied to the batch
+    # (versors.apply) multiplies the block without copying it.  x^2 is summed over the block's contiguous
+    # rows (x1 x1 + x2 x2) + x3 x3, the order of the single point's sum: the same bits.
+    block = np.empty((5, arr.shape[0]))
+    block[:3] = arr.T
+    x2, tmp = block[4], block[3]
+    np.multiply(block[0], block[0], out=x2)
+    np.multiply(block[1], block[1], out=tmp)
+    x2 += tmp
+    np.multiply(block[2], block[2], out=tmp)
+    x2 += tmp
+    np.subtract(x2, 1.0, out=block[3])
+    block[3] *= 0.5
+    x2 += 1.0
+    x2 *= 0.5
+    return Multivector(G41, {1: block[0], 2: block[1], 4: block[2], 8: block[3], 16: block[4]})
+
+
+def point_weight(X: Multivector):
+    """-e . X, the homogeneous weight of a conformal point or sphere (2.111, 2.115)."""
+    return -(X | einf).scalar() if not _any_sym(X) else -(X | exact_constants()["einf"]).scalar()
+
+
+def _any_sym(X: Multivector) -> bool:
+    return any(_is_sympy(v) for v in X._c.values())
+
+
+def normalize_point(X: Multivector, func: str = "normalize_point") -> Multivector:
+    """Scale a conformal point (or sphere) so that X . e = -1, Eq. (2.111)/(2.115).
+
+    Raises :class:`DegenerateGeometryError` when the weight is zero (the point
+    at infinity, a plane, or not a point at all).
+    """
+    w = point_weight(X)
+    if _is_sympy(w):
+        return (X / w).simplify()
+    if type(w) in _REAL_TYPES and _is_real_single(X):  # one point: plain floats, no NumPy calls
+        scale = math.sqrt(sum(float(v) ** 2 for v in X._c.values()))
+        if abs(w) <= 1e-14 * max(scale, 1e-300):
+            raise DegenerateGeometryError(
+                f"{func}: X . e = 0, the input is at infinity (or a plane), not a finite point"
+            )
+        return X / float(w)
+    w = np.asarray(w, dtype=float)
+    scale = np.sqrt(sum(np.asarray(v, dtype=float) ** 2 for v in X._c.values())) if X._c else 0.0
+    if np.any(np.abs(w) <= 1e-14 * np.maximum(scale, 1e-300)):
+        raise DegenerateGeometryError(f"{func}: X . e = 0, the input is at infinity (or a plane), not a finite point")
+    return X / (float(w) if w.ndim == 0 else w)
+
+
+def euclidean(X: Multivector):
+    """The e1, e2, e3 coefficients of a multivector as an array (3,) or (N, 3)."""
+    if _any_sym(X):
+        import sympy
+
+        return sympy.Matrix([X._c.get(b, sympy.Integer(0)) for b in (1, 2, 4)])  # exact zeros, not 0.0
+    shape = X.shape
+    out = np.zeros(shape + (3,))
+    for i, b in enumerate((1, 2, 4)):
+        if b in X._c:
+            out[..., i] = X._c[b]
+    return out
+
+
+def down(X: Multivector):
+    """Euclidean point(s) of a conformal point, Eqs. (2.111) and (2.114).
+
+    Normalises with ``X / (-e . X)`` (2.111), then takes the Euclidean part
+    ``P_E^perp(X) = (X ^ E) E`` (2.59, 2.114).
+
+    Returns an array of shape (3,) (or (N, 3) for a batch); for SymPy
+    coefficients a 3x1 ``sympy.Matrix``.
+
+    Raises
+    ------
+    DegenerateGeometryError
+        When ``X . e = 0`` (a point at infinity: no Euclidean point).
+    """
+    if not isinstance(X, Multivector):
+        raise InvalidInputError(f"down: expected a conformal point (Multivector), got {type(X).__name__}")
+    if _is_real_single(X):
+        return _down_one(X)
+    if X.shape and not _any_sym(X):
+        return _down_batch(X)
+    if not _any_sym(X):
+        scale = max((_absmax(v) for v in X._c.values()), default=0.0)
+        bad = [
+            G41.blade_names[b] for b, v in X._c.items() if G41.grades[b] != 1 and _absmax(v) > 1e-9 * max(scale, 1e-300)
+        ]
+        X = X.grade(1)
+    else:
+        bad = [G41.blade_names[b] for b in X._c if G41.grades[b] != 1]
+    if bad:
+        raise InvalidInputError(f"down: a conformal point is a vector (grade 1), got blades {bad}")
+    Xn = normalize_point(X, "down")
+    if _any_sym(Xn):
+        c = exact_constants()
+        return euclidean(((Xn ^ c["E"]) * c["E"]).simplify())
+    return euclidean((Xn ^ E) * E)
+
+
+#: A weight ``X_- - X_+`` within this many float epsilons of ``|X_-| + |X_+|`` is round-off, not a point: each of
+#: the two terms carries half an ulp (eps/2 of its size), so a difference below a few eps of their sum is zero as far
+#: as the coefficients can tell.  (Points up to about 3e7 from the origin pass; 1e-14 refused them beyond 1e7.)
+_WEIGHT_ULPS = 4 * np.finfo(float).eps
+
+
+def _down_one(X: Multivector) -> np.ndarray:
+    """:func:`down` of one point with real coefficients, in plain floats (the checks of :func:`_down_batch`)."""
+    c = X._c
+    other = [b for b in c if G41.grades[b] != 1]
+    if other:
+        scale = max(abs(float(v)) for v in c.values())
+        bad = [G41.blade_names[b] for b in other if abs(float(c[b])) > 1e-9 * max(scale, 1e-300)]
+        if bad:
+            raise InvalidInputError(f"down: a conformal point is a vector (grade 1), got blades {bad}")
+    xp, xm = float(c.get(8, 0.0)), float(c.get(16, 0.0))
+    w = xm - xp  # -e . X, (2.111)
+    if not abs(w) > _WEIGHT_ULPS * (abs(xm) + abs(xp)):  # also false for a NaN weight
+        raise DegenerateGeometryError("down: X . e = 0, the input is at infinity (or a plane), not a finite point")
+    out = [float(c.get(1, 0.0)) / w, float(c.get(2, 0.0)) / w, float(c.get(4, 0.0)) / w]
+    if not all(map(math.isfinite, out)):
+        raise InvalidInputError("down: X has NaN or inf coefficients")
+    return np.array(out)
+
+
+def _down_batch(X: Multivector) -> np.ndarray:
+    """:func:`down` of a batch of points in one pass over its five coefficient arrays.
+
+    The weight ``-e . X = X_- - X_+`` (2.111) and the Euclidean part
+    ``x_i / w`` (2.114) are read off the coefficients directly; the checks
+    are those of the general path: only grade 1 (other grades within 1e-9 of
+    the largest coefficient), a weight clear of zero (beyond a few float
+    epsilons of ``|X_-| + |X_+|``, the terms it is the difference of), a
+    finite result.
+    """
+    c, n = X._c, X.shape
+    other = [b for b in c if G41.grades[b] != 1]
+    if other:
+        scale = max(_absmax(v) for v in c.values())
+        bad = [G41.blade_names[b] for b in other if _absmax(c[b]) > 1e-9 * max(scale, 1e-300)]
+        if bad:
+            raise InvalidInputError(f"down: a conformal point is a vector (grade 1), got blades {bad}")
+    zero = np.zeros(n)
+    x1, x2, x3, xp, xm = (np.broadcast_to(c.get(b, zero), n) for b in (1, 2, 4, 8, 16))
+    w = xm - xp  # -e . X, (2.111)
+    ref = np.abs(xm)
+    ref += np.abs(xp)
+    if not np.all(np.abs(w) > _WEIGHT_ULPS * ref):  # relative to the terms it cancels; also false for a NaN weight
+        raise DegenerateGeometryError("down: X . e = 0, the input is at infinity (or a plane), not a finite point")
+    out = np.empty(n + (3,))
+    np.divide(x1, w, out=out[..., 0])
+    np.divide(x2, w, out=out[..., 1])
+    np.divide(x3, w, out=out[..., 2])
+    if not _all_finite(out):
+        raise InvalidInputError("down: X has NaN or inf coefficients")
+    return out
+
+
+def is_scalar_like(v) -> bool:
+    return isinstance(v, numbers.Number) or _is_sympy(v) or isinstance(v, np.ndarray)

@@ -1,0 +1,48 @@
+"""The equation registry (every numbered equation of the thesis -> code and test) and the course's table of chapters.
+
+Layer 5 of the package: imports layers 0-4 only (``tests/test_layers.py`` checks it).  This facade exports the names
+in ``__all__``; its modules:
+
+* :mod:`~cga_lessons.equations.core`: The equation registry: every numbered equation of the thesis -> code and test
+* :mod:`~cga_lessons.equations.course`: The course's chapters and how they depend on each other: one table for the
+  README and notebook 00
+* :mod:`~cga_lessons.equations.registry`: one module of entries per part of the thesis
+"""
+
+from .core import (
+    PARTS,
+    README_END,
+    README_START,
+    REGISTRY,
+    STATUSES,
+    THESIS_LABELS,
+    Entry,
+    check_registry,
+    coverage,
+    coverage_summary,
+    ordered_entries,
+    readme_is_current,
+    readme_section,
+    table,
+    text_table,
+    write_readme,
+)
+
+__all__ = [
+    "Entry",
+    "REGISTRY",
+    "THESIS_LABELS",
+    "coverage_summary",
+    "coverage",
+    "check_registry",
+    "table",
+    "ordered_entries",
+    "readme_section",
+    "text_table",
+    "write_readme",
+    "readme_is_current",
+    "README_START",
+    "README_END",
+    "PARTS",
+    "STATUSES",
+]

@@ -1,0 +1,7 @@
+"""``python -m cga_lessons.equations``: the registry as a table, or the README's section rewritten."""
+
+import sys
+
+from cga_lessons.equations.core import main
+
+sys.exit(main())

@@ -1,0 +1,350 @@
+"""One 3D map fused from the laser and the stereo head through the robot's motor chains (section 4.2.3).
+
+:func:`build_fused_map` takes what the robot recorded on a tour
+(:func:`cga_lessons.map3d.tour.simulate_tour`) and
+
+1. runs the chapter-3 map builder on the laser scans and odometry
+   (:func:`cga_lessons.mapping2d.build_map`): corrected poses and a fused
+   line map;
+2. sends every scan's segments, as conformal point pairs in the laser's frame,
+   to the unified frame with ``M_lu`` (4.3) as ``x' = M_lu x ~M_lu`` (4.4); they
+   land at the laser's height;
+3. turns every line of the fused map into a *virtual wall*: the vertical plane
+   ``e ^ a ^ b ^ a_up`` (2.77) through the segment, drawn from the floor to a
+   stated height (figures 4.5, 4.6);
+4. finds the posts in each scan (short clusters of returns standing free of
+   what is behind them), moves their centres with (4.4) and groups them;
+5. for every stereo view, triangulates the points of each object (A.14), fits
+   its conformal entity in the stereo frame (section 4.1: sphere, plane,
+   circle, line) and sends the *entity itself* to the unified frame with
+   ``M_eu`` (4.9) as ``x' = M_eu x ~M_eu`` (4.10), using the laser-corrected
+   pose and the pan/tilt readings of that moment;
+6. fuses the views of each object by refitting all its points, moved by the
+   same motors; and compares laser with stereo, and both with the truth, in
+   :func:`residual_table` (:mod:`cga_lessons.map3d.eval`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from cga_lessons import conformal as cga
+from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
+from cga_lessons.conformal import fitting as sf
+from cga_lessons.mapping2d import MapResult, build_map
+from cga_lessons.mapping2d.lines import extract_segments
+
+from .laser import group_detections, laser_posts, virtual_wall
+from .robot import Robot, RobotState, chain_motors, to_unified
+from .tour import Tour, triangulate_view
+
+__all__ = [
+    "StereoEntity",
+    "FusedMap",
+    "fit_line_3d",
+    "build_fused_map",
+    "stereo_depth_limit",
+    "entity_parameters",
+]
+
+_UP = np.array([0.0, 0.0, 1.0])
+
+
+# ----------------------------------------------------------------- building blocks
+def fit_line_3d(X) -> dict:
+    """Total-least-squares line through points (N, 3) as a conformal line ``e ^ a ^ b`` (2.81).
+
+    The line passes through the centroid along the principal direction; ``a``
+    and ``b`` are the projections of the extreme points, kept as the point
+    pair ``a ^ b`` (2.68) that says where to draw it (section 4.1).
+
+    Returns
+    -------
+    dict
+        ``blade`` (dual line, 2.81), ``pair`` (2.68), ``direction`` (3,),
+        ``point`` (the centroid), ``ends`` (2, 3), ``rms`` (m).
+    """
+    X = np.asarray(X, float)
+    if X.ndim != 2 or X.shape[1] != 3 or not np.all(np.isfinite(X)):
+        raise InvalidInputError(f"fit_line_3d: points must be a finite (N, 3) array, got shape {X.shape}")
+    if len(X) < 2:
+        raise DegenerateGeometryError(f"fit_line_3d: need at least 2 points, got {len(X)}")
+    c = X.mean(axis=0)
+    _, s, Vt = np.linalg.svd(X - c, full_matrices=False)
+    if s[0] <= 1e-12 * max(1.0, np.abs(X).max()):
+        raise DegenerateGeometryError("fit_line_3d: all points coincide")
+    d = Vt[0] if Vt[0][np.argmax(np.abs(Vt[0]))] > 0 else -Vt[0]
+    t = (X - c) @ d
+    ends = c + np.outer([t.min(), t.max()], d)
+    resid = (X - c) - np.outer(t, d)
+    return {
+        "blade": cga.line_from_points(ends[0], ends[1]),
+        "pair": cga.point_pair(ends[0], ends[1]),
+        "direction": d,
+        "point": c,
+        "ends": ends,
+        "rms": float(np.sqrt(np.mean(np.sum(resid**2, axis=1)))),
+    }
+
+
+def entity_parameters(kind: str, blade) -> dict:
+    """Euclidean parameters read back from a conformal entity (section 4.1's recipes).
+
+    ``sphere``: centre and radius (2.115, 2.116, 2.73); ``plane``: unit normal
+    and distance (2.89); ``circle``: centre, radius, normal (2.119-2.124);
+    ``line``: direction (2.127) and closest point to the origin (2.129).
+    """
+    if kind == "sphere":
+        c, r = cga.sphere_center_radius(blade)
+        return {"center": np.asarray(c, float), "radius": float(r)}
+    if kind == "plane":
+        n, d = cga.plane_normal_distance(blade)
+        return {"normal": np.asarray(n, float), "distance": float(d)}
+    if kind == "circle":
+        c, r, n = cga.circle_center_radius(blade)
+        return {"center": np.asarray(c, float), "radius": float(r), "normal": np.asarray(n, float)}
+    if kind == "line":
+        return {"direction": np.asarray(cga.line_direction(blade), float),
+                "point": np.asarray(cga.line_closest_point(blade), float)}  # fmt: skip
+    raise InvalidInputError(f"entity_parameters: unknown kind {kind!r}; use sphere, plane, circle or line")
+
+
+def _fit(kind: str, X) -> dict:
+    """The section-4.1 least-squares fit of ``kind`` to points X (N, 3) (:mod:`cga_lessons.conformal.fitting`)."""
+    if kind == "sphere":
+        return sf.fit_sphere(X)
+    if kind == "plane":
+        return sf.fit_plane(X)
+    if kind == "circle":
+        return sf.fit_circle(X)
+    if kind == "line":
+        return fit_line_3d(X)
+    raise InvalidInputError(f"map3d: no fit for kind {kind!r}")
+
+
+# ----------------------------------------------------------------- the fused map
+@dataclass
+class StereoEntity:
+    """One object seen in one stereo view: its entity in the stereo frame and in the unified frame (4.10)."""
+
+    name: str
+    kind: str
+    view: int
+    scan: int
+    state: RobotState
+    blade_stereo: object
+    blade_world: object
+    params: dict
+    points_world: np.ndarray
+
+
+@dataclass
+class FusedMap:
+    """The 3D map: laser walls and posts, stereo entities per view and fused per object.
+
+    Attributes
+    ----------
+    tour : Tour
+        The recording (and the truth, for evaluation only).
+    laser : MapResult
+        Chapter 3's result: corrected poses and the fused 2D line map.
+    laser_height : float
+    scan_segments : list of ndarray (k, 2, 3)
+        Each scan's segments moved to the unified frame by (4.4).
+    virtual_walls : list of VirtualWall
+    laser_post_detections : ndarray (m, 3)
+        Post centres of every scan at laser height, unified frame.
+    laser_post_groups : list of dict
+        ``center`` (3,), ``n`` detections, one per post found by the laser.
+    views : list of StereoEntity
+    objects : dict
+        name -> ``{"kind", "blade", "params", "n_views", "points", ...}`` fused over the views.
+    """
+
+    tour: Tour
+    laser: MapResult
+    laser_height: float
+    scan_segments: list
+    virtual_walls: list
+    laser_post_detections: np.ndarray
+    laser_post_groups: list
+    views: list
+    objects: dict
+    wall_height: float = 1.0
+    post_radius: float = 0.05
+    robot: Robot | None = field(default=None, repr=False)
+
+
+_KIND = {"Ball": "sphere", "Board": "plane", "Plate": "circle", "Post": "line"}
+_MIN_POINTS = {"sphere": 20, "plane": 12, "circle": 12, "line": 8}
+
+
+def stereo_depth_limit(geometry, noise_px: float, max_depth_sigma: float = 0.05) -> float:
+    """Depth (m) at which a triangulated point's depth error reaches ``max_depth_sigma``.
+
+    A disparity error of ``sqrt(2) noise_px`` pixels gives a depth error of
+    ``Z^2 sqrt(2) noise_px / (f b)`` (notebook 07), so
+    ``Z_max = sqrt(max_depth_sigma f b / (sqrt(2) noise_px))``: 2.44 m for
+    the default head (f = 700 px, b = 0.12 m), 0.5 px and 5 cm.  Infinite
+    without noise.
+
+    >>> from cga_lessons.map3d.robot import RobotGeometry
+    >>> round(stereo_depth_limit(RobotGeometry(), 0.5, 0.05), 3)
+    2.437
+    """
+    if not (noise_px >= 0 and max_depth_sigma > 0):
+        raise InvalidInputError(
+            f"stereo_depth_limit: need noise_px >= 0 and max_depth_sigma > 0, got {noise_px}, {max_depth_sigma}"
+        )
+    if noise_px == 0:
+        return float("inf")
+    return float(np.sqrt(max_depth_sigma * geometry.focal_px * geometry.baseline / (np.sqrt(2.0) * noise_px)))
+
+
+def build_fused_map(
+    tour: Tour,
+    *,
+    method: str = "plain",
+    virtual_wall_height: float = 1.0,
+    post_radius: float = 0.05,
+    min_post_detections: int = 3,
+    poses_from: str = "laser",
+    max_depth_sigma: float = 0.05,
+    laser: MapResult | None = None,
+) -> FusedMap:
+    """Build the fused 3D map of a tour (steps 1-6 of the module docstring).
+
+    Parameters
+    ----------
+    tour : Tour
+    method : {"plain", "conformal"}
+        Chapter 3's map builder (both give the same map; "plain" is faster).
+    virtual_wall_height : float
+        Height (m) to which laser lines are drawn as walls.
+    post_radius : float
+        Radius (m) of the posts the laser looks for (a known catalogue size).
+    min_post_detections : int
+        Scans that must agree on a post before the laser reports it.
+    max_depth_sigma : float
+        Stereo points are used up to the depth where a point's predicted depth
+        error reaches this (m): :func:`stereo_depth_limit`.
+    poses_from : {"laser", "truth", "odometry"}
+        Which robot poses drive the chains: chapter 3's corrected poses (the
+        map as the robot builds it), the true poses (to isolate the sensors'
+        own errors) or the raw odometry (to see what the correction buys).
+        The laser's line map (and so the virtual walls) always comes from
+        chapter 3's corrected poses.
+    laser : MapResult, optional
+        A chapter-3 result of this tour to reuse (e.g. ``other.laser``) instead
+        of building it again.
+    """
+    if not isinstance(tour, Tour):
+        raise InvalidInputError(f"build_fused_map: expected a Tour, got {type(tour).__name__}")
+    g = tour.geometry
+    lx, ly, h, yaw = (float(v) for v in g.laser_mount)
+    if laser is None:
+        laser = build_map(tour.scans, tour.odometry, method=method, mount=(lx, ly, yaw))
+    elif not isinstance(laser, MapResult) or len(laser.poses) != len(tour.scans):
+        raise InvalidInputError("build_fused_map: laser must be the MapResult of this tour's scans")
+    robot = Robot(g)
+
+    # 2. every scan's segments and post centres through M_lu (4.4): one batch of motors, one sandwich
+    poses = {"laser": laser.poses, "truth": tour.truth, "odometry": tour.odometry}.get(poses_from)
+    if poses is None:
+        raise InvalidInputError(
+            f"build_fused_map: poses_from must be 'laser', 'truth' or 'odometry', got {poses_from!r}"
+        )
+    ends, seg_scan, centres, post_scan = [], [], [], []
+    for k, (ranges, angles) in enumerate(tour.scans):
+        for s in extract_segments(ranges, angles, max_range=5.0):
+            ends.append([[*s.start, 0.0], [*s.end, 0.0]])
+            seg_scan.append(k)
+        c, _ = laser_posts(ranges, angles, radius=post_radius)
+        centres += [[*p, 0.0] for p in c]
+        post_scan += [k] * len(c)
+    ends, seg_scan = np.array(ends).reshape(-1, 2, 3), np.array(seg_scan, int)
+    scan_segments = [np.zeros((0, 2, 3)) for _ in tour.scans]
+    if len(ends):
+        M = _laser_motors(g, poses[seg_scan])
+        PP = to_unified(M, cga.point_pair(ends[:, 0], ends[:, 1]))  # (4.4), segment i by the motor of its scan
+        p1, p2 = (np.atleast_2d(p) for p in cga.point_pair_endpoints(PP))  # (2.131)
+        moved = np.stack([p1, p2], axis=1)
+        for k in np.unique(seg_scan):
+            scan_segments[k] = moved[seg_scan == k]
+    detections = np.zeros((0, 3))
+    if centres:
+        M = _laser_motors(g, poses[np.array(post_scan)])
+        detections = np.atleast_2d(cga.down(to_unified(M, cga.up(np.array(centres)))))  # (4.4)
+    groups = [
+        {
+            "center": detections[idx].mean(axis=0),
+            "n": len(idx),
+            "spread": float(detections[idx][:, :2].std(axis=0).max()),
+        }
+        for idx in group_detections(detections, 3 * post_radius)
+        if len(idx) >= min_post_detections
+    ]
+
+    # 3. virtual walls from the fused chapter-3 map
+    walls = [virtual_wall(s.start, s.end, h, virtual_wall_height) for s in laser.segments]
+
+    # 5. stereo entities through M_eu (4.10), with the laser-corrected pose of the moment
+    z_max = stereo_depth_limit(g, tour.noise_px, max_depth_sigma)
+    kinds = {o.name: _KIND[type(o).__name__] for o in tour.world.objects if type(o).__name__ in _KIND}
+    views, pooled = [], {}
+    for vi, view in enumerate(tour.views):
+        if not view.pixels:
+            continue
+        x, y, th = poses[view.scan]
+        robot.set_state(RobotState(x, y, th, view.state.pan, view.state.tilt))
+        tri = triangulate_view(g, view)  # (A.14), stereo frame
+        for name, X_s in tri.items():
+            kind = kinds[name]
+            X_s = X_s[X_s[:, 0] <= z_max]  # depth is x in the stereo frame
+            if len(X_s) < _MIN_POINTS[kind]:
+                continue
+            try:
+                fit = _fit(kind, X_s)  # section 4.1, in the stereo frame
+            except DegenerateGeometryError:
+                continue
+            blade_w = robot.stereo_to_unified(fit["blade"])  # (4.10): the entity itself
+            X_w = cga.apply_to_points(robot["M_eu"], X_s)  # its points, by the same motor
+            views.append(StereoEntity(name, kind, vi, view.scan, robot.state, fit["blade"], blade_w,
+                                      entity_parameters(kind, blade_w), X_w))  # fmt: skip
+            pooled.setdefault(name, []).append(X_w)
+
+    # 6. one entity per object from all its views
+    objects = {}
+    for name, parts in pooled.items():
+        X = np.vstack(parts)
+        fit = _fit(kinds[name], X)
+        obj = {"kind": kinds[name], "blade": fit["blade"], "params": entity_parameters(kinds[name], fit["blade"]),
+               "n_views": len(parts), "points": X, "rms": fit["rms"]}  # fmt: skip
+        if kinds[name] == "line":
+            obj["ends"] = fit["ends"]
+        if kinds[name] == "plane":
+            obj["corners"] = _plane_rectangle(X, obj["params"]["normal"], obj["params"]["distance"])
+        objects[name] = obj
+    return FusedMap(tour, laser, h, scan_segments, walls, detections, groups, views, objects,
+                    float(virtual_wall_height), float(post_radius), robot)  # fmt: skip
+
+
+def _laser_motors(geometry, poses):
+    """``M_lu`` (4.3) for many poses (k, 3) at once: one batched motor."""
+    return chain_motors(geometry, x=poses[:, 0], y=poses[:, 1], theta=poses[:, 2])["M_lu"]
+
+
+def _plane_rectangle(X, n, d) -> np.ndarray:
+    """The rectangle (4, 3) in the plane ``n . x = d`` spanned by points X, with one side horizontal."""
+    along = np.cross(_UP, n)
+    if np.linalg.norm(along) < 1e-6:  # a horizontal plane: any horizontal axis
+        along = np.array([1.0, 0.0, 0.0])
+    along /= np.linalg.norm(along)
+    vert = np.cross(n, along)
+    c = X.mean(axis=0)
+    c = c - (c @ n - d) * n
+    u, v = (X - c) @ along, (X - c) @ vert
+    return np.array([c + a * along + b * vert for a, b in
+                     ((u.min(), v.min()), (u.max(), v.min()), (u.max(), v.max()), (u.min(), v.max()))])  # fmt: skip

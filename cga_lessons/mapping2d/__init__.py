@@ -1,0 +1,91 @@
+"""Chapter 3: the 2D laser line map, plain (3.1-3.12) and with conformal point pairs (3.13-3.21), with the laser logs,
+lines, corrections, loop closure and the trajectory measures around it.
+
+Layer 3 of the package: imports layers 0-2 (errors, algebra, conformal) only (``tests/test_layers.py`` checks it).
+Nothing here draws (figures and widgets are in :mod:`cga_lessons.viz`).  This facade exports the names in
+``__all__``; its modules:
+
+* :mod:`~cga_lessons.mapping2d.adjust`: All the poses and all the map lines estimated together from every
+  observation (beyond section 3.1)
+* :mod:`~cga_lessons.mapping2d.build`: Line maps from laser scans and odometry (thesis sections 3.1.2-3.1.4, Eqs.
+  3.4-3.12), with loop closure
+* :mod:`~cga_lessons.mapping2d.builder`: The incremental line-map builder behind
+  :func:`cga_lessons.mapping2d.build_map` (sections 3.1.2-3.1.4)
+* :mod:`~cga_lessons.mapping2d.conformal`: Line maps with conformal point pairs and motors (thesis section 3.2, Eqs.
+  3.13-3.21)
+* :mod:`~cga_lessons.mapping2d.correction`: The correction of one scan's pose against line segments (thesis section
+  3.1.3, Eqs. 3.5-3.12), as an estimator
+* :mod:`~cga_lessons.mapping2d.corrections`: Heading and position corrections of the 2D line map (thesis section
+  3.1.3, Eqs. 3.6-3.12)
+* :mod:`~cga_lessons.mapping2d.estimation`: The per-scan pose correction as a robust estimate with a prior, and the
+  test that admits it (beyond 3.1.3)
+* :mod:`~cga_lessons.mapping2d.eval`: Errors of a trajectory and of a line map against the truth (for chapter 3's
+  result tables)
+* :mod:`~cga_lessons.mapping2d.geometry`: Segments, their geometry and their correspondence for the 2D line map
+  (sections 3.1.2, 3.2; Eqs. 3.3-3.5)
+* :mod:`~cga_lessons.mapping2d.graph`: A pose graph for the 2D line map: poses tied by relative-pose measurements,
+  relaxed by sparse least squares
+* :mod:`~cga_lessons.mapping2d.hypotheses`: Revisit hypotheses for loop closure: rigid motions that lay the recent
+  map lines on the old ones
+* :mod:`~cga_lessons.mapping2d.index`: A spatial index of the 2D line map: a uniform grid of buckets over the boxes
+  of the map's segments
+* :mod:`~cga_lessons.mapping2d.laser`: A 2D laser scanner, robot odometry and laser log reading (chapter 3, section
+  3.1)
+* :mod:`~cga_lessons.mapping2d.laser_facts`: What a laser log says about its laser: the values its driver writes for
+  "no return", and how far it returns
+* :mod:`~cga_lessons.mapping2d.lines`: Line segments from laser scans (thesis section 3.1.1, equations 3.1-3.5)
+* :mod:`~cga_lessons.mapping2d.loops`: Loop closure for the 2D line map: revisits found by matching lines, a pose
+  graph relaxed by least squares
+* :mod:`~cga_lessons.mapping2d.noise`: The noise model of the 2D line map, estimated from the data as the map is
+  built (beyond chapter 3)
+* :mod:`~cga_lessons.mapping2d.observations`: What the 2D line map was built from: every scan's local segments, kept
+  so that the map can be refitted
+* :mod:`~cga_lessons.mapping2d.params`: The thresholds of the 2D line-map builder
+  (:func:`cga_lessons.mapping2d.build_map`), with the thesis's meaning
+* :mod:`~cga_lessons.mapping2d.scan_registration`: Two laser scans registered by the motor that fits their
+  corresponding points (iterative closest points)
+* :mod:`~cga_lessons.mapping2d.trajectories`: Planar trajectory evaluation and TUM trajectory files (chapter 3's
+  maps, measured the field's way)
+"""
+
+from .build import (
+    MapBuilder,
+    MapParams,
+    MapResult,
+    PlainGeometry,
+    PoseGraph,
+    SegmentSet,
+    build_map,
+    correspondences,
+    format_log_benchmark,
+    line_variances,
+    map_errors,
+    map_point_errors,
+    pose_correction,
+    pose_errors,
+    proximity_matrix,
+    read_log_benchmark,
+    theta_correction,
+    translation_correction,
+)
+
+__all__ = [
+    "MapParams",
+    "MapResult",
+    "build_map",
+    "proximity_matrix",
+    "correspondences",
+    "theta_correction",
+    "translation_correction",
+    "pose_correction",
+    "line_variances",
+    "pose_errors",
+    "map_errors",
+    "map_point_errors",
+    "read_log_benchmark",
+    "format_log_benchmark",
+    "PlainGeometry",
+    "SegmentSet",
+    "MapBuilder",
+    "PoseGraph",
+]

@@ -1,0 +1,191 @@
+"""The thresholds of the 2D line-map builder (:func:`cga_lessons.mapping2d.build_map`), with the thesis's meaning."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["MapParams"]
+
+
+@dataclass(frozen=True)
+class MapParams:
+    """Every threshold of the map builder, with the thesis's meaning.
+
+    One set of defaults serves the synthetic scenes and real logs; only the
+    sensor's reach (``max_range`` of :func:`~cga_lessons.mapping2d.build_map`) differs.
+
+    Attributes
+    ----------
+    delta : float
+        ``delta``: largest proximity ``m = sqrt(diffTheta^2 + drho^2)`` (mixed
+        radians and metres, as in the thesis) for two lines to correspond.
+    theta_xi : float
+        ``theta_xi`` of diffTheta (3.5): differences smaller than this are taken
+        across the 0 / 2 pi cut the short way.  The thesis uses 2 pi / 100; it
+        is set to cover ``delta`` so no candidate pair is compared the long way.
+    xi_d : float
+        ``xi_d``: largest distance (m) from the centre of a global segment to
+        the local line (2.130), which keeps near-by thin objects apart.
+    xi_m : float
+        ``xi_m``: largest difference (m) of the two lines' moments (2.128) about
+        the robot.
+    overlap_margin : float
+        The segments' spheres (2.134) are enlarged by this (m) before the
+        intersection test (a continuation across a small gap still matches).
+    t_xi : float
+        ``T_xi``: bound (m) on each component of a position correction (3.12).
+    theta_max : float
+        Bound (radians) on a heading correction (3.8).
+    n_iterations : int
+        Rounds of correspondence and correction per scan.
+    range_noise : float or None
+        Standard deviation (m) of the laser's range noise; with the point count
+        and length of a segment it gives the variance of its angle and offset.
+        None (default): estimated from each scan, the median scatter of its
+        segments' points about their lines
+        (:func:`~cga_lessons.mapping2d.noise.scan_range_noise`; the logs
+        differ, 0.7 cm median on Intel, 1.4 cm on ACES).
+    significance : float
+        A correction is applied only when its normalised innovation (the
+        lines' estimate against the prediction, with both covariances) lies
+        within this quantile of the chi-square law
+        (:func:`~cga_lessons.mapping2d.estimation.estimate_correction`): 0.999
+        refuses a right correction once in a thousand scans.
+    robust_kernel : float
+        Huber constant (in scaled standard deviations) of the robust least
+        squares of each correction.
+    estimate_odometry : bool
+        Learn how good the odometry is, relative to its drift model, from the
+        registration of each scan on the one before
+        (:class:`~cga_lessons.mapping2d.noise.InnovationModel`); False: the
+        model's covariance as stated.
+    registration_xy, registration_theta : float
+        Shape (m, rad) of the registration error common to all the lines of a
+        scan, whose scale the same model learns: the robust spread of the
+        registration of each scan on the map built at the logs' own poses,
+        measured on Intel, ACES and CSAIL (2-3 cm and 0.4-0.6 degrees, where a
+        simulated scan at its exact pose gives 0.3-0.6 cm and 0.06 degrees).
+    angle_floor, offset_floor : float
+        Model error added to every line's angle (radians) and offset (m)
+        standard deviation (walls that are not perfectly straight), until
+        enough residuals are in to estimate it (``estimate_floors``).
+    estimate_floors : bool
+        Estimate those floors, and the edges', from the residuals of recent
+        corrections (:class:`~cga_lessons.mapping2d.noise.NoiseFloors`).
+    gate : float
+        A correspondence whose angle or offset innovation exceeds this many
+        standard deviations is not used (also the scale of the robust weight of
+        loop edges in the pose graph).
+    consensus_angle : float
+        Two correspondences agree on the heading when their angle differences
+        are within this (radians; or ``gate`` standard deviations, if more);
+        only the largest agreeing set (weighted by length) is used.
+    odo_sigma_xy, odo_sigma_heading, odo_sigma_turn, odo_heading_bias : float
+        The odometry's drift model (as :class:`cga_lessons.mapping2d.laser.OdometryModel`):
+        m per sqrt(m), rad per sqrt(m), rad per sqrt(rad) turned, rad per m.
+        It gives the prediction's covariance.
+    edge_match : float
+        Two segment ends that are real edges correspond if this close (m).
+    edge_sigma : float
+        Standard deviation (m) of a real edge's position along its line.
+    dup_angle, dup_distance : float
+        Final check: map lines closer than these (radians, m) that overlap are
+        duplicates and are merged.
+    cleanup_every : int
+        Run the duplicate removal every so many scans (and at the end).
+    support_distance : float
+        Each of the scan's points within this distance ``D`` (m) of a map
+        segment scores ``1 - (d / D)^2``; a correction is refused when the
+        prediction scores more by over 1 % of the points (0 disables the check).
+    neighbourhood : float
+        Only map segments within this distance (m) of the robot are matched.
+    active_path : float
+        Only map lines seen within this many metres of travel are matched
+        (the local map); older ones are left to loop closure (0: all lines).
+    loop_closure : bool
+        Look for revisits of old parts of the map and relax the poses.
+    loop_every : float
+        Travel (m) between two searches for a revisit.
+    loop_angle_tol, loop_shift_tol : float
+        Resolution of the revisit search: angle (rad) and offset (m) within
+        which a line pair agrees with a hypothesis.
+    loop_max_angle, loop_max_shift : float
+        Largest rotation (rad) and translation (m) a revisit may correct, on
+        top of the search window, which is three standard deviations of the
+        pose's uncertainty relative to the old lines, propagated along the
+        chain of poses (it grows with the distance travelled since they were
+        seen).  No bound by default (pi, inf): a fixed bound of 3 m missed the
+        revisits of the ACES log's 170 m loops, whose drift reached 5-10 m.
+    loop_min_lines : int
+        Fewest old lines a revisit must match.
+    loop_min_support : float
+        Fraction of the scan's points that must lie on the old lines (by the
+        score of ``support_distance``).
+    loop_max_sigma : float
+        Largest standard deviation (m) of the revisit's position in any
+        direction (parallel corridor walls alone do not close a loop).
+    loop_ambiguity : float
+        A revisit is refused when a clearly different one puts more than this
+        fraction of the points on the old lines.
+    graph_sigma_xy, graph_sigma_theta : float
+        Model error (m, rad) added to each corrected step and revisit in the
+        pose graph.
+    learn_lag : int
+        Besides each scan on the one before, every ``learn_lag``-th scan is
+        registered on the scan ``learn_lag`` before it to learn how good the
+        odometry is (its error grows with the steps, the registration's does
+        not).  Four: scans a few metres apart still share most of their
+        walls on the bundled logs (steps of about a metre); 1 turns it off.
+    adjust : bool
+        When the last scan is in, estimate all poses and lines together from
+        every observation and odometry step
+        (:func:`~cga_lessons.mapping2d.adjust.adjust_map`).
+    """
+
+    delta: float = 0.3
+    theta_xi: float = 0.3
+    xi_d: float = 0.3
+    xi_m: float = 0.25
+    overlap_margin: float = 0.3
+    t_xi: float = 0.3
+    theta_max: float = 0.2
+    n_iterations: int = 3
+    range_noise: float | None = None
+    significance: float = 0.999
+    estimate_odometry: bool = True
+    robust_kernel: float = 2.0
+    registration_xy: float = 0.025
+    registration_theta: float = 0.009
+    angle_floor: float = 0.0
+    offset_floor: float = 0.003
+    estimate_floors: bool = True
+    gate: float = 3.0
+    consensus_angle: float = 0.02
+    odo_sigma_xy: float = 0.02
+    odo_sigma_heading: float = 0.01
+    odo_sigma_turn: float = 0.03
+    odo_heading_bias: float = 0.005
+    edge_match: float = 0.3
+    edge_sigma: float = 0.03
+    dup_angle: float = 0.05
+    dup_distance: float = 0.08
+    cleanup_every: int = 25
+    support_distance: float = 0.05
+    neighbourhood: float = 8.0
+    active_path: float = 20.0
+    loop_closure: bool = True
+    loop_every: float = 1.0
+    loop_angle_tol: float = 0.02
+    loop_shift_tol: float = 0.1
+    loop_max_angle: float = np.pi
+    loop_max_shift: float = np.inf
+    loop_min_lines: int = 3
+    loop_min_support: float = 0.3
+    loop_max_sigma: float = 0.1
+    loop_ambiguity: float = 0.8
+    graph_sigma_xy: float = 0.01
+    graph_sigma_theta: float = 0.005
+    adjust: bool = True
+    learn_lag: int = 4

@@ -1,0 +1,81 @@
+"""Chapter 5: relocalization in a known line map by voting in Hough space, made to work on real logs, and the Monte
+Carlo localization of the future work (6.3.2).
+
+Layer 4 of the package: imports layers 0-3 only (``tests/test_layers.py`` checks it). Nothing here draws (figures
+and widgets are in :mod:`cga_lessons.viz`).  This facade exports the names in ``__all__``; its modules:
+
+* :mod:`~cga_lessons.relocalization.beam`: The laser beam model of the Monte Carlo localization: its parameters, and
+  its likelihood for one beam
+* :mod:`~cga_lessons.relocalization.chain`: Chains of poses, one per scan, fitted to their scans and to the odometry
+  between them at once.  (Beyond chapter 5.)
+* :mod:`~cga_lessons.relocalization.coverage`: What a map knows: the space its own scans swept free and the places
+  they hit, as a coverage grid
+* :mod:`~cga_lessons.relocalization.eval`: Measuring the relocalization: random poses in a scene, and held-out scans
+  of a real log
+* :mod:`~cga_lessons.relocalization.geometry`: Geometry for the relocalization: inputs, map and scan lines as
+  arrays, ray casting against a line map
+* :mod:`~cga_lessons.relocalization.history`: What the last scans say of a pose the particle filter never held: the
+  prior weight of new particles
+* :mod:`~cga_lessons.relocalization.hough`: Chapter 5 as printed: relocalization by voting in Hough space (Eqs.
+  5.1-5.6, steps 1-10)
+* :mod:`~cga_lessons.relocalization.likelihood`: A likelihood field of a line map, and a laser beam model on it,
+  vectorised over particles x beams
+* :mod:`~cga_lessons.relocalization.logmap`: A line map from scans at known poses, for measuring the relocalization
+  on real logs
+* :mod:`~cga_lessons.relocalization.lookaround`: Measuring relocalization from a look around: the robot turns on the
+  spot and scans again
+* :mod:`~cga_lessons.relocalization.mcl`: Monte Carlo localization in a line map: the relocalization with
+  probability terms (thesis, section 6.3.2)
+* :mod:`~cga_lessons.relocalization.mcl_config`: The settings of
+  :class:`~cga_lessons.relocalization.mcl.MonteCarloLocalizer`, each default with its reason
+* :mod:`~cga_lessons.relocalization.mcl_proposal`: Chapter 5's relocalizer as the particle filter's proposal, and
+  the test that confirms a mode with it
+* :mod:`~cga_lessons.relocalization.mcl_search`: An exhaustive coarse search of one scan over the whole map: the
+  global proposal of the particle filter
+* :mod:`~cga_lessons.relocalization.odometry`: Does a chain of relocalized poses move as the odometry says?  (Beyond
+  chapter 5.)
+* :mod:`~cga_lessons.relocalization.relocalizer`: Relocalization in a known line map (thesis chapter 5, Eqs.
+  5.1-5.6), made to work
+* :mod:`~cga_lessons.relocalization.sampling`: Resampling a particle set: low-variance resampling to a size chosen
+  by KLD sampling, and the main mode
+* :mod:`~cga_lessons.relocalization.search`: Pose hypotheses for the relocalization: rotations from angle votes,
+  exact translations from line pairs
+* :mod:`~cga_lessons.relocalization.sequence`: Relocalization from a sequence of scans: keep every candidate until
+  the scans tell them apart
+* :mod:`~cga_lessons.relocalization.thesis`: Chapter 5 as printed, steps 6-10: correspondences from the votes,
+  rotor, least squares, translator
+* :mod:`~cga_lessons.relocalization.verify`: Checking and refining a relocalization hypothesis against the whole
+  scan
+"""
+
+from .relocalizer import (
+    Candidate,
+    MCLConfig,
+    MCLEstimate,
+    MonteCarloLocalizer,
+    ReferenceMap,
+    Relocalization,
+    RelocParams,
+    as_segment_array,
+    combined_noise,
+    estimate_range_noise,
+    pose_error,
+    prepare_map,
+    relocalize,
+)
+
+__all__ = [
+    "MonteCarloLocalizer",
+    "MCLConfig",
+    "MCLEstimate",
+    "RelocParams",
+    "Candidate",
+    "Relocalization",
+    "ReferenceMap",
+    "prepare_map",
+    "as_segment_array",
+    "relocalize",
+    "pose_error",
+    "estimate_range_noise",
+    "combined_noise",
+]

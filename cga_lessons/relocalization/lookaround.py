@@ -1,0 +1,231 @@
+"""Measuring relocalization from a look around: the robot turns on the spot and scans again.
+
+* :func:`look_around`: the scans a robot takes turning on the spot in equal
+  steps from a pose, with the drifting odometry of the turn
+  (:func:`cga_lessons.mapping2d.laser.simulate_odometry`);
+* :func:`evaluate_look_around`: relocalize such a sequence
+  (:func:`cga_lessons.relocalization.sequence.relocalize_sequence`) from each
+  of many poses and compare with the simulator's truth, in the terms of
+  :class:`cga_lessons.relocalization.eval.Evaluation` (success, confidently
+  wrong, ambiguous, witness);
+* :func:`evaluate_log_sequences`: the same on a real log, short runs of its
+  scans with its own odometry, against the map built from the rest of it.
+
+The witness of an ambiguous answer is the same as for one scan, over the
+whole sequence: a clearly different tied candidate whose noise-free scans,
+moved along the true turn, agree with the true ones on every look (the
+smallest agreement over the looks is reported).
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from cga_lessons.algebra import InvalidInputError
+from cga_lessons.mapping2d.laser import (
+    OdometryModel,
+    Scene,
+    compose,
+    relative,
+    simulate_odometry,
+    simulate_scan,
+    wrap_angle,
+)
+from cga_lessons.mapping2d.laser_facts import returns_reach
+
+from .eval import (
+    HEADING_TOLERANCE,
+    POSITION_TOLERANCE,
+    Evaluation,
+    held_out_map_indices,
+    reference_from_log,
+    scan_agreement,
+)
+from .relocalizer import pose_error, prepare_map
+from .sequence import relocalize_sequence
+
+__all__ = ["look_around", "evaluate_look_around", "evaluate_log_sequences"]
+
+
+def look_around(
+    scene: Scene,
+    pose,
+    rng,
+    *,
+    looks: int = 4,
+    range_noise: float = 0.01,
+    max_range: float = 5.0,
+    n_beams: int = 361,
+    fov: float = np.pi,
+    odometry_model: OdometryModel | None = None,
+):
+    """Scans from ``pose`` turned on the spot by ``2 pi / looks`` between scans.
+
+    Returns
+    -------
+    truth : ndarray, shape (looks, 3)
+        The true laser poses.
+    scans : list of (ranges, angles)
+    odometry : ndarray, shape (looks, 3)
+        What the odometer reports (its first pose is the true one; only the
+        increments are used by the relocalization).
+    """
+    if int(looks) < 1:
+        raise InvalidInputError(f"look_around: looks must be >= 1, got {looks}")
+    pose = np.asarray(pose, float).reshape(3)
+    turns = 2 * np.pi * np.arange(int(looks)) / int(looks)
+    truth = np.column_stack([np.full(len(turns), pose[0]), np.full(len(turns), pose[1]), pose[2] + turns])
+    truth[:, 2] = wrap_angle(truth[:, 2])
+    scans = [
+        simulate_scan(scene, t, rng, range_noise=range_noise, max_range=max_range, n_beams=n_beams, fov=fov)
+        for t in truth
+    ]
+    odo = simulate_odometry(truth, rng, odometry_model) if len(truth) > 1 else truth.copy()
+    return truth, scans, odo
+
+
+def evaluate_look_around(
+    scene: Scene,
+    map_segments,
+    poses,
+    rng,
+    *,
+    looks: int = 4,
+    stop_when_confident: bool = False,
+    range_noise: float = 0.01,
+    max_range: float = 5.0,
+    n_beams: int = 361,
+    fov: float = np.pi,
+    odometry_model: OdometryModel | None = None,
+    witness: bool = True,
+    **relocalizer_kw,
+):
+    """Relocalize a look around from each pose against a map; compare the last pose with the truth.
+
+    Returns
+    -------
+    evaluation : Evaluation
+        ``truth`` and ``pose`` are the laser's poses at the last scan used.
+    n_scans : ndarray of int
+        Scans used from each pose (fewer than ``looks`` only with ``stop_when_confident``).
+    """
+    poses = np.asarray(poses, float).reshape(-1, 3)
+    ref = prepare_map(map_segments)
+    scan_kw = dict(n_beams=n_beams, fov=fov, max_range=max_range)
+    ratio = relocalizer_kw.get("ambiguity_ratio", 0.98)
+    rows = []
+    for p in poses:
+        truth, scans, odo = look_around(
+            scene, p, rng, looks=looks, range_noise=range_noise, odometry_model=odometry_model, **scan_kw
+        )
+        t0 = time.perf_counter()
+        r = relocalize_sequence(
+            ref, scans, odo, max_range=max_range, stop_when_confident=stop_when_confident, **relocalizer_kw
+        )
+        secs = time.perf_counter() - t0
+        wit = np.nan
+        if witness and r.status == "ambiguous":
+            wit = _witness(scene.walls, truth[: r.n_scans], r, ratio, scan_kw)
+        rows.append(_row(r, truth[r.n_scans - 1], wit, secs))
+    return _evaluation(rows)
+
+
+def _row(r, last, wit, secs):
+    est = np.full(3, np.nan) if r.pose is None else r.pose
+    perr, herr = pose_error(r.pose, last) if r.pose is not None else (np.inf, np.inf)
+    n_lines = int(np.mean([len(s.scan_segments) for s in r.single]))
+    return (last, est, r.status, perr, herr, n_lines, r.score, wit, secs, r)
+
+
+def _evaluation(rows):
+    cols = list(zip(*rows))
+    ev = Evaluation(
+        np.array(cols[0]),
+        np.array(cols[1]),
+        np.array(cols[2]),
+        np.array(cols[3]),
+        np.array(cols[4]),
+        np.array(cols[5]),
+        np.array(cols[6]),
+        np.array(cols[7], float),
+        np.array(cols[8]),
+        list(cols[9]),
+    )
+    return ev, np.array([r.n_scans for r in cols[9]])
+
+
+def _witness(walls, truth, result, ratio, scan_kw) -> float:
+    """The largest, over tied clearly different candidates, of the smallest agreement over the looks."""
+    last = truth[-1]
+    best = 0.0
+    for c in result.candidates:
+        if c.score < ratio * result.score:
+            continue
+        pe, he = pose_error(c.pose, last)
+        if pe <= 2 * POSITION_TOLERANCE and he <= 2 * HEADING_TOLERANCE:
+            continue
+        # the candidate's chain moved along the true turn
+        chain = compose(c.pose, relative(last, truth))
+        agree = min(scan_agreement(walls, t, q, **scan_kw) for t, q in zip(truth, chain))
+        best = max(best, agree)
+    return best
+
+
+def evaluate_log_sequences(
+    log,
+    starts,
+    *,
+    length: int = 3,
+    stride: int = 3,
+    exclude: int = 2,
+    map_step: int = 2,
+    max_range: float | None = None,
+    odometry=None,
+    coverage: bool = True,
+    **relocalizer_kw,
+):
+    """Relocalize short runs of a log's scans, with its odometry, against the map of the rest of it.
+
+    Run ``i`` uses the scans ``starts[i] + stride * (0, 1, ..., length - 1)``
+    (the robot driving on, not turning); the map is built as in
+    :func:`cga_lessons.relocalization.eval.evaluate_log` from every
+    ``map_step``-th scan more than ``exclude`` scans away from every scan of
+    every run (with its coverage grid when ``coverage``, see
+    :func:`cga_lessons.relocalization.eval.reference_from_log`); the truth is
+    the logged (corrected) pose of each run's last scan.  ``odometry`` (T, 3)
+    replaces the logged odometry (the corrected logs log the poses there: pass
+    :func:`cga_lessons.mapping2d.laser.simulate_odometry` of the truth).  ``max_range``
+    (m) is the laser's reach for the map and the scans; None: the log's own
+    (:func:`cga_lessons.mapping2d.laser_facts.returns_reach`).
+
+    Returns
+    -------
+    evaluation : Evaluation
+        (``witness`` is not computed: there is no simulator.)
+    n_scans : ndarray of int
+    map_segments : ndarray, shape (M, 2, 2)
+    """
+    starts = np.asarray(starts, int)
+    if int(length) < 1 or int(stride) < 1:
+        raise InvalidInputError(f"evaluate_log_sequences: length and stride must be >= 1, got {length}, {stride}")
+    runs = starts[:, None] + int(stride) * np.arange(int(length))[None, :]
+    if starts.size == 0 or runs.min() < 0 or runs.max() >= len(log):
+        raise InvalidInputError(
+            f"evaluate_log_sequences: runs {runs.min()}..{runs.max()} outside the log (0..{len(log) - 1})"
+        )
+    odo = log.odometry if odometry is None else np.asarray(odometry, float)
+    if odo.shape != (len(log), 3):
+        raise InvalidInputError(f"evaluate_log_sequences: odometry must have shape ({len(log)}, 3), got {odo.shape}")
+    idx = held_out_map_indices(len(log), runs, exclude, map_step)
+    max_range = returns_reach(log.ranges) if max_range is None else max_range
+    ref = reference_from_log(log, idx, max_range=max_range, coverage=coverage)
+    segs = ref.segments
+    rows = []
+    for run in runs:
+        t0 = time.perf_counter()
+        r = relocalize_sequence(ref, [log.scans[k] for k in run], odo[run], max_range=max_range, **relocalizer_kw)
+        rows.append(_row(r, log.poses[run[r.n_scans - 1]], np.nan, time.perf_counter() - t0))
+    ev, n = _evaluation(rows)
+    return ev, n, segs

@@ -1,0 +1,417 @@
+"""Relocalization from a sequence of scans: keep every candidate until the scans tell them apart.
+
+One scan is often not enough: the thesis's own warning (symmetric rooms, few
+lines) is the everyday case of a laser that sees 180 degrees.  What a robot
+does then is look again, and a robotics engineer expects the method to use
+every look.  :class:`Relocalizer` takes scans one by one with the odometry
+between them (the robot turning on the spot, or driving on) and carries a set
+of hypotheses, each a chain of laser poses, one per scan:
+
+1. the first scan's ranked candidates (:func:`~cga_lessons.relocalization.relocalize`)
+   start the chains;
+2. at every new scan each chain is moved by the odometry increment (the rigid
+   motion of Eq. 3.4) and snapped to the new scan's points
+   (:func:`~cga_lessons.relocalization.verify.refine_pose_points`); the new
+   scan is relocalized on its own as well, and every candidate that no chain
+   already explains starts a new chain, carried back through the odometry and
+   checked against the earlier scans; then every chain's poses are fitted to
+   their scans and to the odometry's steps together
+   (:func:`~cga_lessons.relocalization.chain.refine_chains`): the scans fix a
+   pose across a corridor, the odometry along it;
+3. a chain's score is the beam score of
+   :func:`~cga_lessons.relocalization.verify.score_poses` summed over all its
+   scans: ``(inliers - violations) / returned beams``;
+4. the answer is *ambiguous* while a clearly different chain ties with the
+   best (:func:`~cga_lessons.relocalization.verify.tie_bar`), or while the best chain moved rigidly by
+   ``distinct_position`` along its least constrained direction (or turned by
+   ``distinct_heading`` about its last pose) still does; that is the rule of a
+   single relocalization, applied to all the scans together; and while the
+   best chain's steps depart from the odometry's beyond what its drift model
+   allows (a chain that slid from candidate to candidate along a corridor).
+
+Identical rooms stay ambiguous however often the robot looks around in one of
+them, and are reported so (notebook 09 shows both cases).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from cga_lessons.algebra import InvalidInputError
+from cga_lessons.mapping2d.laser import OdometryModel, compose, relative
+
+from .chain import Chain, SequenceRelocalization, refine_chains
+from .geometry import Observation, check_scan, estimate_range_noise, prepare_map
+from .odometry import odometry_misfit
+from .relocalizer import RelocParams, combined_noise, noise_scaled, relocalize, resolve_params
+from .verify import Candidate, distinct, pose_information, refine_if_better, score_poses, tie_bar
+
+__all__ = ["Relocalizer", "SequenceRelocalization", "relocalize_sequence"]
+
+
+class Relocalizer:
+    """Relocalize from scans taken one after another, with the odometry between them.
+
+    Parameters
+    ----------
+    map_segments : list of Segment, array_like (M, 2, 2) or ReferenceMap
+        The map, as for :func:`~cga_lessons.relocalization.relocalize`.
+    max_range : float
+        The laser's reach (m).
+    params : RelocParams, optional
+        Thresholds (keyword ``overrides`` replace single fields).
+    max_chains : int
+        At most this many chains are kept (the best by score).
+    keep_ratio : float
+        Chains scoring below this fraction of the best are dropped.
+    odometry_model : OdometryModel, optional
+        How far the odometry may drift between two scans (default: the
+        project's drift model); a best chain that moves against the odometry
+        beyond it is reported ambiguous.
+    joint : bool
+        After every scan, fit each chain's poses to their scans and to the
+        odometry together (:func:`~cga_lessons.relocalization.chain.refine_chains`),
+        so that no chain slides along a corridor against the odometry's steps.
+        False: each pose is snapped to its own scan alone (as before; measured
+        with ``benchmarks/bench_reloc_logs.py``, runs of three on the six CARMEN
+        logs, seeds 0-3: 1,111 of 1,444 runs located with the joint fit against
+        1,087 without, 23 confidently wrong against 24).
+    window : int
+        The joint fit moves the last ``window`` poses and holds the earlier ones:
+        its cost grows with the square of the window (one dense ``3 window``
+        system per chain).  Runs of three scans are refitted whole.
+
+    Examples
+    --------
+    >>> from cga_lessons.mapping2d.laser import load_scene, simulate_scan
+    >>> room = load_scene("room")
+    >>> loc = Relocalizer(room.walls)
+    >>> rng = np.random.default_rng(0)
+    >>> for turn in (0.0, np.pi / 2, np.pi):
+    ...     pose = np.array([2.0, 1.5, 0.3 + turn])
+    ...     result = loc.add(simulate_scan(room, pose, rng), odometry=pose)
+    >>> result.n_scans, result.status
+    (3, 'ambiguous')
+
+    (A bare rectangle looks the same turned by 180 degrees about its centre.)
+    """
+
+    def __init__(
+        self,
+        map_segments,
+        *,
+        max_range: float = 5.0,
+        params: RelocParams | None = None,
+        max_chains: int = 64,
+        keep_ratio: float = 0.7,
+        odometry_model: OdometryModel | None = None,
+        joint: bool = True,
+        window: int = 5,
+        **overrides,
+    ):
+        self.params = resolve_params(params, overrides, "Relocalizer")
+        if not (max_range > 0):
+            raise InvalidInputError(f"Relocalizer: max_range must be > 0, got {max_range}")
+        if int(max_chains) < 1 or not (0 < keep_ratio <= 1):
+            raise InvalidInputError(
+                f"Relocalizer: need max_chains >= 1 and 0 < keep_ratio <= 1, got {max_chains}, {keep_ratio}"
+            )
+        if int(window) < 1:
+            raise InvalidInputError(f"Relocalizer: window must be >= 1 (poses the joint fit moves), got {window}")
+        self.ref = prepare_map(map_segments)
+        self.max_range = float(max_range)
+        self.max_chains = int(max_chains)
+        self.keep_ratio = float(keep_ratio)
+        self.odometry_model = OdometryModel() if odometry_model is None else odometry_model
+        self.obs: list[Observation] = []
+        self.odometry: list[np.ndarray] = []
+        self.returned = np.zeros(0, int)
+        self.chains: list[Chain] = []
+        self.single: list = []
+        self._scan_params: list[RelocParams] = []
+        self._sigmas: list[float] = []
+        self.joint = bool(joint)
+        self.window = int(window)
+
+    # ------------------------------------------------------------------ public
+
+    def add(self, scan, odometry) -> SequenceRelocalization:
+        """Add one scan ``(ranges, angles)`` taken at odometry pose ``odometry`` (3,); return the current answer.
+
+        Only the odometry increments between scans are used, so the odometry
+        frame is arbitrary.
+        """
+        ranges, angles = check_scan(scan, "Relocalizer.add")
+        odo = np.asarray(odometry, float)
+        if odo.shape != (3,) or not np.all(np.isfinite(odo)):
+            raise InvalidInputError(f"Relocalizer.add: odometry must be a finite (x, y, theta), got {odo!r}")
+        noise = estimate_range_noise(np.where(ranges < self.max_range, ranges, np.inf))
+        spread = combined_noise(noise, self.ref)  # of the scan's points about the map's walls
+        params = noise_scaled(self.params, spread)
+        obs = Observation.from_scan(ranges, angles, self.max_range)
+        k = len(self.obs)
+        self.obs.append(obs)
+        self.odometry.append(odo)
+        self._scan_params.append(params)
+        self._sigmas.append(spread)
+        self.returned = np.append(self.returned, len(obs.points))
+        single = relocalize(self.ref, scan=(ranges, angles), max_range=self.max_range, params=self.params)
+        self.single.append(single)
+
+        if k > 0 and self.chains:
+            self._advance(k, [c.pose for c in single.candidates])
+        fresh = [c.pose for c in single.candidates if all(distinct(c.pose, ch.poses[k], params) for ch in self.chains)]
+        if fresh:
+            self._start_chains(np.array(fresh), k)
+        if self.joint and k > 0 and self.chains:
+            self._refine_jointly()
+        self._prune()
+        return self.result()
+
+    def result(self) -> SequenceRelocalization:
+        """The answer after the scans added so far."""
+        n = len(self.obs)
+        if not self.chains:
+            msg = self.single[-1].message if self.single else "no scan yet"
+            return SequenceRelocalization(None, -np.inf, True, "failed", n_scans=n, message=msg, single=self.single)
+        ranked = self._ranked()
+        best = self.chains[ranked[0]]
+        self._polish(best)
+        cands = [self._candidate(self.chains[i]) for i in ranked]
+        status, msg, probe = self._decide(best, cands)
+        if probe is not None:
+            cands.insert(1, probe)
+        return SequenceRelocalization(
+            np.array(best.poses[-1]),
+            cands[0].score,
+            status != "ok",
+            status,
+            cands,
+            np.array(best.poses),
+            n,
+            msg,
+            self.single,
+        )
+
+    # ------------------------------------------------------------------ internals
+
+    def _score(self, j, poses):
+        p = self._scan_params[j]
+        return score_poses(self.ref.lines, self.obs[j], poses, p.inlier_distance, p.ray_margin)
+
+    def _fit(self, j, poses):
+        """Poses (C, 3) snapped to scan ``j``'s points where that scores better; with their inliers, violations."""
+        p = self._scan_params[j]
+        poses, _, inl, vio = refine_if_better(self.ref.lines, self.obs[j], poses, p.inlier_distance, p.ray_margin)
+        return poses, inl, vio
+
+    def _advance(self, k, nearby):
+        """Every chain moved by the odometry increment to scan ``k`` and snapped to it.
+
+        The snap is local and can slide along a direction the new scan hardly
+        fixes; so the new scan's own candidates (``nearby``, found and checked
+        on that scan alone) within three times the distinctness thresholds of
+        the prediction are tried too, and the best-scoring pose is kept.
+        """
+        step = relative(self.odometry[k - 1], self.odometry[k])
+        pred = compose(np.array([ch.poses[k - 1] for ch in self.chains]), step)
+        poses, inl, vio = self._fit(k, pred)
+        if len(nearby):
+            near = np.array(nearby)
+            sc_near, inl_near, vio_near = self._score(k, near)
+            dpos = np.hypot(*(near[None, :, :2] - pred[:, None, :2]).transpose(2, 0, 1))
+            dang = np.abs(np.angle(np.exp(1j * (near[None, :, 2] - pred[:, None, 2]))))
+            close = (dpos < 3 * self.params.distinct_position) & (dang < 3 * self.params.distinct_heading)
+            for c in range(len(pred)):
+                for m in np.flatnonzero(close[c]):
+                    if inl_near[m] - vio_near[m] > inl[c] - vio[c]:
+                        poses[c], inl[c], vio[c] = near[m], inl_near[m], vio_near[m]
+        for ch, p, i, v in zip(self.chains, poses, inl, vio):
+            ch.poses.append(p)
+            ch.inliers = np.append(ch.inliers, i)
+            ch.violations = np.append(ch.violations, v)
+
+    def _start_chains(self, poses, k):
+        """New chains from poses at scan ``k``, carried back through the odometry to every earlier scan."""
+        n = len(poses)
+        chain = np.zeros((k + 1, n, 3))
+        inl = np.zeros((k + 1, n))
+        vio = np.zeros((k + 1, n))
+        chain[k], inl[k], vio[k] = self._fit(k, poses)
+        for j in range(k - 1, -1, -1):
+            back = compose(chain[j + 1], relative(self.odometry[j + 1], self.odometry[j]))
+            chain[j], inl[j], vio[j] = self._fit(j, back)
+        for c in range(n):
+            self.chains.append(Chain([chain[j, c] for j in range(k + 1)], inl[:, c].copy(), vio[:, c].copy()))
+
+    def _refine_jointly(self):
+        """Every chain's last ``window`` poses fitted to their scans and the odometry together
+        (:func:`~cga_lessons.relocalization.chain.refine_chains`), the poses before them held."""
+        n = len(self.obs)
+        j0 = max(0, n - self.window)
+        chains = np.array([ch.poses for ch in self.chains])
+        odo = np.array(self.odometry)
+        inc = relative(odo[max(j0 - 1, 0) : n - 1], odo[max(j0, 1) : n])
+        sig = np.maximum(np.array(self._sigmas[j0:]), 1e-3)  # a noise-free (simulated) scan: 1 mm keeps weights finite
+        anchor = chains[:, j0 - 1] if j0 > 0 else None
+        out = refine_chains(self.ref.lines, self.obs[j0:], inc, chains[:, j0:], sig, self.odometry_model, anchor=anchor)
+        for j in range(j0, n):
+            _, inl, vio = self._score(j, out[:, j - j0])
+            for c, ch in enumerate(self.chains):
+                ch.poses[j] = out[c, j - j0]
+                ch.inliers[j], ch.violations[j] = inl[c], vio[c]
+
+    def _ranked(self):
+        scores = np.array([ch.score(self.returned) for ch in self.chains])
+        return list(np.argsort(-scores, kind="stable"))
+
+    def _prune(self):
+        """Drop chains that are no longer clearly different from a better one, or score far below the best.
+
+        Far below: under ``keep_ratio`` of the best and under the tie bar
+        (:func:`~cga_lessons.relocalization.verify.tie_bar`): a chain that still
+        ties with a poorly scoring best is the evidence that the answer is
+        ambiguous, and is kept.
+        """
+        if not self.chains:
+            return
+        order = self._ranked()
+        best = self.chains[order[0]].score(self.returned)
+        floor = min(self.keep_ratio * best, tie_bar(best, self.params))
+        kept = []
+        for i in order:
+            ch = self.chains[i]
+            if len(kept) >= self.max_chains or ch.score(self.returned) < floor:
+                break
+            if all(distinct(ch.poses[-1], o.poses[-1], self.params) for o in kept):
+                kept.append(ch)
+        self.chains = kept
+
+    def _candidate(self, ch) -> Candidate:
+        pose, score = np.array(ch.poses[-1]), ch.score(self.returned)
+        return Candidate(pose, score, float(ch.inliers.sum()), float(ch.violations.sum()))
+
+    def _weak_direction(self, ch) -> np.ndarray:
+        """The unit position direction (2,) that the chain's scans constrain least.
+
+        Every scan's information about its own pose (``J^T J`` of
+        :func:`~cga_lessons.relocalization.verify.pose_information`) is carried
+        to the last pose through the rigid chain: ``J_j`` maps a change of the
+        last pose to the change of pose ``j``.
+        """
+        last = np.asarray(ch.poses[-1])
+        H = np.zeros((3, 3))
+        for j, pose in enumerate(ch.poses):
+            Hj, _ = pose_information(self.ref.lines, self.obs[j], pose, self._scan_params[j].inlier_distance)
+            dx, dy = np.asarray(pose[:2]) - last[:2]
+            J = np.array([[1.0, 0.0, -dy], [0.0, 1.0, dx], [0.0, 0.0, 1.0]])
+            H += J.T @ Hj @ J
+        return np.linalg.eigh(H[:2, :2])[1][:, 0]
+
+    def _summed(self, poses):
+        """Inliers and violations summed over the scans, for one chain of poses (n_scans, 3)."""
+        inl, vio = self._per_scan(poses)
+        return float(inl.sum()), float(vio.sum())
+
+    def _polish(self, ch, rounds: int = 5):
+        """Slide the whole chain along its least constrained direction while the summed score grows.
+
+        The points fix a pose across walls but hardly along a corridor; there
+        the beams through doors and past wall ends decide, and they only count
+        in the beam score.  Coarse steps (5 to 20 cm), then 2 cm steps.
+        """
+        weak = self._weak_direction(ch)
+        poses = np.array(ch.poses)
+        cur = float(ch.inliers.sum() - ch.violations.sum())
+        coarse = True
+        for _ in range(rounds):
+            steps = [-0.2, -0.1, -0.05, 0.05, 0.1, 0.2] if coarse else [-0.02, 0.02]
+            trials = [(poses + np.array([st * weak[0], st * weak[1], 0.0])) for st in steps]
+            per_scan = [self._per_scan(t) for t in trials]
+            net = [float(i.sum() - v.sum()) for i, v in per_scan]
+            k = int(np.argmax(net))
+            if net[k] > cur:
+                poses, cur = trials[k], net[k]
+                ch.poses = list(poses)
+                ch.inliers, ch.violations = per_scan[k]
+            elif coarse:
+                coarse = False
+            else:
+                break
+
+    def _per_scan(self, poses):
+        out = [self._score(j, q[None]) for j, q in enumerate(poses)]
+        return np.array([float(o[1][0]) for o in out]), np.array([float(o[2][0]) for o in out])
+
+    def _decide(self, best, cands):
+        """``(status, message, probe)``: the rule of :func:`~cga_lessons.relocalization.verify.decide` on the
+        summed scores; the probe is the chain moved rigidly along its weakest direction when it ties."""
+        p = self.params
+        if cands[0].score < p.min_score:
+            return "failed", f"best score {cands[0].score:.3f} below min_score {p.min_score}", None
+        bad = odometry_misfit(best.poses, self.odometry, self.odometry_model)
+        if bad is not None:
+            return "ambiguous", f"the best chain of poses moves against the odometry at scan {bad}", None
+        bar = tie_bar(cands[0].score, p)
+        rivals = [c for c in cands[1:] if c.score >= bar]
+        if rivals:
+            return (
+                "ambiguous",
+                f"{len(rivals)} clearly different pose(s) score >= {bar:.3f}, tied with the best "
+                f"after {len(self.obs)} scan(s)",
+                None,
+            )
+        last = np.asarray(best.poses[-1])
+        weak = self._weak_direction(best)
+        d, a = p.distinct_position * 1.01, p.distinct_heading * 1.01
+        motions = [(d * weak[0], d * weak[1], 0.0), (-d * weak[0], -d * weak[1], 0.0), (0.0, 0.0, a), (0.0, 0.0, -a)]
+        scores, details = [], []
+        for mx, my, ma in motions:
+            inl, vio = self._summed(np.array([_rigid(np.asarray(q), last[:2], mx, my, ma) for q in best.poses]))
+            scores.append((inl - vio) / self.returned.sum())
+            details.append((_rigid(last, last[:2], mx, my, ma), inl, vio))
+        kbest = int(np.argmax(scores))
+        if scores[kbest] >= bar:
+            pose, inl, vio = details[kbest]
+            return (
+                "ambiguous",
+                f"the poses moved by {p.distinct_position} m along ({weak[0]:.2f}, {weak[1]:.2f}) or turned by "
+                f"{np.degrees(p.distinct_heading):.1f} deg tie with them (score >= {bar:.3f}): "
+                f"{len(self.obs)} scan(s) do not fix the pose",
+                Candidate(pose, float(scores[kbest]), inl, vio),
+            )
+        return "ok", "", None
+
+
+def _rigid(pose, centre, mx, my, ma):
+    """A pose moved by the rigid motion: turn by ``ma`` about ``centre``, then shift by ``(mx, my)``."""
+    c, s = np.cos(ma), np.sin(ma)
+    d = pose[:2] - centre
+    return np.array([centre[0] + c * d[0] - s * d[1] + mx, centre[1] + s * d[0] + c * d[1] + my, pose[2] + ma])
+
+
+def relocalize_sequence(map_segments, scans, odometry, *, max_range: float = 5.0, stop_when_confident=False, **kw):
+    """Relocalize from scans ``[(ranges, angles), ...]`` taken at odometry poses ``odometry`` (n, 3).
+
+    With ``stop_when_confident`` the scans after the first confident answer
+    are not used (a robot that stops turning as soon as it knows where it is).
+    Other keywords go to :class:`Relocalizer`.
+
+    Returns
+    -------
+    SequenceRelocalization
+        The answer after the last scan used; ``pose`` is the laser's pose at that scan.
+    """
+    odo = np.asarray(odometry, float)
+    scans = list(scans)
+    if odo.ndim != 2 or odo.shape[1] != 3 or len(odo) != len(scans) or not len(scans):
+        raise InvalidInputError(
+            f"relocalize_sequence: odometry must have shape (n, 3) with one row per scan; "
+            f"got {odo.shape} for {len(scans)} scan(s)"
+        )
+    loc = Relocalizer(map_segments, max_range=max_range, **kw)
+    for scan, o in zip(scans, odo):
+        res = loc.add(scan, o)
+        if stop_when_confident and res.status == "ok":
+            break
+    return res

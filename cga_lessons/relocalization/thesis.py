@@ -1,0 +1,222 @@
+"""Chapter 5 as printed, steps 6-10: correspondences from the votes, rotor, least squares, translator.
+
+After the vote matrix ``V`` (5.6, :mod:`cga_lessons.relocalization.hough`):
+
+6. the correspondence vector ``C`` from the column maxima of ``V``
+   (:func:`correspondences_from_votes`);
+7. the mean angle ``Theta`` of the corresponding lines by diffTheta (3.5)
+   (:func:`mean_angle`);
+8. a rotor (2.96) by ``Theta`` applied to the local point pairs
+   (:func:`rotate_entities`);
+9. the translation from the closest points of the corresponding lines by the
+   least squares (3.12) (:func:`translation_from_lines`);
+10. a translator (2.100) applied to them (:func:`translate_entities`).
+
+:func:`thesis_relocalization` runs steps 1-10.  The pose it finds is the
+laser's pose in the map, ``x -> R(Theta) x + t``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from cga_lessons import conformal as cga
+from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
+from cga_lessons.mapping2d import theta_correction, translation_correction
+from cga_lessons.mapping2d.lines import TWO_PI, diff_theta
+
+from .hough import THETA_XI, _endpoints, hough_set, vote_matrix_indexed
+
+__all__ = [
+    "correspondences_from_votes",
+    "mean_angle",
+    "segments_from_point_pairs",
+    "rotate_entities",
+    "translation_from_lines",
+    "translate_entities",
+    "thesis_relocalization",
+]
+
+
+def correspondences_from_votes(V, min_votes: int = 2) -> np.ndarray:
+    """The correspondence vector ``C`` of step 6 from the column maxima of ``V``.
+
+    For every local line (column) the map line (row) with most votes is its
+    correspondence; ``C`` has one entry per map line, the index of its local
+    line or ``-1`` (the thesis's "null").  When several columns pick the same
+    row the one with more votes keeps it (then the first).  A column whose
+    maximum is below ``min_votes`` gets no correspondence: every entry is at
+    least 1 (each hypothesis votes for itself), so 1 means no support.
+
+    Parameters
+    ----------
+    V : array_like of int, shape (M, L)
+    min_votes : int
+
+    Returns
+    -------
+    ndarray of int, shape (M,)
+
+    >>> correspondences_from_votes([[1, 5], [3, 1], [1, 1]]).tolist()
+    [1, 0, -1]
+    """
+    V = np.asarray(V)
+    if V.ndim != 2:
+        raise InvalidInputError(f"correspondences_from_votes: V must be 2-D, got shape {V.shape}")
+    C = np.full(V.shape[0], -1, int)
+    if V.size == 0:
+        return C
+    rows = np.argmax(V, axis=0)
+    best = V[rows, np.arange(V.shape[1])]
+    for j in np.argsort(-best, kind="stable"):
+        if best[j] >= min_votes and C[rows[j]] < 0:
+            C[rows[j]] = j
+    return C
+
+
+def mean_angle(M_h, L_h, C, theta_xi: float = THETA_XI) -> float:
+    """``Theta``: the mean angle difference of the corresponding lines by diffTheta (3.5), step 7.
+
+    ``Theta = mean_i diffTheta(m_i theta, l_C[i] theta)`` (the mean of 3.8).
+    """
+    M_h = np.asarray(M_h, float).reshape(-1, 2)
+    L_h = np.asarray(L_h, float).reshape(-1, 2)
+    i = np.flatnonzero(np.asarray(C) >= 0)
+    if len(i) == 0:
+        raise InvalidInputError("mean_angle: no correspondences in C")
+    d = np.atleast_1d(diff_theta(M_h[i, 1], L_h[np.asarray(C)[i], 1], theta_xi))
+    return theta_correction(d)
+
+
+def _xyz(p):
+    p = np.asarray(p, float)
+    return np.concatenate([p, np.zeros(p.shape[:-1] + (1,))], axis=-1)
+
+
+def segments_from_point_pairs(PP) -> np.ndarray:
+    """End points (K, 2, 2) of a batch of point pairs in the z = 0 plane, by (2.131)."""
+    p1, p2 = cga.point_pair_endpoints(PP)
+    return np.stack([np.atleast_2d(p1)[:, :2], np.atleast_2d(p2)[:, :2]], axis=1)
+
+
+def _move_point_pairs(V, s):
+    """``V PP* ~V`` for the point pairs of segments ``s`` (K, 2, 2), end points read back by (2.131).
+
+    (2.131) loses accuracy when the points are far from the origin compared
+    with their separation (``DESIGN.md``); a wildly wrong pose can put them
+    there.  Then the same versor moves the two conformal points that span the
+    pair (``V (P1 ^ P2) ~V = (V P1 ~V) ^ (V P2 ~V)``), which is exact.
+    """
+    PP = cga.point_pair(_xyz(s[:, 0]), _xyz(s[:, 1]))  # (2.68)
+    try:
+        return segments_from_point_pairs(cga.apply(V, PP))
+    except DegenerateGeometryError:
+        ends = cga.apply_to_points(V, _xyz(s.reshape(-1, 2)))[:, :2]
+        return ends.reshape(-1, 2, 2)
+
+
+def rotate_entities(segments, angle) -> np.ndarray:
+    """Step 8: the rotor (2.96) of ``angle`` about ``e3`` applied to the local point pairs.
+
+    Each segment becomes its point pair ``PP* = E2C(p_i) ^ E2C(p_f)`` (2.68,
+    3.13), is turned by ``R PP* ~R`` and read back by (2.131).
+
+    Returns
+    -------
+    ndarray, shape (K, 2, 2)
+    """
+    s = _endpoints(segments, "rotate_entities")
+    if len(s) == 0:
+        return s.copy()
+    R = cga.rotor([0.0, 0.0, 1.0], float(angle))  # (2.96)
+    return _move_point_pairs(R, s)
+
+
+def translate_entities(segments, translation) -> np.ndarray:
+    """Step 10: the translator (2.100) of ``translation`` applied to the local point pairs.
+
+    Returns
+    -------
+    ndarray, shape (K, 2, 2)
+    """
+    s = _endpoints(segments, "translate_entities")
+    if len(s) == 0:
+        return s.copy()
+    t = np.asarray(translation, float).reshape(2)
+    T = cga.translator([t[0], t[1], 0.0])  # (2.100)
+    return _move_point_pairs(T, s)
+
+
+def translation_from_lines(M_h, L_h_rotated, C) -> np.ndarray:
+    """Step 9: the translation from the closest points of corresponding lines, least squares (3.12).
+
+    Each pair gives ``rho_G = (p_L'c + t) . (cos theta_L', sin theta_L')``
+    (3.11); :func:`cga_lessons.mapping2d.translation_correction` solves them
+    in the least-squares sense (3.12).  With one correspondence, or parallel
+    lines only, the component along the lines stays 0.
+    """
+    M_h = np.asarray(M_h, float).reshape(-1, 2)
+    L_h_rotated = np.asarray(L_h_rotated, float).reshape(-1, 2)
+    i = np.flatnonzero(np.asarray(C) >= 0)
+    if len(i) == 0:
+        raise InvalidInputError("translation_from_lines: no correspondences in C")
+    j = np.asarray(C)[i]
+    return translation_correction(M_h[i, 0], L_h_rotated[j, 0], L_h_rotated[j, 1])
+
+
+def thesis_relocalization(
+    map_segments,
+    scan_segments,
+    *,
+    xi_theta: float = np.radians(3.0),
+    xi_rho: float = 0.2,
+    theta_xi: float = THETA_XI,
+    min_votes: int = 2,
+    entities: bool = True,
+) -> dict:
+    """Steps 1-10 of section 5.2 as printed: votes, correspondences, rotor, least squares, translator.
+
+    Parameters
+    ----------
+    map_segments : array_like, shape (M, 2, 2)
+        The map ``M`` in the map frame.
+    scan_segments : array_like, shape (L, 2, 2)
+        The local map ``L`` in the laser frame.
+    xi_theta, xi_rho : float
+        Vote thresholds of (5.6) (the thesis gives no values).
+    theta_xi : float
+        diffTheta's threshold (3.5).
+    min_votes : int
+        See :func:`correspondences_from_votes`.
+    entities : bool
+        Move the local point pairs with the rotor and the translator (steps 8
+        and 10).  Without them only the pose is computed: a rotation about
+        the origin keeps ``rho`` and adds ``Theta`` to ``theta``, which is all
+        step 9 needs (the same numbers, faster).
+
+    Returns
+    -------
+    dict
+        ``votes`` (M, L), ``C`` (M,), ``pose`` ``(x, y, Theta)`` or None when
+        no correspondence was found, ``rotated`` and ``placed`` local segments
+        (K, 2, 2) after steps 8 and 10 (None without ``entities``), ``M_h`` and ``L_h``.
+    """
+    M = _endpoints(map_segments, "thesis_relocalization", "map_segments")
+    L = _endpoints(scan_segments, "thesis_relocalization", "scan_segments")
+    M_h, L_h = hough_set(M), hough_set(L)
+    V = vote_matrix_indexed(M_h, L_h, xi_theta, xi_rho, theta_xi)  # steps 1-5, (5.1)-(5.6)
+    C = correspondences_from_votes(V, min_votes)  # step 6
+    out = {"votes": V, "C": C, "M_h": M_h, "L_h": L_h, "pose": None, "rotated": None, "placed": None}
+    if not np.any(C >= 0):
+        return out
+    Theta = mean_angle(M_h, L_h, C, theta_xi)  # step 7
+    if entities:
+        rotated = rotate_entities(L, Theta)  # step 8
+        t = translation_from_lines(M_h, hough_set(rotated), C)  # step 9, (3.12)
+        placed = translate_entities(rotated, t)  # step 10
+    else:
+        rotated = placed = None
+        t = translation_from_lines(M_h, np.column_stack([L_h[:, 0], np.mod(L_h[:, 1] + Theta, TWO_PI)]), C)
+    theta = float(np.mod(Theta + np.pi, TWO_PI) - np.pi)
+    out.update(pose=np.array([t[0], t[1], theta]), rotated=rotated, placed=placed, Theta=Theta, translation=t)
+    return out

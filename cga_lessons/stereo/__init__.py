@@ -1,0 +1,73 @@
+"""Appendix A and section 4.1: pinhole cameras, two-view geometry, the robot's stereo head and conformal entities
+reconstructed and detected from its points.
+
+Layer 3 of the package: imports layers 0-2 (errors, algebra, conformal) only (``tests/test_layers.py`` checks it).
+Nothing here draws (figures and widgets are in :mod:`cga_lessons.viz`).  This facade exports the names in
+``__all__``; its modules:
+
+* :mod:`~cga_lessons.stereo.camera`: Pinhole cameras and triangulation (appendix A of the thesis, Eqs. A.1-A.5 and
+  A.14)
+* :mod:`~cga_lessons.stereo.detect`: Automatic registration of conformal entities in a 3D point cloud (the thesis's
+  future work, 6.2.2)
+* :mod:`~cga_lessons.stereo.detect_ml`: Maximum-likelihood refinement of a detected entity, and the covariance of
+  its parameters
+* :mod:`~cga_lessons.stereo.detect_models`: The four kinds of entity a detector looks for: hypotheses, residuals and
+  fits (section 4.1, table 2.1)
+* :mod:`~cga_lessons.stereo.detect_noise`: The noise model of entity detection: per-point covariances, chi-square
+  gates, Mahalanobis residuals
+* :mod:`~cga_lessons.stereo.detect_scenes`: Test scenes with ground truth for entity detection, and the scoring of
+  detections against it
+* :mod:`~cga_lessons.stereo.detect_search`: The search behind :func:`cga_lessons.stereo.detect.detect_entities`: one
+  round of RANSAC, model selection,
+* :mod:`~cga_lessons.stereo.epipolar`: Two-view geometry: the fundamental matrix and cameras from it (appendix A.2,
+  Eqs. A.6-A.13)
+* :mod:`~cga_lessons.stereo.experiments`: The numerical experiments of the stereo notebook (appendix A and section
+  4.1), seeded and repeatable
+* :mod:`~cga_lessons.stereo.head`: A synthetic stereo head, its scene, and conformal entities from two views
+  (section 4.1)
+* :mod:`~cga_lessons.stereo.real`: Real stereo data: the Middlebury 2014 motorcycle pair shipped with scikit-image
+* :mod:`~cga_lessons.stereo.render`: What the stereo head's two cameras see, drawn with OpenCV (for the notebook of
+  section 4.1)
+* :mod:`~cga_lessons.stereo.rig`: The robot's stereo head: two calibrated pinhole cameras (appendix A, used by
+  section 4.1)
+"""
+
+from .head import (
+    StereoRig,
+    StereoScene,
+    circle_center_via_plane,
+    circle_polyline,
+    entity_errors,
+    line_polyline,
+    load_rig,
+    load_scene,
+    look_at_rotation,
+    observe,
+    random_rig,
+    random_scene,
+    reconstruct_entities,
+    rotation_matrix,
+    sample_scene,
+    square_polyline,
+    stereo_head,
+)
+
+__all__ = [
+    "StereoRig",
+    "StereoScene",
+    "stereo_head",
+    "random_rig",
+    "load_rig",
+    "load_scene",
+    "random_scene",
+    "sample_scene",
+    "observe",
+    "reconstruct_entities",
+    "circle_center_via_plane",
+    "entity_errors",
+    "line_polyline",
+    "circle_polyline",
+    "square_polyline",
+    "rotation_matrix",
+    "look_at_rotation",
+]

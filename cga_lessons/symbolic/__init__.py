@@ -1,0 +1,71 @@
+"""Chapter 2's derivations verified with SymPy (stereographic projection, point-pair extraction, motor
+decomposition...) and the errata they decide.
+
+Layer 3 of the package: imports layers 0-2 (errors, algebra, conformal) only (``tests/test_layers.py`` checks it).
+Nothing here draws (figures and widgets are in :mod:`cga_lessons.viz`).  This facade exports the names in
+``__all__``; its modules:
+
+* :mod:`~cga_lessons.symbolic.circles_lines`: Symbolic derivations of circles and lines (table 2.1, sections
+  2.4.3-2.4.4):
+* :mod:`~cga_lessons.symbolic.core`: Shared machinery of the symbolic derivations (:mod:`cga_lessons.symbolic`)
+* :mod:`~cga_lessons.symbolic.derivations`: Verified derivations of chapter 2 with SymPy, and the errata they decide
+* :mod:`~cga_lessons.symbolic.entities`: Symbolic derivations of spheres, planes and point pairs (table 2.1,
+* :mod:`~cga_lessons.symbolic.model`: Symbolic derivations of sections 2.1-2.3.3: the Clifford product, the
+* :mod:`~cga_lessons.symbolic.versors`: Symbolic derivations of the conformal transformations (section 2.3.4,
+"""
+
+from .derivations import (
+    DERIVATIONS,
+    ERRATA,
+    MINKOWSKI_PROPERTIES,
+    Check,
+    Derivation,
+    Erratum,
+    Ring,
+    basis_and_product_axioms,
+    circle_properties,
+    clifford_product_plane,
+    conformal_transformations,
+    errata_table,
+    is_zero,
+    line_properties,
+    minkowski_plane,
+    null_cone_points,
+    point_pair_extraction,
+    projection_rejection,
+    proportional,
+    rotors_and_motors,
+    run_all,
+    same,
+    sphere_and_plane,
+    stereographic_projection,
+    verify_errata,
+)
+
+__all__ = [
+    "Check",
+    "Derivation",
+    "Ring",
+    "is_zero",
+    "same",
+    "proportional",
+    "clifford_product_plane",
+    "basis_and_product_axioms",
+    "stereographic_projection",
+    "minkowski_plane",
+    "MINKOWSKI_PROPERTIES",
+    "projection_rejection",
+    "null_cone_points",
+    "sphere_and_plane",
+    "circle_properties",
+    "line_properties",
+    "point_pair_extraction",
+    "conformal_transformations",
+    "rotors_and_motors",
+    "DERIVATIONS",
+    "run_all",
+    "Erratum",
+    "ERRATA",
+    "verify_errata",
+    "errata_table",
+]
