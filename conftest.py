@@ -15,6 +15,9 @@ os.environ["PYTHONPATH"] = os.pathsep.join([_ROOT, *_paths])
 
 import pytest  # noqa: E402
 
+# The bundled data's scripts (cga_lessons/data links to data/) are not the package's modules.
+collect_ignore = ["cga_lessons/data"]
+
 
 @pytest.fixture(autouse=True)
 def _close_figures():

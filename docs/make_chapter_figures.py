@@ -43,7 +43,7 @@ PICTURES = {
     "07_stereo_reconstruction": ("px: least squares", 0, "conformal entities from two views"),
     "08_fused_3d_map": ("vz.plot_fused_map(fused", 0, "laser walls and stereo entities in one frame"),
     "09_relocalization": ("draw.steps_figure(", 0, "the four steps of relocalization (figure 5.2)"),
-    "10_exploration": ("base = cases.run_scenario()", 0, "seen, unseen and occupied nodes"),
+    "10_exploration": ("base = ex.run_scenario()", 0, "seen, unseen and occupied nodes"),
     "11_future_work": ("fw.mcl_figure(intel, rows", 0, "particles finding the robot on the Intel map (6.3.2)"),
 }
 

@@ -25,6 +25,6 @@ def test_the_readme_says_what_the_table_says():
 def test_notebook_00_draws_table_and_diagram_from_the_table():
     nb = nbformat.read(ROOT / "notebooks" / "00_start_here.ipynb", as_version=4)
     code = "\n".join(c.source for c in nb.cells if c.cell_type == "code")
-    assert "course.dependency_table()" in code and "course.arrows()" in code
+    assert "equations.dependency_table()" in code and "equations.arrows()" in code
     prose = "\n".join(c.source for c in nb.cells if c.cell_type == "markdown")
     assert "| needs |" not in prose  # no hand-kept copy of the table

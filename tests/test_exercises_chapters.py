@@ -227,7 +227,7 @@ rotation5, scan5, map5 = exercises.given("ch5.2")
 x, y, phi, d, r1, r2 = sp.symbols("x y phi d r1 r2")
 WRONG = [
     ("ch3.1", 0.02 - 6.25, "long way"),
-    ("ch3.1", lines._diff_theta_as_printed(0.02, 6.25), "as printed"),
+    ("ch3.1", lines.diff_theta_as_printed(0.02, 6.25), "as printed"),
     ("ch3.1", -(0.02 - 6.25 + 2 * math.pi), "sign"),
     ("ch3.1", math.degrees(0.02 - 6.25 + 2 * math.pi), "degrees"),
     ("ch3.2", delta * (-px * sp.sin(theta) + py * sp.cos(theta)), "first-order"),

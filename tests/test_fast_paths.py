@@ -13,7 +13,7 @@ import sympy as sp
 
 from cga_lessons import conformal as cga
 from cga_lessons.algebra import Algebra, InvalidInputError, Multivector
-from cga_lessons.algebra.core import _stack_rows
+from cga_lessons.algebra.core import stack_rows
 from cga_lessons.conformal import G41, versors
 
 RNG_SEED = 20240807
@@ -270,18 +270,18 @@ def test_conformal_batches_are_rows_of_one_block_and_are_not_copied():
     pts = np.random.default_rng(7).normal(size=(1000, 3))
     X = cga.up(pts)
     rows = [X.coeffs[b] for b in (1, 2, 4, 8, 16)]
-    block = _stack_rows(rows, (1000,))
+    block = stack_rows(rows, (1000,))
     assert block.shape == (5, 1000) and all(np.shares_memory(block, r) for r in rows)
     M = cga.motor([0.2, 0.5, -0.1], 0.4, [1.0, 2.0, 3.0])
     Y = cga.apply(M, X)
-    assert np.shares_memory(_stack_rows([Y.coeffs[b] for b in (1, 2, 4, 8, 16)], (1000,)), Y.coeffs[1])
+    assert np.shares_memory(stack_rows([Y.coeffs[b] for b in (1, 2, 4, 8, 16)], (1000,)), Y.coeffs[1])
     # the same points stored column-wise (not a block) give the same numbers
     Xc = G41.from_array(X.to_array([1, 2, 4, 8, 16]), blades=[1, 2, 4, 8, 16])
-    assert not np.shares_memory(_stack_rows([Xc.coeffs[b] for b in (1, 2, 4, 8, 16)], (1000,)), Xc.coeffs[1])
+    assert not np.shares_memory(stack_rows([Xc.coeffs[b] for b in (1, 2, 4, 8, 16)], (1000,)), Xc.coeffs[1])
     assert np.allclose(cga.apply(M, Xc).to_array(), Y.to_array(), rtol=0, atol=1e-14)
     # swapped rows are not mistaken for the block order
     swapped = [rows[1], rows[0], rows[2], rows[3], rows[4]]
-    assert np.array_equal(_stack_rows(swapped, (1000,))[0], rows[1])
+    assert np.array_equal(stack_rows(swapped, (1000,))[0], rows[1])
 
 
 def test_batches_of_any_shape():

@@ -203,7 +203,7 @@ def test_motor_numbers_products_and_matrices_match_the_algebra(rng):
         A = cga.motor(rng.normal(size=3), rng.uniform(-6, 6), rng.normal(size=3) * 5)
         B = cga.screw(rng.normal(size=3), rng.normal(size=3), rng.uniform(0.1, 3), rng.normal())
         a, b = kin.motor_coefficients(A), kin.motor_coefficients(B)
-        assert np.allclose(kin._mul(a[None], b[None])[0], kin.motor_coefficients(A * B), rtol=0, atol=1e-14)
+        assert np.allclose(kin.multiply_batches(a[None], b[None])[0], kin.motor_coefficients(A * B), rtol=0, atol=1e-14)
         assert np.allclose(kin.coefficients_to_matrix(a), cga.motor_to_matrix(A), rtol=0, atol=1e-14)
         assert kin.coefficients_to_motor(a).isclose(A * (1.0 / float(np.linalg.norm(a[:4]))) * np.linalg.norm(a[:4]))
     assert np.allclose(kin.motor_coefficients(A * 3.0), kin.motor_coefficients(A))  # s M: the same motion

@@ -10,8 +10,8 @@ from cga_lessons.mapping2d.laser import load_scene, simulate_scan
 from cga_lessons.mapping2d.lines import (
     TWO_PI,
     Segment,
-    _diff_theta_as_printed,
     diff_theta,
+    diff_theta_as_printed,
     extract_segments,
     fit_line,
     line_through,
@@ -35,7 +35,7 @@ def test_diff_theta_thesis_example():
 
 def test_diff_theta_erratum_printed_form_fails_its_own_example():
     # printed: "theta_b + theta_xi <= 0", impossible for theta_b >= 0: the example would give 197 pi/100
-    printed = _diff_theta_as_printed(199 * np.pi / 100, 2 * np.pi / 100)
+    printed = diff_theta_as_printed(199 * np.pi / 100, 2 * np.pi / 100)
     assert np.isclose(printed, 197 * np.pi / 100)
     assert not np.isclose(printed, -3 * np.pi / 100)
 

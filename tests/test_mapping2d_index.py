@@ -10,7 +10,7 @@ import pytest
 from cga_lessons.algebra import InvalidInputError
 from cga_lessons.mapping2d import MapParams, PlainGeometry, SegmentSet
 from cga_lessons.mapping2d.builder import MapBuilder
-from cga_lessons.mapping2d.geometry import _close_angle_pairs
+from cga_lessons.mapping2d.geometry import close_angle_pairs
 from cga_lessons.mapping2d.hypotheses import angle_density
 from cga_lessons.mapping2d.index import SegmentIndex, sphere_boxes
 from cga_lessons.mapping2d.laser import compose, load_scene, simulate_scans
@@ -87,7 +87,7 @@ def _full_duplicate_pairs(G, p):
     """The duplicate pairs as the full search of every pair finds them (the builder's rule before the index)."""
     geo = PlainGeometry()
     _, th = geo.hough(G, np.zeros(2))
-    a, b = _close_angle_pairs(th, p.dup_angle)
+    a, b = close_angle_pairs(th, p.dup_angle)
     length = G.length
     swap = (length[b] > length[a]) | ((length[b] == length[a]) & (b < a))
     a, b = np.where(swap, b, a), np.where(swap, a, b)

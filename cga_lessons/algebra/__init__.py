@@ -21,7 +21,22 @@ modules:
   (2.82)
 """
 
-from .core import Algebra, DegenerateGeometryError, GeometryError, InvalidInputError, Multivector, commutator, exp
+from .core import (
+    REAL_TYPES,
+    Algebra,
+    DegenerateGeometryError,
+    GeometryError,
+    InvalidInputError,
+    Multivector,
+    absmax,
+    all_finite,
+    commutator,
+    exp,
+    is_real_batch,
+    is_real_single,
+    is_sympy,
+)
+from .versor_matrices import motor_tolerance
 
 __all__ = [
     "Algebra",
@@ -31,4 +46,11 @@ __all__ = [
     "InvalidInputError",
     "commutator",
     "exp",
+    "REAL_TYPES",
+    "absmax",
+    "all_finite",
+    "is_real_batch",
+    "is_real_single",
+    "is_sympy",
+    "motor_tolerance",
 ]

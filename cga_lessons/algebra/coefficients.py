@@ -15,16 +15,16 @@ import numbers
 
 import numpy as np
 
-_PLAIN_TYPES = frozenset((float, int, np.float64, np.ndarray))
+PLAIN_TYPES = frozenset((float, int, np.float64, np.ndarray))
 
 
-def _is_sympy(x) -> bool:
-    if type(x) in _PLAIN_TYPES:
+def is_sympy(x) -> bool:
+    if type(x) in PLAIN_TYPES:
         return False
     return hasattr(x, "free_symbols") and not isinstance(x, np.ndarray)
 
 
-def _is_zero(c) -> bool:
+def is_zero(c) -> bool:
     """True when a coefficient is exactly zero (float, array or SymPy)."""
     t = type(c)
     if t is float or t is int or t is np.float64:
@@ -37,38 +37,38 @@ def _is_zero(c) -> bool:
         return not np.any(c)
     if isinstance(c, numbers.Number):
         return c == 0
-    if _is_sympy(c):
+    if is_sympy(c):
         return c == 0 or c.is_zero is True
     return c == 0
 
 
 #: Coefficient types of a single numeric multivector (the versor fast paths take only these).
-_REAL_TYPES = frozenset((float, np.float64, int))
+REAL_TYPES = frozenset((float, np.float64, int))
 #: ... and of the operands of a product sent through a float table (ints stay exact in the other routes).
-_FLOAT_TYPES = frozenset((float, np.float64))
+FLOAT_TYPES = frozenset((float, np.float64))
 
 
-def _is_real_single(M) -> bool:
+def is_real_single(M) -> bool:
     """True when every coefficient of ``M`` is one real number (no batch, no SymPy)."""
-    real = _REAL_TYPES
+    real = REAL_TYPES
     for v in M._c.values():
         if type(v) not in real:
             return False
     return True
 
 
-def _is_float_single(M) -> bool:
+def is_float_single(M) -> bool:
     """True when every coefficient of ``M`` is one float."""
-    flt = _FLOAT_TYPES
+    flt = FLOAT_TYPES
     for v in M._c.values():
         if type(v) not in flt:
             return False
     return True
 
 
-def _is_real_batch(M) -> bool:
+def is_real_batch(M) -> bool:
     """True when ``M`` is a numeric batch: real arrays (at least one) and real numbers, no SymPy."""
-    real = _REAL_TYPES
+    real = REAL_TYPES
     seen = False
     for v in M._c.values():
         if type(v) is np.ndarray:
@@ -80,11 +80,11 @@ def _is_real_batch(M) -> bool:
     return seen
 
 
-def _any_sympy(*mvs) -> bool:
-    return any(_is_sympy(v) for m in mvs for v in m._c.values())
+def any_sympy(*mvs) -> bool:
+    return any(is_sympy(v) for m in mvs for v in m._c.values())
 
 
-def _absmax(v) -> float:
+def absmax(v) -> float:
     """max |v| of a real coefficient, a number or an array, as a float (NaN stays NaN)."""
     t = type(v)
     if t is float or t is np.float64 or t is int:
@@ -92,7 +92,7 @@ def _absmax(v) -> float:
     return float(np.max(np.abs(v)))
 
 
-def _all_finite(arr: np.ndarray) -> bool:
+def all_finite(arr: np.ndarray) -> bool:
     """``np.isfinite(arr).all()`` for a float array, screened cheaply first.
 
     For a large contiguous float64 array the dot product ``a . a`` is finite

@@ -74,22 +74,22 @@ from cga_lessons.errors import DegenerateGeometryError, GeometryError, InvalidIn
 # The names below are re-exported: the rest of the package, the tests and the
 # notebooks import them from this module, their public home.
 from .coefficients import (  # noqa: F401
-    _FLOAT_TYPES,
-    _PLAIN_TYPES,
-    _REAL_TYPES,
-    _absmax,
-    _all_finite,
-    _any_sympy,
-    _is_float_single,
-    _is_real_batch,
-    _is_real_single,
-    _is_sympy,
-    _is_zero,
+    FLOAT_TYPES,
+    PLAIN_TYPES,
+    REAL_TYPES,
+    absmax,
+    all_finite,
+    any_sympy,
+    is_float_single,
+    is_real_batch,
+    is_real_single,
+    is_sympy,
+    is_zero,
 )
 from .exponential import exp  # noqa: F401
-from .multivector import Multivector, _mv, _mv_pruned, commutator  # noqa: F401
-from .products import _CHUNK, _compile_product, _ProductTerms, _run_product  # noqa: F401
-from .versor_matrices import _stack_rows, _VersorMatrices  # noqa: F401
+from .multivector import Multivector, commutator, mv_from_dict, mv_from_pairs  # noqa: F401
+from .products import PRODUCT_CHUNK, ProductTermsMixin, compile_product, run_product  # noqa: F401
+from .versor_matrices import VersorMatricesMixin, stack_rows  # noqa: F401
 
 __all__ = [
     "Algebra",
@@ -120,7 +120,7 @@ def _reorder_sign(a: int, b: int) -> int:
     return -1 if swaps & 1 else 1
 
 
-class Algebra(_ProductTerms, _VersorMatrices):
+class Algebra(ProductTermsMixin, VersorMatricesMixin):
     """The geometric algebra G(p, q, r), equations (2.9)-(2.10).
 
     Parameters
@@ -141,8 +141,8 @@ class Algebra(_ProductTerms, _VersorMatrices):
     >>> float((e1 * e2) ** 2)
     -1.0
 
-    The products come from :class:`~cga_lessons.algebra.products._ProductTerms`,
-    the versor matrices from :class:`~cga_lessons.algebra.versor_matrices._VersorMatrices`;
+    The products come from :class:`~cga_lessons.algebra.products.ProductTermsMixin`,
+    the versor matrices from :class:`~cga_lessons.algebra.versor_matrices.VersorMatricesMixin`;
     this class holds the sign table and the caches they read.
     """
 
@@ -259,8 +259,8 @@ class Algebra(_ProductTerms, _VersorMatrices):
     def vector(self, coeffs) -> Multivector:
         """A grade-1 multivector from ``coeffs`` of shape (n,) or (N, n) (a batch)."""
         arr = coeffs
-        if isinstance(arr, (list, tuple)) and arr and all(_is_sympy(c) for c in arr):
-            return Multivector(self, {1 << i: c for i, c in enumerate(arr) if not _is_zero(c)})
+        if isinstance(arr, (list, tuple)) and arr and all(is_sympy(c) for c in arr):
+            return Multivector(self, {1 << i: c for i, c in enumerate(arr) if not is_zero(c)})
         arr = np.asarray(coeffs)
         if arr.shape[-1] != self.n:
             raise InvalidInputError(f"vector: last axis must have length {self.n}, got shape {arr.shape}")

@@ -2,12 +2,12 @@
 
 ``repr(X)`` writes ``1.5 e1 + 2 e+ - 1 e-``, blades in the order of (2.9);
 ``X._repr_latex_()`` is what Jupyter shows for a derivation, with SymPy
-coefficients in LaTeX.  :meth:`_Display.simplify`, :meth:`_Display.expand` and
-:meth:`_Display.subs` apply SymPy to every coefficient and drop the ones that
+coefficients in LaTeX.  :meth:`DisplayMixin.simplify`, :meth:`DisplayMixin.expand` and
+:meth:`DisplayMixin.subs` apply SymPy to every coefficient and drop the ones that
 vanish, which is how a symbolic derivation is brought to the form printed in
-the thesis; :meth:`_Display.map` applies any function.
+the thesis; :meth:`DisplayMixin.map` applies any function.
 
-:class:`_Display` is mixed into :class:`~cga_lessons.algebra.multivector.Multivector`;
+:class:`DisplayMixin` is mixed into :class:`~cga_lessons.algebra.multivector.Multivector`;
 it is not used alone.
 """
 
@@ -15,10 +15,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from .coefficients import _is_sympy
+from .coefficients import is_sympy
 
 
-class _Display:
+class DisplayMixin:
     """Display and SymPy helpers of :class:`~cga_lessons.algebra.multivector.Multivector`."""
 
     __slots__ = ()  # Multivector keeps only its two slots, no __dict__
@@ -28,7 +28,7 @@ class _Display:
         import sympy
 
         fn = fn or sympy.simplify
-        return type(self)(self.algebra, {b: fn(v) if _is_sympy(v) else v for b, v in self._c.items()}, _prune=True)
+        return type(self)(self.algebra, {b: fn(v) if is_sympy(v) else v for b, v in self._c.items()}, _prune=True)
 
     def expand(self):
         import sympy
@@ -39,7 +39,7 @@ class _Display:
         """SymPy substitution in every coefficient."""
         return type(self)(
             self.algebra,
-            {b: v.subs(*args, **kwargs) if _is_sympy(v) else v for b, v in self._c.items()},
+            {b: v.subs(*args, **kwargs) if is_sympy(v) else v for b, v in self._c.items()},
             _prune=True,
         )
 
@@ -61,7 +61,7 @@ class _Display:
         parts = []
         for name, v in self.items():
             s = self._fmt_coeff(v)
-            if _is_sympy(v) and (len(getattr(v, "args", ())) > 1 and v.is_Add):
+            if is_sympy(v) and (len(getattr(v, "args", ())) > 1 and v.is_Add):
                 s = f"({s})"
             term = s if name == "1" else f"{s} {name}"
             parts.append(term)
@@ -79,7 +79,7 @@ class _Display:
             if b not in self._c:
                 continue
             v = self._c[b]
-            if _is_sympy(v):
+            if is_sympy(v):
                 import sympy
 
                 s = sympy.latex(v)

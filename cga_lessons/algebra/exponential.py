@@ -79,7 +79,7 @@ import numpy as np
 
 from cga_lessons.errors import InvalidInputError
 
-from .coefficients import _any_sympy, _is_sympy, _is_zero
+from .coefficients import any_sympy, is_sympy, is_zero
 from .exponential_coefficients import cosh_sinhc, exp_coefficients, exp_coefficients_one, exp_simple, sympy_module
 from .multivector import Multivector
 
@@ -205,7 +205,7 @@ def exp(B: Multivector) -> Multivector:
         raise InvalidInputError(
             f"exp: B: the closed form (2.37) needs a bivector (plus a scalar), got grades {sorted(grades)}"
         )
-    if _any_sympy(B):
+    if any_sympy(B):
         return _exp_sympy(B)
     return _exp_numeric(B)
 
@@ -327,7 +327,7 @@ def _exp_sympy(B: Multivector) -> Multivector:
     zero, one = sp.Integer(0), sp.Integer(1)
     scal = B._c.get(0, zero)
     B = B.grade(2)
-    factor = None if _is_zero(scal) else (sp.exp(scal) if _is_sympy(scal) else np.exp(scal))
+    factor = None if is_zero(scal) else (sp.exp(scal) if is_sympy(scal) else np.exp(scal))
     if not B._c:
         out = Multivector(alg, {0: one})
         return out * factor if factor is not None else out

@@ -22,7 +22,7 @@ import numpy as np
 
 from cga_lessons.errors import InvalidInputError
 
-from .coefficients import _is_sympy
+from .coefficients import is_sympy
 from .multivector import Multivector
 
 __all__ = ["sympy_module", "cosh_sinhc", "exp_simple", "exp_coefficients_one", "exp_coefficients"]
@@ -67,7 +67,7 @@ def cosh_sinhc(lam):
     is, and the trigonometric form when nothing is known (the common case of
     a rotation).
     """
-    if _is_sympy(lam):
+    if is_sympy(lam):
         sp = sympy_module()
         if lam == 0:
             return sp.Integer(1), sp.Integer(1)

@@ -7,7 +7,7 @@ invertible multivector is inverted by solving the linear system of
 symbols).  Zero, null and singular multivectors raise
 :class:`~cga_lessons.algebra.DegenerateGeometryError`.
 
-:class:`_NormsAndInverse` is mixed into
+:class:`NormsAndInverseMixin` is mixed into
 :class:`~cga_lessons.algebra.multivector.Multivector`; it is not used alone.
 """
 
@@ -17,10 +17,10 @@ import numpy as np
 
 from cga_lessons.errors import DegenerateGeometryError
 
-from .coefficients import _REAL_TYPES, _is_real_single, _is_sympy
+from .coefficients import REAL_TYPES, is_real_single, is_sympy
 
 
-class _NormsAndInverse:
+class NormsAndInverseMixin:
     """Norms, normalization and the inverse (2.19) of :class:`~cga_lessons.algebra.multivector.Multivector`."""
 
     __slots__ = ()  # Multivector keeps only its two slots, no __dict__
@@ -32,7 +32,7 @@ class _NormsAndInverse:
     def norm(self):
         """sqrt(|<M ~M>_0|)."""
         v = self.norm2()
-        if _is_sympy(v):
+        if is_sympy(v):
             import sympy
 
             return sympy.sqrt(v)
@@ -41,7 +41,7 @@ class _NormsAndInverse:
     def normalized(self):
         """M / norm(M); raises when the norm is zero."""
         n = self.norm()
-        if not _is_sympy(n) and np.any(np.asarray(n) == 0):
+        if not is_sympy(n) and np.any(np.asarray(n) == 0):
             raise DegenerateGeometryError("normalized: the multivector has zero norm")
         return self / n
 
@@ -51,11 +51,11 @@ class _NormsAndInverse:
             raise DegenerateGeometryError("inv: the zero multivector has no inverse")
         rev = ~self
         mm = self * rev
-        if any(_is_sympy(v) for v in mm._c.values()):
+        if any(is_sympy(v) for v in mm._c.values()):
             mm = mm.expand()  # cancel before testing for a scalar, or a blade falls into the 32x32 solve
         elif 0 in mm._c and len(mm._c) > 1:
             # a versor's M ~M is a scalar up to round-off in the other blades
-            if _is_real_single(mm):
+            if is_real_single(mm):
                 rest = max(abs(v) for b, v in mm._c.items() if b != 0) / max(abs(mm._c[0]), 1e-300)
             else:
                 s0 = np.abs(np.asarray(mm._c[0], dtype=float))
@@ -64,10 +64,10 @@ class _NormsAndInverse:
                 mm = type(self)(self.algebra, {0: mm._c[0]})
         if set(mm._c) <= {0}:
             d = mm._c.get(0, 0)
-            if _is_sympy(d):
+            if is_sympy(d):
                 if d == 0:
                     raise DegenerateGeometryError("inv: M ~M = 0, the multivector is null and has no inverse")
-            elif type(d) in _REAL_TYPES:
+            elif type(d) in REAL_TYPES:
                 if d == 0:
                     raise DegenerateGeometryError("inv: M ~M = 0, the multivector is null and has no inverse")
             elif np.any(np.asarray(d) == 0):
@@ -79,7 +79,7 @@ class _NormsAndInverse:
     def _general_inverse(self):
         alg = self.algebra
         vals = list(self._c.values())
-        if any(_is_sympy(v) for v in vals):
+        if any(is_sympy(v) for v in vals):
             import sympy
 
             mat = sympy.zeros(alg.dim, alg.dim)

@@ -24,9 +24,9 @@ import numpy as np
 
 from cga_lessons.errors import InvalidInputError
 
-from .coefficients import _absmax, _is_real_batch, _is_real_single, _is_sympy, _is_zero
-from .display import _Display
-from .inverse import _NormsAndInverse
+from .coefficients import absmax, is_real_batch, is_real_single, is_sympy, is_zero
+from .display import DisplayMixin
+from .inverse import NormsAndInverseMixin
 
 if TYPE_CHECKING:
     from .core import Algebra
@@ -34,7 +34,7 @@ if TYPE_CHECKING:
 __all__ = ["Multivector", "commutator"]
 
 
-class Multivector(_NormsAndInverse, _Display):
+class Multivector(NormsAndInverseMixin, DisplayMixin):
     """A multivector of an :class:`~cga_lessons.algebra.Algebra`: a sparse map blade -> coefficient.
 
     Coefficients are floats, NumPy arrays (a batch, all of one shape) or SymPy
@@ -43,8 +43,8 @@ class Multivector(_NormsAndInverse, _Display):
     ones.
 
     The norms and the inverse (2.19) come from
-    :class:`~cga_lessons.algebra.inverse._NormsAndInverse`, the display and
-    the SymPy helpers from :class:`~cga_lessons.algebra.display._Display`.
+    :class:`~cga_lessons.algebra.inverse.NormsAndInverseMixin`, the display and
+    the SymPy helpers from :class:`~cga_lessons.algebra.display.DisplayMixin`.
     """
 
     __slots__ = ("algebra", "_c")
@@ -55,7 +55,7 @@ class Multivector(_NormsAndInverse, _Display):
         self.algebra = algebra
         c = coeffs or {}
         if _prune:
-            c = {k: v for k, v in c.items() if not _is_zero(v)}
+            c = {k: v for k, v in c.items() if not is_zero(v)}
         self._c = c
 
     def _sympy_(self):
@@ -142,7 +142,7 @@ class Multivector(_NormsAndInverse, _Display):
             if other.algebra is not self.algebra:
                 raise InvalidInputError(f"cannot combine multivectors of {self.algebra} and {other.algebra}")
             return other
-        if isinstance(other, np.ndarray) or isinstance(other, numbers.Number) or _is_sympy(other):
+        if isinstance(other, np.ndarray) or isinstance(other, numbers.Number) or is_sympy(other):
             return Multivector(self.algebra, {0: other}, _prune=True)
         return NotImplemented
 
@@ -182,12 +182,12 @@ class Multivector(_NormsAndInverse, _Display):
         """Geometric product (2.11)."""
         if isinstance(other, Multivector):
             return self.algebra._product(self, self._coerce(other), "gp")
-        if isinstance(other, (numbers.Number, np.ndarray)) or _is_sympy(other):
+        if isinstance(other, (numbers.Number, np.ndarray)) or is_sympy(other):
             return self._scale(other)
         return NotImplemented
 
     def __rmul__(self, other):
-        if isinstance(other, (numbers.Number, np.ndarray)) or _is_sympy(other):
+        if isinstance(other, (numbers.Number, np.ndarray)) or is_sympy(other):
             return Multivector(self.algebra, {b: other * v for b, v in self._c.items()}, _prune=True)
         return NotImplemented
 
@@ -195,7 +195,7 @@ class Multivector(_NormsAndInverse, _Display):
         """Division: by a scalar, or right multiplication by the inverse (2.19)."""
         if isinstance(other, Multivector):
             return self * other.inv()
-        if isinstance(other, (numbers.Number, np.ndarray)) or _is_sympy(other):
+        if isinstance(other, (numbers.Number, np.ndarray)) or is_sympy(other):
             return Multivector(self.algebra, {b: v / other for b, v in self._c.items()})
         return NotImplemented
 
@@ -252,7 +252,7 @@ class Multivector(_NormsAndInverse, _Display):
         other = self._coerce(other)
         if other is NotImplemented:
             return NotImplemented
-        if other.algebra is self.algebra and other._c and (_is_real_single(other) or _is_real_batch(other)):
+        if other.algebra is self.algebra and other._c and (is_real_single(other) or is_real_batch(other)):
             info = self.algebra._versor_info(self, tuple(other.grades_present()))
             if info is not None:
                 return self.algebra.apply_matrices(info[2], other)
@@ -288,7 +288,7 @@ class Multivector(_NormsAndInverse, _Display):
     def __invert__(self):
         """Reverse (2.32-2.33): grade k gets the sign (-1)^(k(k-1)/2)."""
         flip = self.algebra._rev_flip
-        return _mv(self.algebra, {b: (-v if flip[b] else v) for b, v in self._c.items()})
+        return mv_from_dict(self.algebra, {b: (-v if flip[b] else v) for b, v in self._c.items()})
 
     def reverse(self):
         return ~self
@@ -335,11 +335,11 @@ class Multivector(_NormsAndInverse, _Display):
         return np.zeros(shape) if shape else 0.0
 
     def __float__(self):
-        scale = max((_absmax(v) for v in self._c.values() if not _is_sympy(v)), default=0.0)
+        scale = max((absmax(v) for v in self._c.values() if not is_sympy(v)), default=0.0)
         extra = [
             self.algebra.blade_names[b]
             for b, v in self._c.items()
-            if b != 0 and (_is_sympy(v) or _absmax(v) > 1e-10 * max(scale, 1e-300))
+            if b != 0 and (is_sympy(v) or absmax(v) > 1e-10 * max(scale, 1e-300))
         ]
         if extra:
             raise InvalidInputError(f"float(): multivector is not a scalar (has blades {extra})")
@@ -367,7 +367,7 @@ class Multivector(_NormsAndInverse, _Display):
             return NotImplemented
         diff = self - other
         for v in diff._c.values():
-            if _is_sympy(v):
+            if is_sympy(v):
                 import sympy
 
                 if sympy.simplify(v) != 0:
@@ -386,7 +386,7 @@ class Multivector(_NormsAndInverse, _Display):
         return self.isclose(0.0, rtol=0.0, atol=atol)
 
 
-def _mv(algebra, coeffs: dict):
+def mv_from_dict(algebra, coeffs: dict):
     """A Multivector from a dict that is already pruned (no checks, no copy)."""
     m = object.__new__(Multivector)
     m.algebra = algebra
@@ -394,7 +394,7 @@ def _mv(algebra, coeffs: dict):
     return m
 
 
-def _mv_pruned(algebra, keys, values):
+def mv_from_pairs(algebra, keys, values):
     """A Multivector from parallel keys and values, dropping exact zeros."""
     out = {}
     for k, v in zip(keys, values):
@@ -402,7 +402,7 @@ def _mv_pruned(algebra, keys, values):
         if t is float or t is np.float64 or t is int:
             if v != 0:
                 out[k] = v
-        elif not _is_zero(v):
+        elif not is_zero(v):
             out[k] = v
     m = object.__new__(Multivector)
     m.algebra = algebra

@@ -5,19 +5,19 @@ Every product of :mod:`cga_lessons.algebra` (geometric (2.11), outer (2.14,
 product) loops over the non-zero blades of its two operands only.  The terms
 of one pair of blade sets, with their signs from the axioms (2.10), are found
 once and cached, and then run by one of three routes (see
-:meth:`_ProductTerms._product`):
+:meth:`ProductTermsMixin._product`):
 
 * the first time a pair of blade sets meets, an interpreted loop over its
-  terms (:func:`_run_product`);
+  terms (:func:`run_product`);
 * from the second time on, compiled straight-line code, one Python expression
-  per result blade (:func:`_compile_product`; the same code for floats, arrays
+  per result blade (:func:`compile_product`; the same code for floats, arrays
   and SymPy, and the same order of operations as the loop, so the two agree to
   the bit);
 * two single float multivectors with many terms (a motor times a point), one
   small matrix product ``outer(a, b).ravel() @ table`` with a cached table of
   signs (agrees to round-off).
 
-:class:`_ProductTerms` is mixed into :class:`~cga_lessons.algebra.Algebra`,
+:class:`ProductTermsMixin` is mixed into :class:`~cga_lessons.algebra.Algebra`,
 which owns the sign table and the cache it reads; it is not used alone.
 """
 
@@ -27,16 +27,16 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .coefficients import _is_float_single
-from .multivector import _mv_pruned
+from .coefficients import is_float_single
+from .multivector import mv_from_pairs
 
 if TYPE_CHECKING:
     from .multivector import Multivector
 
-_CHUNK = 48  # terms per Python expression in a compiled product (keeps the parser's nesting shallow)
+PRODUCT_CHUNK = 48  # terms per Python expression in a compiled product (keeps the parser's nesting shallow)
 
 
-def _compile_product(groups, n_a: int, n_b: int):
+def compile_product(groups, n_a: int, n_b: int):
     """Compile straight-line code for one product of two blade sets.
 
     ``groups`` lists, per result blade, its ``(i, j, sign)`` terms (positions
@@ -53,9 +53,9 @@ def _compile_product(groups, n_a: int, n_b: int):
     for k, terms in enumerate(groups):
         name = f"r{k}"
         names.append(name)
-        for start in range(0, len(terms), _CHUNK):
+        for start in range(0, len(terms), PRODUCT_CHUNK):
             parts = []
-            for n, (i, j, sg) in enumerate(terms[start : start + _CHUNK]):
+            for n, (i, j, sg) in enumerate(terms[start : start + PRODUCT_CHUNK]):
                 if start == 0 and n == 0:
                     parts.append(f"-(a{i} * b{j})" if sg < 0 else f"a{i} * b{j}")
                 else:
@@ -68,8 +68,8 @@ def _compile_product(groups, n_a: int, n_b: int):
     return namespace["_product"]
 
 
-def _run_product(groups, va, vb):
-    """The interpreted form of :func:`_compile_product` (same order of operations)."""
+def run_product(groups, va, vb):
+    """The interpreted form of :func:`compile_product` (same order of operations)."""
     out = []
     for terms in groups:
         i, j, sg = terms[0]
@@ -85,7 +85,7 @@ def _run_product(groups, va, vb):
     return out
 
 
-class _ProductTerms:
+class ProductTermsMixin:
     """The products of :class:`~cga_lessons.algebra.Algebra` (mixed into it).
 
     Reads the algebra's ``grades``, ``_sign_list`` (the signs of (2.10)) and
@@ -167,17 +167,17 @@ class _ProductTerms:
         if entry is None:
             entry = self._product_entry(key)
         table = entry[4]
-        if table is not None and _is_float_single(A) and _is_float_single(B):
+        if table is not None and is_float_single(A) and is_float_single(B):
             va = np.fromiter(ca.values(), dtype=float, count=len(ca))
             vb = np.fromiter(cb.values(), dtype=float, count=len(cb))
-            return _mv_pruned(self, entry[1], (np.outer(va, vb).ravel() @ table).tolist())
+            return mv_from_pairs(self, entry[1], (np.outer(va, vb).ravel() @ table).tolist())
         fn = entry[0]
         if fn is None:
             entry[2] += 1
             if entry[2] < self._COMPILE_AFTER:
-                return _mv_pruned(self, entry[1], _run_product(entry[3], list(ca.values()), list(cb.values())))
-            fn = entry[0] = _compile_product(entry[3], len(ca), len(cb))
-        return _mv_pruned(self, entry[1], fn(ca.values(), cb.values()))
+                return mv_from_pairs(self, entry[1], run_product(entry[3], list(ca.values()), list(cb.values())))
+            fn = entry[0] = compile_product(entry[3], len(ca), len(cb))
+        return mv_from_pairs(self, entry[1], fn(ca.values(), cb.values()))
 
     # ------------------------------------------------ linear maps as matrices
     def left_matrix(self, A: Multivector, blades_in=None, blades_out=None) -> np.ndarray:

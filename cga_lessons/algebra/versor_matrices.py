@@ -2,10 +2,10 @@
 
 A versor V acts linearly on each grade: ``X -> V X^ V^-1`` (2.82) maps grade-k
 blades to grade-k blades.  For a single numeric versor,
-:meth:`_VersorMatrices.versor_matrices` builds that action as one matrix per
+:meth:`VersorMatricesMixin.versor_matrices` builds that action as one matrix per
 grade, from one cached bilinear table per blade set (no sandwich products):
 with ``v`` the coefficients of V, ``outer(v, v).ravel() @ T`` gives ``V ~V``
-and every matrix at once.  :meth:`_VersorMatrices.apply_matrices` then applies
+and every matrix at once.  :meth:`VersorMatricesMixin.apply_matrices` then applies
 the matrices to one entity or to a whole batch with one matrix product per
 grade, so moving a million points by a motor costs one 5x5 matrix product.
 ``V >> X`` (:meth:`~cga_lessons.algebra.multivector.Multivector.__rshift__`, the
@@ -13,7 +13,7 @@ sandwich of (2.98, 2.101, 2.103)) and :func:`cga_lessons.conformal.versors.apply
 this route by themselves.
 
 Motors of G(4,1) (even, commuting with the point at infinity e, 2.102) take a
-route of their own, :meth:`_VersorMatrices.rigid_motion`: the rotor R and the
+route of their own, :meth:`VersorMatricesMixin.rigid_motion`: the rotor R and the
 translation t are read linearly off the coefficients (2.141-2.144), and the
 matrices are built in closed form from (R, t) in the null basis
 (e1, e2, e3, e, e0), where no entry is a difference of large terms, and applied
@@ -21,7 +21,7 @@ there (:class:`VersorMatrices`).  In the e+/e- basis a motor translating by t
 has entries such as 1 - t^2/2 and a point at x has e+/e- coefficients of size
 x^2/2, so the plain product loses ~eps |t|^2 |x|^2 to cancellation.
 
-:class:`_VersorMatrices` is mixed into :class:`~cga_lessons.algebra.Algebra`,
+:class:`VersorMatricesMixin` is mixed into :class:`~cga_lessons.algebra.Algebra`,
 which owns the sign table and the caches it reads; it is not used alone.
 """
 
@@ -34,14 +34,14 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .coefficients import _is_real_single
-from .multivector import _mv, _mv_pruned
+from .coefficients import is_real_single
+from .multivector import mv_from_dict, mv_from_pairs
 
 if TYPE_CHECKING:
     from .multivector import Multivector
 
 
-def _stack_rows(vals, shape: tuple) -> np.ndarray:
+def stack_rows(vals, shape: tuple) -> np.ndarray:
     """Stack batch coefficients into a ``(k,) + shape`` array.
 
     No copy when they already are the consecutive rows of one C-contiguous
@@ -128,7 +128,7 @@ def _scratch(size: int) -> np.ndarray:
 class VersorMatrices(dict):
     """``{grade: k x k matrix}`` of a versor's action in the blade order of (2.9), e+/e- basis.
 
-    Returned by :meth:`Algebra.versor_matrices <_VersorMatrices.versor_matrices>`.  For a motor of G(4,1)
+    Returned by :meth:`Algebra.versor_matrices <VersorMatricesMixin.versor_matrices>`.  For a motor of G(4,1)
     two more attributes are set (None otherwise): ``rigid``, the ``(R, t)`` of ``rigid_motion``, and
     ``null``, the same action on the coordinates in which :meth:`apply_matrices` applies it (each pair of
     e+/e- coefficients ``(a, b)`` taken as ``(a, b - a)``; see ``_motor_info``).  All arrays are read-only
@@ -143,7 +143,7 @@ class VersorMatrices(dict):
         self.null = null
 
 
-class _VersorMatrices:
+class VersorMatricesMixin:
     """Versor matrices of :class:`~cga_lessons.algebra.Algebra` (mixed into it).
 
     Reads the algebra's ``_sign_list`` (the signs of (2.10)), ``_rev_flip``,
@@ -215,7 +215,7 @@ class _VersorMatrices:
         element of the Clifford group, so it keeps grades.
         """
         c = V._c
-        if not c or not _is_real_single(V) or self.n > 5:
+        if not c or not is_real_single(V) or self.n > 5:
             return None
         ck = (tuple(c), tuple(c.values()), grades)
         hit = self._versor_cache.get(ck)
@@ -282,7 +282,7 @@ class _VersorMatrices:
         at x holds ``x^2/2``.  Cached by value; the arrays are read-only.
         """
         c = V._c
-        if not c or not _is_real_single(V):
+        if not c or not is_real_single(V):
             return None
         key = ("rigid", tuple(c), tuple(c.values()))
         hit = self._versor_cache.get(key, False)
@@ -527,7 +527,7 @@ class _VersorMatrices:
                 else:
                     vals += self._apply_null_one(g, null[g], [float(c.get(b, 0.0)) for b in blades])
                 keys += blades
-            return _mv_pruned(self, keys, vals)
+            return mv_from_pairs(self, keys, vals)
         out = {}
         for g, mat in mats.items():
             blades = self.grade_blades[g]
@@ -538,7 +538,7 @@ class _VersorMatrices:
             if null is not None:
                 res = self._apply_null(g, null[g], [c.get(b) for b in blades], batch)
             else:
-                block = _stack_rows([c[blades[j]] for j in idx], batch)
+                block = stack_rows([c[blades[j]] for j in idx], batch)
                 res = sub @ (block if len(batch) == 1 else block.reshape(len(idx), -1))
             if len(batch) != 1:  # a batch of any shape: one (k, k) x (k, prod(shape)) product
                 res = res.reshape((len(blades),) + batch)
@@ -546,7 +546,7 @@ class _VersorMatrices:
             for i, b in enumerate(blades):
                 if nz[i]:
                     out[b] = res[i]
-        return _mv(self, out)
+        return mv_from_dict(self, out)
 
     def _apply_null_one(self, g: int, K: np.ndarray, x: list) -> list:
         """The motor's ``K`` (:meth:`_motor_info`) on the grade-g e+/e- coefficients of one entity (floats)."""

@@ -42,8 +42,6 @@ from .segments_csv import SEGMENT_COLUMNS, read_segments_csv, write_segments_csv
 
 __all__ = ["main", "build_parser", "CLIError", "SEGMENT_COLUMNS", "read_segments_csv", "write_segments_csv"]
 
-_ROOT = PROJECT_ROOT
-
 
 def _non_negative_int(text):
     try:
@@ -124,7 +122,7 @@ def _log_stem(path: Path) -> str:
 
 def _read_log(path):
     from cga_lessons.algebra import InvalidInputError
-    from cga_lessons.mapping2d.laser import read_carmen_log
+    from cga_lessons.mapping2d import read_carmen_log
 
     try:
         return read_carmen_log(path)
@@ -138,7 +136,7 @@ def _read_log(path):
 
 
 def _cmd_lab(args) -> int:
-    nbdir = Path(args.notebook_dir) if args.notebook_dir else _ROOT / "notebooks"
+    nbdir = Path(args.notebook_dir) if args.notebook_dir else PROJECT_ROOT / "notebooks"
     if not nbdir.is_dir():
         raise CLIError(f"no notebooks folder at {nbdir} (run from a checkout of the course, or pass --notebook-dir)")
     # The lab's root is the checkout (README.md, data/ and notebooks/ side by side), the notebooks' folder opened.
@@ -169,8 +167,7 @@ def _cmd_map2d(args) -> int:
     import numpy as np
 
     from cga_lessons.algebra import InvalidInputError
-    from cga_lessons.mapping2d.laser import simulate_odometry
-    from cga_lessons.mapping2d.trajectories import odometry_repeats_poses, write_tum
+    from cga_lessons.mapping2d import odometry_repeats_poses, simulate_odometry, write_tum
 
     log_path = Path(args.log)
     stem = _log_stem(log_path)
@@ -241,7 +238,7 @@ def _print_trajectory_errors(odometry, corrected, truth, source: str):
     """The ATE and the RPE per metre of the odometry and of the corrected poses against the log's poses."""
     import numpy as np
 
-    from cga_lessons.mapping2d.trajectories import absolute_trajectory_error, relative_pose_error
+    from cga_lessons.mapping2d import absolute_trajectory_error, relative_pose_error
 
     travelled = float(np.sum(np.hypot(*np.diff(truth[:, :2], axis=0).T))) if len(truth) > 1 else 0.0
     print(
@@ -307,7 +304,7 @@ def _cmd_relocalize(args) -> int:
         if len(indices) == 1:
             found = reloc.relocalize(segments, scan=log.scans[k], max_range=args.max_range)
         else:  # a sequence: the scans with the log's odometry between them; the pose is the last scan's
-            from cga_lessons.relocalization.sequence import relocalize_sequence
+            from cga_lessons.relocalization import relocalize_sequence
 
             scans = [log.scans[i] for i in indices]
             found = relocalize_sequence(segments, scans, log.odometry[indices], max_range=args.max_range)
@@ -338,7 +335,7 @@ def _pose_text(pose) -> str:
 
 
 def _cmd_equations(args) -> int:
-    from cga_lessons.equations import core as eq
+    from cga_lessons.equations import main as equations_main
 
     argv = ["--format", args.format] + (["--todo"] if args.todo else [])
     if args.write_readme:
@@ -349,7 +346,7 @@ def _cmd_equations(args) -> int:
         if not Path(args.readme).is_file():
             raise CLIError(f"no such README {args.readme!r}")
         argv += ["--readme", args.readme]
-    return eq.main(argv)
+    return equations_main(argv)
 
 
 def _cmd_export_html(args) -> int:

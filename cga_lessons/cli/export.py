@@ -17,8 +17,10 @@ import shutil
 import sys
 from pathlib import Path
 
+from cga_lessons.paths import PROJECT_ROOT
+
 from . import site_math
-from .commands import _ROOT, CLIError
+from .commands import CLIError
 from .io import OutputExistsError, OutputPathError, StagedOutputs, check_output_dir, check_output_files
 
 __all__ = ["export_html"]
@@ -95,7 +97,7 @@ def _mathjax_copy(out: Path, force: bool) -> tuple[Path, list[str]] | None:
 
 def export_html(args) -> int:
     """Run ``export-html`` with the parsed arguments ``args``; returns the exit status."""
-    nbdir = Path(args.notebook_dir) if args.notebook_dir else _ROOT / "notebooks"
+    nbdir = Path(args.notebook_dir) if args.notebook_dir else PROJECT_ROOT / "notebooks"
     if not nbdir.is_dir():
         raise CLIError(f"no notebooks folder at {nbdir}")
     paths = sorted(p for p in nbdir.glob("*.ipynb") if args.include_solutions or p.stem != "teacher_solutions")

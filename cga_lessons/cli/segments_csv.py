@@ -98,7 +98,7 @@ def read_segments_csv(path) -> list:
     missing, not UTF-8 text (binary, UTF-16) or malformed (a field beyond the csv module's limit, a point count
     that is not an integer from 0 to :data:`MAX_SEGMENT_POINTS`, a segment of length zero).
     """
-    from cga_lessons.mapping2d.lines import Segment
+    from cga_lessons.mapping2d import Segment
 
     path = Path(path)
     out = []

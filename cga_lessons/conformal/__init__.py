@@ -35,6 +35,16 @@ from .blades_classify import *  # noqa: F403
 from .blades_classify import __all__ as _blades_classify_all
 from .entities import *  # noqa: F403
 from .entities import __all__ as _entities_all
+from .fitting import (  # noqa: F401
+    fit_circle,
+    fit_circle_euclidean,
+    fit_plane,
+    fit_plane_euclidean,
+    fit_sphere,
+    fit_sphere_geometric,
+    fit_sphere_kasa,
+    segment_planes,
+)
 from .model import *  # noqa: F403
 from .model import __all__ as _model_all
 from .model import point_weight  # noqa: F401
@@ -45,6 +55,7 @@ from .versor_log import *  # noqa: F403
 from .versor_log import __all__ as _versor_log_all
 from .versors import *  # noqa: F403
 from .versors import __all__ as _versors_all
+from .versors_rigid import why_not_motor  # noqa: F401
 
 __all__ = (
     list(_model_all)
@@ -55,5 +66,7 @@ __all__ = (
     + list(_blades_all)
     + list(_blades_classify_all)
     + list(_motor_estimation_all)
-    + ["motor_between"]
+    + ["motor_between", "why_not_motor"]
+    + ["fit_sphere", "fit_sphere_kasa", "fit_sphere_geometric", "fit_plane", "fit_plane_euclidean"]
+    + ["fit_circle", "fit_circle_euclidean", "segment_planes"]
 )

@@ -25,8 +25,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector
-from cga_lessons.algebra.core import _is_sympy
+from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector, is_sympy
 
 from . import entities_frame as _F
 from .model import (
@@ -34,8 +33,8 @@ from .model import (
     IE,
     E,
     Ic,
-    _any_sym,
-    _check_points,
+    any_symbolic,
+    check_points,
     down,
     einf,
     ep,
@@ -73,7 +72,7 @@ __all__ = [
 
 def _c(X: Multivector):
     """Constants matching the coefficient kind of X (exact for SymPy)."""
-    if _any_sym(X):
+    if any_symbolic(X):
         return exact_constants()
     return {"einf": einf, "E": E, "IE": IE, "Ic": Ic, "ep": ep}
 
@@ -85,7 +84,7 @@ def _require_nonzero(X: Multivector, func: str, what: str) -> Multivector:
     return X
 
 
-def _grade_of(X: Multivector, func: str, allowed: tuple[int, ...], arg: str | None = None) -> int:
+def grade_of(X: Multivector, func: str, allowed: tuple[int, ...], arg: str | None = None) -> int:
     at = f"{func}: {arg}" if arg else func
     if not isinstance(X, Multivector):
         raise InvalidInputError(f"{at}: expected a Multivector, got {type(X).__name__}")
@@ -108,7 +107,7 @@ def dual_form(X: Multivector) -> Multivector:
 def _euclid_point(x, func: str):
     """Float coordinates of x (Euclidean, or a conformal point); None when symbolic."""
     if isinstance(x, Multivector):
-        if _any_sym(x):
+        if any_symbolic(x):
             return None
         _F.split(x, func, "x")  # NaN/inf check, named
         return down(x)
@@ -124,7 +123,7 @@ def _exact_up(x) -> Multivector:
     if isinstance(x, Multivector):
         return up(x)  # up raises the usual error
     vals = list(x) if not isinstance(x, sympy.MatrixBase) else [x[i] for i in range(len(x))]
-    return up([v if _is_sympy(v) else sympy.nsimplify(v, rational=True) for v in vals])
+    return up([v if is_sympy(v) else sympy.nsimplify(v, rational=True) for v in vals])
 
 
 # --------------------------------------------------------------- point pairs
@@ -182,9 +181,9 @@ def point_pair_endpoints(PP: Multivector, min_separation: float | None = None):
         For an imaginary point pair (B B < 0), a single (tangent) point, or
         points closer than the guard (the message gives both numbers).
     """
-    g = _grade_of(PP, "point_pair_endpoints", (2, 3), "PP")
+    g = grade_of(PP, "point_pair_endpoints", (2, 3), "PP")
     B = PP if g == 2 else dual_form(PP)
-    if _any_sym(B):
+    if any_symbolic(B):
         import sympy
 
         c = _c(B)
@@ -213,9 +212,9 @@ def point_pair_sphere(PP: Multivector) -> Multivector:
     the pair's midpoint, radius half their distance.  Floats read the
     midpoint and h^2 as :func:`point_pair_endpoints` does (no guard).
     """
-    g = _grade_of(PP, "point_pair_sphere", (2, 3), "PP")
+    g = grade_of(PP, "point_pair_sphere", (2, 3), "PP")
     B = PP if g == 2 else dual_form(PP)
-    if _any_sym(B):
+    if any_symbolic(B):
         S = (B * (B ^ _c(B)["einf"]).inv()).grade(1)
         return normalize_point(S, "point_pair_sphere")
     m, h2, _, _ = _F.read_pair(B, "point_pair_sphere", "PP")
@@ -232,7 +231,7 @@ def sphere(center, radius) -> Multivector:
     of two that is.
     """
     pts = _F.points("sphere", "center", center)
-    if pts is None or _is_sympy(radius):
+    if pts is None or is_sympy(radius):
         return up(center) - exact_constants()["einf"] * (radius**2 / 2)
     r = np.asarray(radius, dtype=float)
     if not np.all(np.isfinite(r)) or np.any(r < 0):
@@ -280,9 +279,9 @@ def sphere_center_radius(S: Multivector):
     DegenerateGeometryError
         For a plane (``s . e = 0``) or an imaginary sphere (``s^2 < 0``).
     """
-    g = _grade_of(S, "sphere_center_radius", (1, 4), "S")
+    g = grade_of(S, "sphere_center_radius", (1, 4), "S")
     s = S if g == 1 else standard_form(S)
-    if _any_sym(s):
+    if any_symbolic(s):
         import sympy
 
         s = normalize_point(s, "sphere_center_radius")
@@ -304,10 +303,10 @@ def point_sphere_side(x, S: Multivector, atol: float = 1e-9):
     (see :func:`sphere_center_radius`): points closer to the surface than
     that, in length^2, get an arbitrary sign.
     """
-    g = _grade_of(S, "point_sphere_side", (1, 4), "S")
+    g = grade_of(S, "point_sphere_side", (1, 4), "S")
     s = S if g == 1 else standard_form(S)
     xe = _euclid_point(x, "point_sphere_side")
-    if xe is None or _any_sym(s):
+    if xe is None or any_symbolic(s):
         X = up(x) if not isinstance(x, Multivector) else normalize_point(x, "point_sphere_side")
         v = np.asarray((X | normalize_point(s, "point_sphere_side")).scalar(), dtype=float)
     else:
@@ -324,7 +323,7 @@ def plane(normal, distance) -> Multivector:
     ``normal`` is normalised to unit length; ``distance`` is the signed
     distance delta from the origin along it.
     """
-    nv, sym = _check_points(normal, "plane", "normal")
+    nv, sym = check_points(normal, "plane", "normal")
     if sym:
         return vector(nv) + exact_constants()["einf"] * distance
     norm = np.linalg.norm(nv, axis=-1)
@@ -359,11 +358,11 @@ def plane_normal_distance(P: Multivector):
     ``(b - a) x (c - a)``.  Raises :class:`InvalidInputError` for a sphere
     (``e . P != 0``).
     """
-    g = _grade_of(P, "plane_normal_distance", (1, 4), "P")
+    g = grade_of(P, "plane_normal_distance", (1, 4), "P")
     p = P if g == 1 else standard_form(P)
     if g == 4:
         p = -p  # e ^ a ^ b ^ c (2.77) dualises to -(N + d e) with N along (b-a)x(c-a)
-    if _any_sym(p):
+    if any_symbolic(p):
         import sympy
 
         n = euclidean(p)
@@ -391,14 +390,14 @@ def line_from_points(a, b) -> Multivector:
     return _F.line(*pts, "line_from_points")
 
 
-def _as_dual_line(L: Multivector, func: str) -> Multivector:
-    g = _grade_of(L, func, (2, 3), "L")
+def as_dual_line(L: Multivector, func: str) -> Multivector:
+    g = grade_of(L, func, (2, 3), "L")
     return L if g == 3 else dual_form(L)
 
 
 def _line_dm(L: Multivector, func: str):
     """Direction d (length |a - b|) and moment a x d of a float line, checked to be a line."""
-    return _F.read_line(_as_dual_line(L, func), func, "L")
+    return _F.read_line(as_dual_line(L, func), func, "L")
 
 
 def normalize_line(L: Multivector) -> Multivector:
@@ -408,8 +407,8 @@ def normalize_line(L: Multivector) -> Multivector:
     returns the same form.  In floats ``sqrt(L* L*)`` is read as the length of
     the E part d (2.81), not summed from the squares of the coefficients.
     """
-    Ld = _as_dual_line(L, "normalize_line")
-    if _any_sym(Ld):
+    Ld = as_dual_line(L, "normalize_line")
+    if any_symbolic(Ld):
         import sympy
 
         return L / sympy.sqrt((Ld * Ld).scalar())
@@ -423,9 +422,9 @@ def line_direction(L: Multivector):
     For ``line_from_points(a, b)`` this is ``(b - a)/|b - a|``.  Raises
     :class:`InvalidInputError` for a circle (or any round).
     """
-    if _any_sym(L):
+    if any_symbolic(L):
         Ln = normalize_line(L)
-        return euclidean(_as_dual_line(Ln, "line_direction") | _c(Ln)["E"])
+        return euclidean(as_dual_line(Ln, "line_direction") | _c(Ln)["E"])
     d, _ = _line_dm(L, "line_direction")
     return d / _F.norm(d)[..., None]
 
@@ -439,8 +438,8 @@ def line_moment(L: Multivector):
     adds other grades; see the erratum in the registry.  In floats: the e
     part of L* (``a x d``) over |d|.
     """
-    if _any_sym(L):
-        Ln = normalize_line(_as_dual_line(L, "line_moment"))
+    if any_symbolic(L):
+        Ln = normalize_line(as_dual_line(L, "line_moment"))
         return -euclidean(_c(Ln)["ep"] | standard_form(Ln))
     d, mu = _line_dm(L, "line_moment")
     return mu / _F.norm(d)[..., None]
@@ -448,7 +447,7 @@ def line_moment(L: Multivector):
 
 def line_closest_point(L: Multivector):
     """Point of the line closest to the origin, p = -r . M with M = m I_E, Eq. (2.129) (= r x m)."""
-    if not _any_sym(L):
+    if not any_symbolic(L):
         d, mu = _line_dm(L, "line_closest_point")
         return np.cross(d, mu) / _F.dot(d, d)[..., None]
     r, m = line_direction(L), line_moment(L)
@@ -467,9 +466,9 @@ def point_line_distance(x, L: Multivector):
     the distance from the origin (the formula above loses eps |x|^2 / rho).
     Returns a float (or an (N,) array); 0 for points on the line.
     """
-    Ld = _as_dual_line(L, "point_line_distance")
+    Ld = as_dual_line(L, "point_line_distance")
     xe = _euclid_point(x, "point_line_distance")
-    if not (xe is None or _any_sym(Ld)):
+    if not (xe is None or any_symbolic(Ld)):
         d, mu = _F.read_line(Ld, "point_line_distance", "L")
         nd = _F.norm(d)
         p0 = np.cross(d, mu) / (nd * nd)[..., None]
@@ -507,7 +506,7 @@ def circle_from_points(a, b, c) -> Multivector:
 
 def circle_plane(Z: Multivector) -> Multivector:
     """Plane of a circle, P_z* = z* ^ e (dual form), Eq. (2.119)."""
-    g = _grade_of(Z, "circle_plane", (2, 3), "Z")
+    g = grade_of(Z, "circle_plane", (2, 3), "Z")
     Zd = Z if g == 3 else dual_form(Z)
     return Zd ^ _c(Zd)["einf"]
 
@@ -537,9 +536,9 @@ def circle_center_radius(Z: Multivector):
     DegenerateGeometryError
         For a line (``z* ^ e = 0``) or an imaginary circle.
     """
-    g = _grade_of(Z, "circle_center_radius", (2, 3), "Z")
+    g = grade_of(Z, "circle_center_radius", (2, 3), "Z")
     Zd = Z if g == 3 else dual_form(Z)
-    if _any_sym(Zd):
+    if any_symbolic(Zd):
         z = standard_form(Zd)
         center, radius = sphere_center_radius(((_c(z)["einf"] | z) * z).grade(1))
         n, _ = plane_normal_distance(-circle_plane(z))  # z* ^ e = -(e ^ a ^ b ^ c)

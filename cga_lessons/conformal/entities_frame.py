@@ -33,7 +33,7 @@ import numpy as np
 
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector
 
-from .model import COORD_LIMIT, G41, _check_points
+from .model import COORD_LIMIT, G41, check_points
 
 EPS = float(np.finfo(float).eps)
 _VEC = [1, 2, 4]
@@ -181,7 +181,7 @@ def points(func: str, names: str, *pts):
     """Validated float points (broadcast to one shape), or None when any is symbolic."""
     arrs = []
     for name, p in zip(names.split(", "), pts):
-        arr, sym = _check_points(p, func, name)
+        arr, sym = check_points(p, func, name)
         if sym:
             return None
         if np.any(np.abs(arr) > COORD_LIMIT):

@@ -33,8 +33,17 @@ import numbers
 
 import numpy as np
 
-from cga_lessons.algebra import Algebra, DegenerateGeometryError, InvalidInputError, Multivector
-from cga_lessons.algebra.core import _REAL_TYPES, _absmax, _all_finite, _is_real_single, _is_sympy
+from cga_lessons.algebra import (
+    REAL_TYPES,
+    Algebra,
+    DegenerateGeometryError,
+    InvalidInputError,
+    Multivector,
+    absmax,
+    all_finite,
+    is_real_single,
+    is_sympy,
+)
 
 __all__ = [
     "G41",
@@ -110,7 +119,7 @@ def exact_constants() -> dict:
 COORD_LIMIT = 1e153
 
 
-def _check_points(x, func: str, name: str = "x"):
+def check_points(x, func: str, name: str = "x"):
     """Validate Euclidean point(s): returns (array or list, symbolic flag).
 
     Accepts shape (3,) or (N, 3) numbers, or a length-3 sequence of SymPy
@@ -118,7 +127,7 @@ def _check_points(x, func: str, name: str = "x"):
     """
     if isinstance(x, Multivector):
         raise InvalidInputError(f"{func}: {name} must be Euclidean coordinates, got a Multivector (use down() first)")
-    if isinstance(x, (list, tuple)) and len(x) == 3 and any(_is_sympy(c) for c in x):
+    if isinstance(x, (list, tuple)) and len(x) == 3 and any(is_sympy(c) for c in x):
         return list(x), True
     if hasattr(x, "shape") and not isinstance(x, np.ndarray) and _is_sympy_matrix(x):
         return [x[i] for i in range(3)], True
@@ -128,7 +137,7 @@ def _check_points(x, func: str, name: str = "x"):
         raise InvalidInputError(f"{func}: {name} must be numbers of shape (3,) or (N, 3), got {x!r}") from exc
     if arr.ndim not in (1, 2) or arr.shape[-1] != 3:
         raise InvalidInputError(f"{func}: {name} must have shape (3,) or (N, 3), got {arr.shape}")
-    if not _all_finite(arr):
+    if not all_finite(arr):
         raise InvalidInputError(f"{func}: {name} contains NaN or inf")
     return arr, False
 
@@ -144,7 +153,7 @@ def _is_sympy_matrix(x) -> bool:
 
 def vector(x, func: str = "vector", name: str = "x") -> Multivector:
     """Euclidean vector(s) x1 e1 + x2 e2 + x3 e3 of G(4,1); x of shape (3,) or (N, 3)."""
-    arr, sym = _check_points(x, func, name)
+    arr, sym = check_points(x, func, name)
     if sym:
         return Multivector(G41, {1: arr[0], 2: arr[1], 4: arr[2]}, _prune=True)
     if arr.ndim == 1:
@@ -172,7 +181,7 @@ def up(x) -> Multivector:
     >>> X["e+"], X["e-"]  # (x^2 - 1)/2 and (x^2 + 1)/2, Eq. (2.63)
     (12.0, 13.0)
     """
-    arr, sym = _check_points(x, "up")
+    arr, sym = check_points(x, "up")
     if not sym and arr.size and float(np.max(np.abs(arr))) > COORD_LIMIT:
         raise InvalidInputError(
             f"up: x: coordinates up to {float(np.max(np.abs(arr))):.3g}: beyond {COORD_LIMIT:.0e} their squares "
@@ -208,11 +217,11 @@ def up(x) -> Multivector:
 
 def point_weight(X: Multivector):
     """-e . X, the homogeneous weight of a conformal point or sphere (2.111, 2.115)."""
-    return -(X | einf).scalar() if not _any_sym(X) else -(X | exact_constants()["einf"]).scalar()
+    return -(X | einf).scalar() if not any_symbolic(X) else -(X | exact_constants()["einf"]).scalar()
 
 
-def _any_sym(X: Multivector) -> bool:
-    return any(_is_sympy(v) for v in X._c.values())
+def any_symbolic(X: Multivector) -> bool:
+    return any(is_sympy(v) for v in X._c.values())
 
 
 def normalize_point(X: Multivector, func: str = "normalize_point") -> Multivector:
@@ -222,9 +231,9 @@ def normalize_point(X: Multivector, func: str = "normalize_point") -> Multivecto
     at infinity, a plane, or not a point at all).
     """
     w = point_weight(X)
-    if _is_sympy(w):
+    if is_sympy(w):
         return (X / w).simplify()
-    if type(w) in _REAL_TYPES and _is_real_single(X):  # one point: plain floats, no NumPy calls
+    if type(w) in REAL_TYPES and is_real_single(X):  # one point: plain floats, no NumPy calls
         scale = math.sqrt(sum(float(v) ** 2 for v in X._c.values()))
         if abs(w) <= 1e-14 * max(scale, 1e-300):
             raise DegenerateGeometryError(
@@ -240,7 +249,7 @@ def normalize_point(X: Multivector, func: str = "normalize_point") -> Multivecto
 
 def euclidean(X: Multivector):
     """The e1, e2, e3 coefficients of a multivector as an array (3,) or (N, 3)."""
-    if _any_sym(X):
+    if any_symbolic(X):
         import sympy
 
         return sympy.Matrix([X._c.get(b, sympy.Integer(0)) for b in (1, 2, 4)])  # exact zeros, not 0.0
@@ -268,14 +277,14 @@ def down(X: Multivector):
     """
     if not isinstance(X, Multivector):
         raise InvalidInputError(f"down: expected a conformal point (Multivector), got {type(X).__name__}")
-    if _is_real_single(X):
+    if is_real_single(X):
         return _down_one(X)
-    if X.shape and not _any_sym(X):
+    if X.shape and not any_symbolic(X):
         return _down_batch(X)
-    if not _any_sym(X):
-        scale = max((_absmax(v) for v in X._c.values()), default=0.0)
+    if not any_symbolic(X):
+        scale = max((absmax(v) for v in X._c.values()), default=0.0)
         bad = [
-            G41.blade_names[b] for b, v in X._c.items() if G41.grades[b] != 1 and _absmax(v) > 1e-9 * max(scale, 1e-300)
+            G41.blade_names[b] for b, v in X._c.items() if G41.grades[b] != 1 and absmax(v) > 1e-9 * max(scale, 1e-300)
         ]
         X = X.grade(1)
     else:
@@ -283,7 +292,7 @@ def down(X: Multivector):
     if bad:
         raise InvalidInputError(f"down: a conformal point is a vector (grade 1), got blades {bad}")
     Xn = normalize_point(X, "down")
-    if _any_sym(Xn):
+    if any_symbolic(Xn):
         c = exact_constants()
         return euclidean(((Xn ^ c["E"]) * c["E"]).simplify())
     return euclidean((Xn ^ E) * E)
@@ -327,8 +336,8 @@ def _down_batch(X: Multivector) -> np.ndarray:
     c, n = X._c, X.shape
     other = [b for b in c if G41.grades[b] != 1]
     if other:
-        scale = max(_absmax(v) for v in c.values())
-        bad = [G41.blade_names[b] for b in other if _absmax(c[b]) > 1e-9 * max(scale, 1e-300)]
+        scale = max(absmax(v) for v in c.values())
+        bad = [G41.blade_names[b] for b in other if absmax(c[b]) > 1e-9 * max(scale, 1e-300)]
         if bad:
             raise InvalidInputError(f"down: a conformal point is a vector (grade 1), got blades {bad}")
     zero = np.zeros(n)
@@ -342,10 +351,10 @@ def _down_batch(X: Multivector) -> np.ndarray:
     np.divide(x1, w, out=out[..., 0])
     np.divide(x2, w, out=out[..., 1])
     np.divide(x3, w, out=out[..., 2])
-    if not _all_finite(out):
+    if not all_finite(out):
         raise InvalidInputError("down: X has NaN or inf coefficients")
     return out
 
 
 def is_scalar_like(v) -> bool:
-    return isinstance(v, numbers.Number) or _is_sympy(v) or isinstance(v, np.ndarray)
+    return isinstance(v, numbers.Number) or is_sympy(v) or isinstance(v, np.ndarray)

@@ -37,11 +37,17 @@ import numbers
 
 import numpy as np
 
-from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector
+from cga_lessons.algebra import (
+    DegenerateGeometryError,
+    InvalidInputError,
+    Multivector,
+    is_real_batch,
+    is_real_single,
+    is_sympy,
+)
 from cga_lessons.algebra import exp as _exp
-from cga_lessons.algebra.core import _is_real_batch, _is_real_single, _is_sympy
 
-from .model import G41, IE, E, _any_sym, _check_points, down, einf, exact_constants, up, vector
+from .model import G41, IE, E, any_symbolic, check_points, down, einf, exact_constants, up, vector
 from .versors_rigid import decompose_motor, matrix_to_motor, motor_to_matrix, rotor_angle_axis
 
 __all__ = [
@@ -63,7 +69,7 @@ __all__ = [
 
 
 def _consts(X: Multivector):
-    return exact_constants() if _any_sym(X) else {"einf": einf, "E": E, "IE": IE}
+    return exact_constants() if any_symbolic(X) else {"einf": einf, "E": E, "IE": IE}
 
 
 # --------------------------------------------------------------- application
@@ -121,7 +127,7 @@ def apply(V: Multivector, X: Multivector) -> Multivector:
         raise InvalidInputError("apply: V and X must be Multivectors")
     if not V._c:
         raise DegenerateGeometryError("apply: the zero multivector is not a versor")
-    if X._c and V.algebra is X.algebra and (_is_real_single(X) or _is_real_batch(X)):
+    if X._c and V.algebra is X.algebra and (is_real_single(X) or is_real_batch(X)):
         mats = V.algebra.versor_matrices(V, X.grades_present())
         if mats is not None:
             return V.algebra.apply_matrices(mats, X)
@@ -139,10 +145,10 @@ def apply_to_points(V: Multivector, x) -> np.ndarray:
     versors (inversions, dilations) and SymPy input go through the conformal
     point and :func:`~cga_lessons.conformal.model.down`.
     """
-    arr, sym = _check_points(x, "apply_to_points")
+    arr, sym = check_points(x, "apply_to_points")
     if not isinstance(V, Multivector):
         raise InvalidInputError(f"apply_to_points: V: expected a versor (Multivector), got {type(V).__name__}")
-    if sym or _any_sym(V):
+    if sym or any_symbolic(V):
         return down(apply(V, up(arr)))
     affine = G41.rigid_motion(V) if V.algebra is G41 else None
     if affine is None:
@@ -171,7 +177,7 @@ def _rigid_affine(V: Multivector):
     that of up(x), so the map is y = R x + t with R = A[:3,:3] and
     t = (A[:3,4] - A[:3,3]) / 2.  Cached by the versor's coefficients.
     """
-    if not _is_real_single(V):
+    if not is_real_single(V):
         return None
     key = (tuple(V._c), tuple(V._c.values()))
     hit = _AFFINE_CACHE.get(key, False)
@@ -202,7 +208,7 @@ def _real(x, func: str, name: str, *, array: bool = False):
     Refuses bools, strings, None, complex numbers, NaN and inf (a SymPy
     expression known to be non-real or infinite too) with "func: name: problem".
     """
-    if _is_sympy(x):
+    if is_sympy(x):
         if x.is_real is False or x.is_finite is False or x.has(_sympy_nan()):
             raise InvalidInputError(f"{func}: {name}: must be a finite real number, got {_short(x)}")
         return x
@@ -245,7 +251,7 @@ def _exact(a):
     rational of their shortest decimal form (0.6 -> 3/5)."""
     import sympy
 
-    if _is_sympy(a):
+    if is_sympy(a):
         return a
     a = float(a)
     return sympy.Integer(int(a)) if a.is_integer() else sympy.nsimplify(a, rational=True)
@@ -254,7 +260,7 @@ def _exact(a):
 def _translator(t, func: str, name: str) -> Multivector:
     tv = vector(t, func, name)
     c = _consts(tv)
-    half = 0.5 if not _any_sym(tv) else exact_constants()["eo"]["e-"]  # 1/2, exact when symbolic
+    half = 0.5 if not any_symbolic(tv) else exact_constants()["eo"]["e-"]  # 1/2, exact when symbolic
     return (c["einf"] * tv) * half + 1
 
 
@@ -272,7 +278,7 @@ def _unit_axis(axis, func: str, name: str = "axis", exact: bool = False):
     A numeric axis is scaled by its largest component before its norm is
     taken, so that neither 1e200 nor 1e-200 over- or underflows.
     """
-    arr, sym = _check_points(axis, func, name)
+    arr, sym = check_points(axis, func, name)
     if sym or exact:
         import sympy
 
@@ -293,7 +299,7 @@ def _unit_axis(axis, func: str, name: str = "axis", exact: bool = False):
 
 def _rotor(axis, angle, func: str, axis_name: str) -> Multivector:
     angle = _real(angle, func, "angle", array=True)
-    exact = _is_sympy(angle)
+    exact = is_sympy(angle)
     n, sym = _unit_axis(axis, func, axis_name, exact=exact)
     if sym:
         import sympy
@@ -324,10 +330,10 @@ def rotor_about_line(L: Multivector, angle) -> Multivector:
     +angle about the line's direction (from a to b), right-hand rule.
     Equal to ``T R ~T`` of (2.104) with T moving the origin onto the line.
     """
-    from .entities import _as_dual_line, normalize_line, standard_form
+    from .entities import as_dual_line, normalize_line, standard_form
 
     angle = _real(angle, "rotor_about_line", "angle", array=True)
-    Ln = normalize_line(_as_dual_line(L, "rotor_about_line"))
+    Ln = normalize_line(as_dual_line(L, "rotor_about_line"))
     Lstd = standard_form(Ln)
     # The standard form L = L* Ic of the unit line is l + e (t . l) of (2.108).
     B = Lstd * (-angle / 2)
@@ -357,8 +363,8 @@ def screw(axis, point, angle, distance) -> Multivector:
     func = "screw"
     angle = _real(angle, func, "angle")
     distance = _real(distance, func, "distance")
-    pt, psym = _check_points(point, func, "point")
-    exact = _is_sympy(angle) or _is_sympy(distance) or psym
+    pt, psym = check_points(point, func, "point")
+    exact = is_sympy(angle) or is_sympy(distance) or psym
     if angle == 0:
         raise DegenerateGeometryError("screw: angle: is 0; a pure slide is a translator")
     n, sym = _unit_axis(axis, func, "axis", exact=exact)
@@ -382,11 +388,11 @@ def reflect_in_plane(P: Multivector, X: Multivector) -> Multivector:
     ``-P X P^-1`` for a vector X (2.84); an entity of any grade via the
     grade involution (2.82).  P in standard (grade 1) or dual (grade 4) form.
     """
-    from .entities import _grade_of, standard_form
+    from .entities import grade_of, standard_form
 
-    g = _grade_of(P, "reflect_in_plane", (1, 4))
+    g = grade_of(P, "reflect_in_plane", (1, 4))
     Pv = P if g == 1 else standard_form(P)
-    if not _any_sym(Pv) and np.max(np.abs(np.asarray((Pv | einf).scalar(), dtype=float))) > 1e-12:
+    if not any_symbolic(Pv) and np.max(np.abs(np.asarray((Pv | einf).scalar(), dtype=float))) > 1e-12:
         raise InvalidInputError("reflect_in_plane: P . e != 0, P is a sphere (use invert_in_sphere)")
     return apply(Pv, X)
 
@@ -398,8 +404,8 @@ def invert_in_sphere(S: Multivector, X: Multivector) -> Multivector:
     (2.87), so use :func:`~cga_lessons.conformal.model.down` for its Euclidean point,
     ``g(x) = rho^2 (x - p)/|x - p|^2 + p`` (2.88).  S in standard or dual form.
     """
-    from .entities import _grade_of, standard_form
+    from .entities import grade_of, standard_form
 
-    g = _grade_of(S, "invert_in_sphere", (1, 4))
+    g = grade_of(S, "invert_in_sphere", (1, 4))
     s = S if g == 1 else standard_form(S)
     return apply(s, X)

@@ -23,8 +23,7 @@ import math
 
 import numpy as np
 
-from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector
-from cga_lessons.algebra.versor_matrices import motor_tolerance
+from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector, motor_tolerance
 
 from .model import G41, IE, E, euclidean, exact_constants
 

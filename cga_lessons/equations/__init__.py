@@ -20,6 +20,7 @@ from .core import (
     check_registry,
     coverage,
     coverage_summary,
+    main,
     ordered_entries,
     readme_is_current,
     readme_section,
@@ -27,6 +28,7 @@ from .core import (
     text_table,
     write_readme,
 )
+from .course import arrows, dependency_table
 
 __all__ = [
     "Entry",
@@ -45,4 +47,7 @@ __all__ = [
     "README_END",
     "PARTS",
     "STATUSES",
+    "main",
+    "arrows",
+    "dependency_table",
 ]

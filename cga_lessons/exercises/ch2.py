@@ -12,7 +12,7 @@ import math
 import numpy as np
 
 from cga_lessons.algebra import Algebra, Multivector
-from cga_lessons.stereo.rig import rotation_matrix  # Rodrigues in plain NumPy: independent of the algebra
+from cga_lessons.stereo import rotation_matrix  # Rodrigues in plain NumPy: independent of the algebra
 
 from .checking import (
     Malformed,
@@ -193,7 +193,7 @@ def _ch2_6(answer):
 
 def _motion_of(M: Multivector, points: np.ndarray) -> np.ndarray:
     """Where the sandwich M X ~M sends each point (M need not be normalised)."""
-    from cga_lessons.conformal.model import G41
+    from cga_lessons.conformal import G41
 
     e_inf = G41.blade("e+") + G41.blade("e-")
     e_o = (G41.blade("e-") - G41.blade("e+")) * 0.5
@@ -220,7 +220,7 @@ _PROBES = np.array([[0.3, -0.7, 0.2], [1.5, 0.4, -1.0], [-1.2, 2.0, 0.8], [1.0, 
     equations=("2.102", "2.104", "2.105"),
 )
 def _ch2_7(answer):
-    from cga_lessons.conformal.model import G41
+    from cga_lessons.conformal import G41
 
     if not isinstance(answer, Multivector):
         raise Malformed(f"a motor is a Multivector, not a {type(answer).__name__}")
@@ -374,7 +374,7 @@ def _ch2_10(answer):
 
 def _ch2_11_given():
     """The motor of exercise ch2.11 (its rotation and translation are what the student recovers)."""
-    from cga_lessons.conformal.versors import rotor, translator
+    from cga_lessons.conformal import rotor, translator
 
     return translator([0.7, -1.3, 0.4]) * rotor(np.array([1.0, 2.0, 2.0]) / 3, 1.2)
 

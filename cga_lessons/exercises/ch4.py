@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from cga_lessons.stereo.rig import rotation_matrix  # Rodrigues in plain NumPy: independent of the algebra
+from cga_lessons.stereo import rotation_matrix  # Rodrigues in plain NumPy: independent of the algebra
 
 from .checking import Malformed, Wrong, as_array, compare_expression, compare_matrix, compare_vector, exercise
 
@@ -32,7 +32,7 @@ def _nearest_point(p1, d1, p2, d2) -> np.ndarray:
 
 
 def _geometry():
-    from cga_lessons.map3d.robot import RobotGeometry
+    from cga_lessons.map3d import RobotGeometry
 
     return RobotGeometry()
 

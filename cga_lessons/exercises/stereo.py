@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from cga_lessons.stereo.rig import rotation_matrix  # Rodrigues in plain NumPy: independent of the algebra
+from cga_lessons.stereo import rotation_matrix  # Rodrigues in plain NumPy: independent of the algebra
 
 from .checking import Wrong, as_float, compare_number, compare_vector, exercise
 

@@ -12,6 +12,15 @@ Nothing here draws (figures and widgets are in :mod:`cga_lessons.viz`).  This fa
   equations (3.2)-(3.3)
 """
 
+from .cases import (
+    DISAGREEMENTS,
+    DOCUMENT_CASES,
+    Scenario,
+    occupied_counts_random_centres,
+    ray_cast_disagreements,
+    run_scenario,
+    summary,
+)
 from .nodes import (
     ANALYSED,
     LABEL_NAMES,
@@ -37,6 +46,7 @@ from .nodes import (
     seen_nodes,
     sphere_points,
 )
+from .path import detour, line_circle_intersections, line_circle_intersections_conformal
 
 __all__ = [
     "NOT_SEEN",
@@ -62,4 +72,14 @@ __all__ = [
     "cells_touched_by_sphere",
     "NodeLabels",
     "label_nodes",
+    "run_scenario",
+    "DISAGREEMENTS",
+    "DOCUMENT_CASES",
+    "Scenario",
+    "detour",
+    "line_circle_intersections",
+    "line_circle_intersections_conformal",
+    "occupied_counts_random_centres",
+    "ray_cast_disagreements",
+    "summary",
 ]

@@ -207,7 +207,7 @@ def fit_sphere(points):
     center : array, shape (3,)
     radius : float
     """
-    from cga_lessons.conformal.fitting import fit_sphere as _conformal_sphere_fit
+    from cga_lessons.conformal import fit_sphere as _conformal_sphere_fit
 
     P = _points(points, "fit_sphere", "points")
     if len(P) < 4:

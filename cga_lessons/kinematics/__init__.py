@@ -13,6 +13,8 @@ Nothing here draws (figures and widgets are in :mod:`cga_lessons.viz`).  This fa
   future work, section 6.2.2)
 """
 
+from .arms import PANDA_DH, UR5_DH, DHParameters, panda, ur5
+from .ik import IKOptions, inverse_kinematics
 from .motor_chain import (
     Chain,
     Joint,
@@ -43,4 +45,11 @@ __all__ = [
     "forward_matrix",
     "spatial_jacobian",
     "twist_of_bivector",
+    "DHParameters",
+    "IKOptions",
+    "PANDA_DH",
+    "UR5_DH",
+    "inverse_kinematics",
+    "panda",
+    "ur5",
 ]

@@ -37,7 +37,15 @@ import numpy as np
 
 from cga_lessons.algebra import InvalidInputError, Multivector
 
-from .motor_chain import _REVERSE, Chain, _check_q, _jacobian, _mul, coefficients_to_matrix, motor_coefficients
+from .motor_chain import (
+    REVERSE_SIGNS,
+    Chain,
+    check_configuration,
+    coefficients_to_matrix,
+    jacobian_and_pose,
+    motor_coefficients,
+    multiply_batches,
+)
 
 __all__ = ["IKOptions", "IKResult", "inverse_kinematics", "twist_error"]
 
@@ -179,7 +187,7 @@ def inverse_kinematics(ch: Chain, target, q0, options: IKOptions | None = None) 
     if not isinstance(opt, IKOptions):
         raise InvalidInputError(f"{func}: options: expected IKOptions, got {type(opt).__name__}")
     Mt = _targets(target, func)
-    q, single = _check_q(ch, q0, func, "q0")
+    q, single = check_configuration(ch, q0, func, "q0")
     if len(q) == 1 and len(Mt) > 1:
         q = np.repeat(q, len(Mt), axis=0)
     if len(q) != len(Mt):
@@ -190,8 +198,8 @@ def inverse_kinematics(ch: Chain, target, q0, options: IKOptions | None = None) 
     nu = np.full(N, 2.0)
     iters = np.zeros(N, dtype=int)
     done = np.zeros(N, dtype=bool)
-    J, M = _jacobian(ch, q)
-    err, t, angle = twist_error(_mul(Mt, M * _REVERSE))
+    J, M = jacobian_and_pose(ch, q)
+    err, t, angle = twist_error(multiply_batches(Mt, M * REVERSE_SIGNS))
     pos = np.linalg.norm(t_target - coefficients_to_matrix(M)[:, :3, 3], axis=1)
     eye = np.eye(min(n, 6))
     rng = np.random.default_rng(opt.seed)
@@ -215,8 +223,8 @@ def inverse_kinematics(ch: Chain, target, q0, options: IKOptions | None = None) 
         step = np.linalg.norm(dq, axis=1)
         dq *= np.minimum(1.0, opt.max_step / np.maximum(step, 1e-300))[:, None]
         q_new = q[act] + dq
-        J_new, M_new = _jacobian(ch, q_new)
-        e_new, _, a_new = twist_error(_mul(Mt[act], M_new * _REVERSE))
+        J_new, M_new = jacobian_and_pose(ch, q_new)
+        e_new, _, a_new = twist_error(multiply_batches(Mt[act], M_new * REVERSE_SIGNS))
         p_new = np.linalg.norm(t_target[act] - coefficients_to_matrix(M_new)[:, :3, 3], axis=1)
         Jdq = (Ja @ dq[:, :, None])[:, :, 0]
         predicted = np.einsum("ki,ki->k", ea, ea) - np.einsum("ki,ki->k", ea - Jdq, ea - Jdq)
@@ -236,8 +244,8 @@ def inverse_kinematics(ch: Chain, target, q0, options: IKOptions | None = None) 
         stuck = bad[nu[bad] >= 2.0 ** (opt.restart_after or np.inf)] if rev.any() else bad[:0]
         if stuck.size:  # refused again and again: a local minimum at a singularity; start over elsewhere
             q[np.ix_(stuck, rev)] = rng.uniform(-np.pi, np.pi, (stuck.size, int(rev.sum())))
-            J[stuck], Ms = _jacobian(ch, q[stuck])
-            err[stuck], _, angle[stuck] = twist_error(_mul(Mt[stuck], Ms * _REVERSE))
+            J[stuck], Ms = jacobian_and_pose(ch, q[stuck])
+            err[stuck], _, angle[stuck] = twist_error(multiply_batches(Mt[stuck], Ms * REVERSE_SIGNS))
             pos[stuck] = np.linalg.norm(t_target[stuck] - coefficients_to_matrix(Ms)[:, :3, 3], axis=1)
             lam[stuck], nu[stuck] = np.nan, 2.0
     one = single and N == 1

@@ -50,8 +50,7 @@ import numpy as np
 
 from cga_lessons import conformal as cga
 from cga_lessons.algebra import InvalidInputError, Multivector
-from cga_lessons.conformal.model import G41
-from cga_lessons.conformal.versors_rigid import why_not_motor
+from cga_lessons.conformal import G41, why_not_motor
 
 __all__ = ["Joint", "Chain", "revolute", "prismatic", "chain", "motor_coefficients", "coefficients_to_motor",
            "coefficients_to_matrix", "forward_coefficients", "forward_motor", "forward_matrix", "spatial_jacobian",
@@ -60,7 +59,7 @@ __all__ = ["Joint", "Chain", "revolute", "prismatic", "chain", "motor_coefficien
 #: The G(4,1) blades of a motor's 8 numbers: 1, e12, e13, e23, then e1-, e2-, e3-, e123- (with e+ twins).
 MOTOR_BLADES = (0, 3, 5, 6, 17, 18, 20, 23)
 _TWIN = 0b11000  # blade ^ _TWIN turns e- into e+
-_REVERSE = np.array([1.0, -1.0, -1.0, -1.0, -1.0, -1.0, -1.0, 1.0])  # grades 0, 2 x6, 4 (2.33)
+REVERSE_SIGNS = np.array([1.0, -1.0, -1.0, -1.0, -1.0, -1.0, -1.0, 1.0])  # grades 0, 2 x6, 4 (2.33)
 
 
 def _basis(k: int) -> Multivector:
@@ -91,7 +90,7 @@ def _right(X: np.ndarray) -> np.ndarray:
     return np.einsum("ijk,j->ik", _T, X)
 
 
-def _mul(X: np.ndarray, Y: np.ndarray) -> np.ndarray:
+def multiply_batches(X: np.ndarray, Y: np.ndarray) -> np.ndarray:
     """Numbers of the products X Y of two batches (N, 8) of motors (or even elements of the motor algebra)."""
     return (X[:, :, None] * Y[:, None, :]).reshape(len(X), 64) @ _T64
 
@@ -324,7 +323,7 @@ def chain(joints, home=None, name: str = "") -> Chain:
 
 
 # ----------------------------------------------------------------- forward kinematics and Jacobian
-def _check_q(ch: Chain, q, func: str, name: str = "q"):
+def check_configuration(ch: Chain, q, func: str, name: str = "q"):
     if not isinstance(ch, Chain):
         raise InvalidInputError(f"{func}: chain: expected a Chain (see kinematics.chain), got {type(ch).__name__}")
     try:
@@ -363,7 +362,7 @@ def _prefixes(ch: Chain, q2: np.ndarray, keep: bool):
 
 def forward_coefficients(ch: Chain, q) -> np.ndarray:
     """Numbers (8,) or (N, 8) of ``M(q) = M_1(q_1) ... M_n(q_n) M0`` for q of shape (n,) or (N, n)."""
-    q2, single = _check_q(ch, q, "forward_coefficients")
+    q2, single = check_configuration(ch, q, "forward_coefficients")
     M = _prefixes(ch, q2, False) @ ch._tables.home_right
     return M[0] if single else M
 
@@ -375,19 +374,19 @@ def forward_motor(ch: Chain, q) -> Multivector:
     >>> cga.apply_to_points(forward_motor(arm, [np.pi / 2]), [0.0, 0.0, 0.0]).round(12) + 0.0
     array([0., 1., 0.])
     """
-    q2, single = _check_q(ch, q, "forward_motor")
+    q2, single = check_configuration(ch, q, "forward_motor")
     M = _prefixes(ch, q2, False) @ ch._tables.home_right
     return coefficients_to_motor(M[0] if single else M)
 
 
 def forward_matrix(ch: Chain, q) -> np.ndarray:
     """The end effector's pose as 4x4 homogeneous matrices, (4, 4) or (N, 4, 4)."""
-    q2, single = _check_q(ch, q, "forward_matrix")
+    q2, single = check_configuration(ch, q, "forward_matrix")
     H = coefficients_to_matrix(_prefixes(ch, q2, False) @ ch._tables.home_right)
     return H[0] if single else H
 
 
-def _jacobian(ch: Chain, q2: np.ndarray):
+def jacobian_and_pose(ch: Chain, q2: np.ndarray):
     """(spatial Jacobian (N, 6, n), pose numbers (N, 8)) for q2 of shape (N, n)."""
     gen, gen_right = ch._tables.gen, ch._tables.gen_right
     Ps = _prefixes(ch, q2, True)
@@ -395,7 +394,9 @@ def _jacobian(ch: Chain, q2: np.ndarray):
     cols = [np.broadcast_to(twist_of_bivector(gen[0]), (N, 6))]
     for i in range(1, ch.n):
         P = Ps[i - 1]
-        moved = _mul(P @ gen_right[i], P * _REVERSE)  # P g_i ~P (2.103): the axis moved by the joints before
+        moved = multiply_batches(
+            P @ gen_right[i], P * REVERSE_SIGNS
+        )  # P g_i ~P (2.103): the axis moved by the joints before
         cols.append(twist_of_bivector(moved))
     return np.stack(cols, axis=-1), Ps[-1] @ ch._tables.home_right
 
@@ -409,6 +410,6 @@ def spatial_jacobian(ch: Chain, q) -> np.ndarray:
     direction and the moment of the moved axis; for a slide ``(0, d)``.  The spatial twist of the end
     effector is ``J q_dot``: ``dH/dt H^-1 = [[omega^], [v]]`` for its 4x4 pose H.
     """
-    q2, single = _check_q(ch, q, "spatial_jacobian")
-    J, _ = _jacobian(ch, q2)
+    q2, single = check_configuration(ch, q, "spatial_jacobian")
+    J, _ = jacobian_and_pose(ch, q2)
     return J[0] if single else J

@@ -9,7 +9,7 @@ and widgets are in :mod:`cga_lessons.viz`).  This facade exports the names in ``
   both against the truth
 * :mod:`~cga_lessons.map3d.fuse`: One 3D map fused from the laser and the stereo head through the robot's motor
   chains (section 4.2.3)
-* :mod:`~cga_lessons.map3d.geometer_chains`: The robot geometer's sensors as kinematic chains (section 4.2, Eqs.
+* :mod:`~cga_lessons.map3d.geometer`: The robot geometer's sensors as kinematic chains (section 4.2, Eqs.
   4.1-4.10, with the future work's chains)
 * :mod:`~cga_lessons.map3d.laser`: The laser's part of the fused 3D map: virtual walls (figures 4.5, 4.6) and posts
   (section 4.2.3)
@@ -20,8 +20,22 @@ and widgets are in :mod:`cga_lessons.viz`).  This facade exports the names in ``
 * :mod:`~cga_lessons.map3d.world`: The synthetic world of the fused 3D map (section 4.2.3): a room and its objects
 """
 
+from .eval import COLUMNS, residual_table, view_errors
 from .fuse import FusedMap, StereoEntity, build_fused_map, entity_parameters, fit_line_3d, stereo_depth_limit
-from .geometer_chains import GeometerChains, geometer_chains
+from .geometer import GeometerChains, geometer_chains
+from .robot import (
+    DOFS,
+    Robot,
+    RobotGeometry,
+    RobotState,
+    base_motor_as_printed,
+    base_rotor,
+    base_translator,
+    chain_motors,
+    laser_chain_as_printed,
+    stereo_chain_as_printed,
+)
+from .tour import homogeneous_chains, simulate_tour
 
 __all__ = [
     "StereoEntity",
@@ -32,4 +46,19 @@ __all__ = [
     "entity_parameters",
     "GeometerChains",
     "geometer_chains",
+    "DOFS",
+    "Robot",
+    "RobotGeometry",
+    "RobotState",
+    "COLUMNS",
+    "base_motor_as_printed",
+    "base_rotor",
+    "base_translator",
+    "chain_motors",
+    "homogeneous_chains",
+    "laser_chain_as_printed",
+    "residual_table",
+    "simulate_tour",
+    "stereo_chain_as_printed",
+    "view_errors",
 ]

@@ -14,7 +14,7 @@ import numpy as np
 
 from cga_lessons import conformal as cga
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector
-from cga_lessons.mapping2d.conformal import robot_motor
+from cga_lessons.mapping2d import robot_motor
 
 if TYPE_CHECKING:
     from .robot import RobotGeometry
@@ -23,7 +23,7 @@ _Z = np.array([0.0, 0.0, 1.0])
 
 
 # ----------------------------------------------------------------- fixed parts
-def _line(point, direction, func):
+def axis_line(point, direction, func):
     d = np.asarray(direction, float)
     if np.linalg.norm(d) < 1e-12:
         raise DegenerateGeometryError(f"{func}: an axis direction is the zero vector")
@@ -67,7 +67,7 @@ def laser_mount_motor(geometry: RobotGeometry) -> Multivector:
 
 
 # ----------------------------------------------------------------- the chains, one function per equation
-def _arr(v):
+def finite_array(v):
     a = np.asarray(v, dtype=float)
     if not np.all(np.isfinite(a)):
         raise InvalidInputError("robot: degrees of freedom must be finite")
@@ -76,12 +76,12 @@ def _arr(v):
 
 def base_rotor(theta) -> Multivector:
     """``R_pos``: rotor about z by the heading theta (2.96; the angle of 3.6). Scalar or (N,) theta."""
-    return cga.rotor(_Z, _arr(theta))
+    return cga.rotor(_Z, finite_array(theta))
 
 
 def base_translator(x, y) -> Multivector:
     """``T_pos``: translator by ``t = (x, y, 0)`` (2.100; the position of 3.7). Scalars or (N,) arrays."""
-    x, y = np.broadcast_arrays(np.asarray(_arr(x)), np.asarray(_arr(y)))
+    x, y = np.broadcast_arrays(np.asarray(finite_array(x)), np.asarray(finite_array(y)))
     return cga.translator(np.stack([x, y, np.zeros_like(x)], axis=-1))
 
 

@@ -32,9 +32,7 @@ import numpy as np
 
 from cga_lessons import conformal as cga
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
-from cga_lessons.conformal import fitting as sf
-from cga_lessons.mapping2d import MapResult, build_map
-from cga_lessons.mapping2d.lines import extract_segments
+from cga_lessons.mapping2d import MapResult, build_map, extract_segments
 
 from .laser import group_detections, laser_posts, virtual_wall
 from .robot import Robot, RobotState, chain_motors, to_unified
@@ -114,11 +112,11 @@ def entity_parameters(kind: str, blade) -> dict:
 def _fit(kind: str, X) -> dict:
     """The section-4.1 least-squares fit of ``kind`` to points X (N, 3) (:mod:`cga_lessons.conformal.fitting`)."""
     if kind == "sphere":
-        return sf.fit_sphere(X)
+        return cga.fit_sphere(X)
     if kind == "plane":
-        return sf.fit_plane(X)
+        return cga.fit_plane(X)
     if kind == "circle":
-        return sf.fit_circle(X)
+        return cga.fit_circle(X)
     if kind == "line":
         return fit_line_3d(X)
     raise InvalidInputError(f"map3d: no fit for kind {kind!r}")

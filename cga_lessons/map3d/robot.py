@@ -58,14 +58,14 @@ from cga_lessons import conformal as cga
 from cga_lessons.algebra import InvalidInputError, Multivector
 
 from .chains import (  # noqa: F401  (re-exported: the chains are part of this module's API)
-    _arr,
-    _line,
     axes_nearest_point,
+    axis_line,
     base_motor,
     base_motor_as_printed,
     base_rotor,
     base_translator,
     eye_translator,
+    finite_array,
     head_motor,
     head_rotor,
     head_translator,
@@ -211,12 +211,12 @@ class RobotState:
 # ----------------------------------------------------------------- dependency graph
 def _axis_rotor(angle, axis):
     """The thesis's R_pan / R_tilt: a rotor about the axis *direction* (2.96), placed by T_eje in (4.5)-(4.9)."""
-    return cga.rotor(axis, _arr(angle))
+    return cga.rotor(axis, finite_array(angle))
 
 
 def _line_rotor(angle, L):
     """R_L = exp(-angle/2 L) about the axis line itself (2.109; the footnote of 4.2.2)."""
-    return cga.rotor_about_line(L, _arr(angle))
+    return cga.rotor_about_line(L, finite_array(angle))
 
 
 #: Each motor of the chains: ``(degrees of freedom it reads, parts it is built from, function)``; the
@@ -253,8 +253,8 @@ _DEPENDS = _dof_sets()
 
 def _fixed_parts(geometry: RobotGeometry) -> dict:
     g = geometry
-    L_pan = _line(g.pan_point, g.pan_direction, "Robot")
-    L_tilt = _line(g.tilt_point, g.tilt_direction, "Robot")
+    L_pan = axis_line(g.pan_point, g.pan_direction, "Robot")
+    L_tilt = axis_line(g.tilt_point, g.tilt_direction, "Robot")
     eje = axes_nearest_point(L_pan, L_tilt)
     T_eje, T_ojo = cga.translator(eje), cga.translator(np.asarray(g.eye_offset, float))
     return {
@@ -388,7 +388,7 @@ class Robot:
 
     def stereo_rig(self):
         """The stereo pair in the stereo frame: left camera at the origin looking along +x (a :class:`StereoRig`)."""
-        from cga_lessons.stereo.rig import stereo_head
+        from cga_lessons.stereo import stereo_head
 
         g = self.geometry
         return stereo_head(g.baseline, g.focal_px, tuple(g.image_size), None, (0.0, -g.baseline / 2, 0.0), 0.0, 0.0)

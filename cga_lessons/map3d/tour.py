@@ -16,9 +16,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from cga_lessons import stereo
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d.laser import simulate_odometry, simulate_scan
-from cga_lessons.stereo import camera as cam
+from cga_lessons.mapping2d import simulate_odometry, simulate_scan
 
 from .robot import Robot, RobotGeometry, RobotState
 from .world import World3D, default_world
@@ -71,7 +71,7 @@ def homogeneous_chains(geometry: RobotGeometry | None = None, *, x=0.0, y=0.0, t
         p = np.asarray(point, float)
         return _h(R, p - R @ p if R.ndim == 2 else p - np.einsum("...ij,j->...i", R, p), shape)
 
-    q1, q2 = cam.closest_points_on_rays([g.pan_point], [g.pan_direction], [g.tilt_point], [g.tilt_direction])
+    q1, q2 = stereo.closest_points_on_rays([g.pan_point], [g.pan_direction], [g.tilt_point], [g.tilt_direction])
     H_eye = _h(None, 0.5 * (q1[0] + q2[0]) + np.asarray(g.eye_offset, float))
     H_cam = H_pos @ about(g.pan_point, g.pan_direction, pan) @ about(g.tilt_point, g.tilt_direction, tilt) @ H_eye
     return {"base": H_pos, "laser": H_pos @ H_lsr, "camera_left": H_cam}
@@ -216,4 +216,4 @@ def simulate_tour(
 def triangulate_view(geometry: RobotGeometry, view: View) -> dict:
     """Triangulated points (stereo frame) of each object seen in ``view`` (A.14, midpoint of figure A.4)."""
     rig = Robot(geometry).stereo_rig()
-    return {name: cam.triangulate(rig.P1, rig.P2, x1, x2) for name, (x1, x2) in view.pixels.items()}
+    return {name: stereo.triangulate(rig.P1, rig.P2, x1, x2) for name, (x1, x2) in view.pixels.items()}

@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
-from cga_lessons.mapping2d.laser import Scene
+from cga_lessons.mapping2d import Scene
 
 __all__ = ["Ball", "Board", "Plate", "Pedestal", "Post", "World3D", "default_world"]
 

@@ -89,7 +89,7 @@ from .adjust import adjust_built_map
 from .builder import MapBuilder
 from .corrections import line_variances, odometry_covariance, pose_correction, theta_correction, translation_correction
 from .eval import format_log_benchmark, map_errors, map_point_errors, pose_errors, read_log_benchmark
-from .geometry import PlainGeometry, SegmentSet, _transform_sums, correspondences, proximity_matrix  # noqa: F401 - re-exported for callers of earlier versions
+from .geometry import PlainGeometry, SegmentSet, correspondences, proximity_matrix, transform_sums  # noqa: F401 - re-exported for callers of earlier versions
 from .graph import relative_pose  # noqa: F401 - re-exported
 from .laser import compose, relative, scan_points
 from .lines import extract_segments

@@ -35,7 +35,7 @@ import numpy as np
 from cga_lessons.algebra import InvalidInputError
 
 from .correction import ScanCorrector
-from .geometry import SegmentSet, _compose, correspondences
+from .geometry import SegmentSet, compose_unchecked, correspondences
 from .index import SegmentIndex, duplicate_pairs, sphere_boxes
 from .lines import line_from_sums
 from .observations import Growing, Observations, PathLog, refit_lines
@@ -224,7 +224,7 @@ class MapBuilder:
         """
         if len(points) == 0 or len(idx) == 0:
             return 0.0
-        lp = _compose(pose, self.mount)
+        lp = compose_unchecked(pose, self.mount)
         c, s_ = np.cos(lp[2]), np.sin(lp[2])
         q = points @ np.array([[c, s_], [-s_, c]]) + lp[:2]
         a, v = self._G.start[idx], self._G.end[idx] - self._G.start[idx]

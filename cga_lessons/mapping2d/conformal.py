@@ -37,7 +37,7 @@ import numpy as np
 from cga_lessons import conformal as cga
 from cga_lessons.algebra import InvalidInputError, Multivector
 
-from .geometry import PlainGeometry, SegmentSet, _transform_sums
+from .geometry import PlainGeometry, SegmentSet, transform_sums
 from .lines import TWO_PI, Segment
 
 __all__ = [
@@ -266,7 +266,7 @@ class ConformalGeometry(PlainGeometry):
         PP = _sandwich(M, _pp_from_set(segs))  # (3.18)
         p1, p2 = _ends_2d(PP)
         H = np.asarray(cga.motor_to_matrix(M))  # the point sums follow the same rigid motion
-        return SegmentSet(p1, p2, _transform_sums(segs.sums, H[:2, :2], H[:2, 3]), segs.edge)
+        return SegmentSet(p1, p2, transform_sums(segs.sums, H[:2, :2], H[:2, 3]), segs.edge)
 
     def transform(self, segs: SegmentSet, pose) -> SegmentSet:
         return self.to_global(segs, pose, (0.0, 0.0, 0.0))
@@ -286,7 +286,7 @@ class ConformalGeometry(PlainGeometry):
         o = c2e(M * e2c(np.zeros((n, 2))) * ~M)
         ex = c2e(M * e2c(np.tile([1.0, 0.0], (n, 1))) * ~M) - o
         R = np.stack([np.stack([ex[:, 0], -ex[:, 1]], -1), np.stack([ex[:, 1], ex[:, 0]], -1)], -2)
-        return SegmentSet(p1, p2, _transform_sums(segs.sums, R, o), segs.edge)
+        return SegmentSet(p1, p2, transform_sums(segs.sums, R, o), segs.edge)
 
     def _lines_about(self, segs: SegmentSet, centre):
         """Lines ``L* = PP* ^ e`` of the segments, moved so that ``centre`` is the origin (a translator)."""

@@ -92,7 +92,7 @@ class SegmentSet:
         return self.sums[:, 1:3] / self.sums[:, :1]
 
 
-def _transform_sums(sums, R, t):
+def transform_sums(sums, R, t):
     """Point sums ``(n, 6)`` moved by ``x -> R x + t``; ``R`` (2, 2) or (n, 2, 2), ``t`` (2,) or (n, 2).
 
     The sums are ``(n, sx, sy, sxx, sxy, syy)``; written out component by component (the map builder calls
@@ -141,21 +141,21 @@ class PlainGeometry:
         x, y, th = pose
         R = _rotations(th)
         t = np.array([x, y])
-        return SegmentSet(segs.start @ R.T + t, segs.end @ R.T + t, _transform_sums(segs.sums, R, t), segs.edge)
+        return SegmentSet(segs.start @ R.T + t, segs.end @ R.T + t, transform_sums(segs.sums, R, t), segs.edge)
 
     def to_global(self, segs: SegmentSet, pose, mount) -> SegmentSet:
         """Laser-frame segments into the global frame: robot ``pose`` composed with the laser ``mount`` (3.4)."""
-        return self.transform(segs, _compose(pose, mount))
+        return self.transform(segs, compose_unchecked(pose, mount))
 
     def to_global_rows(self, segs: SegmentSet, poses, mount) -> SegmentSet:
         """Like :meth:`to_global`, each segment with its own robot pose (``poses`` of shape (n, 3))."""
-        lp = _compose(np.asarray(poses, float), mount)
+        lp = compose_unchecked(np.asarray(poses, float), mount)
         R = _rotations(lp[:, 2])
         t = lp[:, :2]
         return SegmentSet(
             np.einsum("nij,nj->ni", R, segs.start) + t,
             np.einsum("nij,nj->ni", R, segs.end) + t,
-            _transform_sums(segs.sums, R, t),
+            transform_sums(segs.sums, R, t),
             segs.edge,
         )
 
@@ -246,7 +246,7 @@ class PlainGeometry:
         return ends[0], ends[1], replaced, g_longer, same
 
 
-def _compose(a, b):
+def compose_unchecked(a, b):
     """``compose`` of :mod:`cga_lessons.mapping2d.laser` without the input checks (hot path); ``a`` (3,) or (n, 3)."""
     a = np.asarray(a, float)
     b = np.asarray(b, float)
@@ -325,7 +325,7 @@ def correspondences(G: SegmentSet, L: SegmentSet, centre, params, geometry=None)
     return C, M, dth
 
 
-def _close_angle_pairs(theta, tol):
+def close_angle_pairs(theta, tol):
     """Pairs ``(i, j)`` of angles in [0, 2 pi) closer than ``tol`` across the circle, as two index arrays."""
     n = len(theta)
     order = np.argsort(theta, kind="stable")

@@ -31,7 +31,7 @@ import numpy as np
 
 from cga_lessons.algebra import InvalidInputError
 
-from .geometry import _close_angle_pairs
+from .geometry import close_angle_pairs
 
 __all__ = ["SegmentIndex", "sphere_boxes", "duplicate_pairs"]
 
@@ -178,7 +178,7 @@ def duplicate_pairs(G, gid, index: SegmentIndex, rows, geometry, params, pad: fl
     (:meth:`~cga_lessons.mapping2d.builder.MapBuilder.remove_duplicates`):
     oriented angles (seen from the origin) closer than ``params.dup_angle``,
     sorted by (angle, row) and compared directly or across 2 pi as
-    :func:`~cga_lessons.mapping2d.geometry._close_angle_pairs` does; spheres
+    :func:`~cga_lessons.mapping2d.geometry.close_angle_pairs` does; spheres
     that meet or nest (3.19); the centre of the shorter within
     ``params.dup_distance`` of the longer's line (2.130).  Spheres that meet
     have boxes that meet, so the index's candidates hold every such pair.
@@ -205,7 +205,7 @@ def duplicate_pairs(G, gid, index: SegmentIndex, rows, geometry, params, pad: fl
     n = len(G)
     if index is None:  # every pair of close angles with a line in rows (a small map: faster than the queries)
         _, th = geometry.hough(G, np.zeros(2))
-        a, b = _close_angle_pairs(th, params.dup_angle)
+        a, b = close_angle_pairs(th, params.dup_angle)
         mine = np.zeros(n, bool)
         mine[rows] = True
         return _duplicates(G, a[mine[a] | mine[b]], b[mine[a] | mine[b]], geometry, params)

@@ -35,6 +35,7 @@ __all__ = [
     "Segment",
     "line_through",
     "point_line_distance",
+    "diff_theta_as_printed",
     "split_points",
     "fit_line",
     "diff_theta",
@@ -425,7 +426,7 @@ def diff_theta(theta_a, theta_b, theta_xi: float = 2 * np.pi / 100):
     return float(out) if out.ndim == 0 else out
 
 
-def _diff_theta_as_printed(theta_a, theta_b, theta_xi: float = 2 * np.pi / 100):
+def diff_theta_as_printed(theta_a, theta_b, theta_xi: float = 2 * np.pi / 100):
     """Eq. (3.5) exactly as printed (``+ theta_xi <= 0``), kept to show the erratum."""
     a = np.asarray(theta_a, float)
     b = np.asarray(theta_b, float)

@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .geometry import _compose
+from .geometry import compose_unchecked
 from .graph import PoseGraph, chain_uncertainty, relative_pose
 from .hypotheses import loop_hypotheses
 
@@ -57,7 +57,7 @@ def visible_lines(builder, pose, fov, idx):
     if len(idx) == 0:
         return idx
     b = builder
-    lp = _compose(pose, b.mount)
+    lp = compose_unchecked(pose, b.mount)
     G = b.G.take(idx)
     rho, _ = b.geo.hough(G, lp[:2])
     ok = rho > 0
@@ -220,7 +220,7 @@ def apply_loop(builder, graph, poses, k, loops):
 
 def chain_correction(new, old):
     """The rigid motion taking pose ``old`` to pose ``new`` in the world frame: ``new old^-1``."""
-    return _compose(new, relative_pose(old, np.zeros(3)))
+    return compose_unchecked(new, relative_pose(old, np.zeros(3)))
 
 
 def corrections_agree(a, b, params) -> bool:

@@ -31,8 +31,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector
-from cga_lessons.conformal.motor_estimation import motor_from_points
-from cga_lessons.conformal.versors import apply_to_points, motor, motor_to_matrix
+from cga_lessons.conformal import apply_to_points, motor, motor_from_points, motor_to_matrix
 
 __all__ = ["IcpParams", "ScanRegistration", "register_scans"]
 

@@ -48,6 +48,29 @@ and widgets are in :mod:`cga_lessons.viz`).  This facade exports the names in ``
   scan
 """
 
+from .eval import (
+    HEADING_TOLERANCE,
+    POSITION_TOLERANCE,
+    Evaluation,
+    evaluate_log,
+    evaluate_poses,
+    held_out_map_indices,
+    random_free_poses,
+    reference_from_log,
+    scan_agreement,
+)
+from .geometry import transform_points
+from .hough import (
+    hough_comparison,
+    hough_differences,
+    hough_set,
+    shifted_set,
+    shifted_set_corrected,
+    vote_matrix,
+    vote_matrix_indexed,
+)
+from .likelihood import BeamModel
+from .lookaround import evaluate_look_around, look_around
 from .relocalizer import (
     Candidate,
     MCLConfig,
@@ -63,6 +86,9 @@ from .relocalizer import (
     prepare_map,
     relocalize,
 )
+from .sampling import kld_bound
+from .sequence import Relocalizer, relocalize_sequence
+from .thesis import correspondences_from_votes, rotate_entities, thesis_relocalization, translate_entities
 
 __all__ = [
     "MonteCarloLocalizer",
@@ -78,4 +104,31 @@ __all__ = [
     "pose_error",
     "estimate_range_noise",
     "combined_noise",
+    "HEADING_TOLERANCE",
+    "POSITION_TOLERANCE",
+    "hough_set",
+    "relocalize_sequence",
+    "shifted_set_corrected",
+    "transform_points",
+    "BeamModel",
+    "Evaluation",
+    "Relocalizer",
+    "correspondences_from_votes",
+    "evaluate_log",
+    "evaluate_look_around",
+    "evaluate_poses",
+    "held_out_map_indices",
+    "hough_comparison",
+    "hough_differences",
+    "kld_bound",
+    "look_around",
+    "random_free_poses",
+    "reference_from_log",
+    "rotate_entities",
+    "scan_agreement",
+    "shifted_set",
+    "thesis_relocalization",
+    "translate_entities",
+    "vote_matrix",
+    "vote_matrix_indexed",
 ]

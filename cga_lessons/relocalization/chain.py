@@ -36,7 +36,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d.laser import OdometryModel, wrap_angle
+from cga_lessons.mapping2d import OdometryModel, wrap_angle
 
 from .geometry import MapLines
 from .verify import point_normal_equations

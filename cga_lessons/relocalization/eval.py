@@ -23,8 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d.laser import Scene, simulate_scan
-from cga_lessons.mapping2d.laser_facts import returns_reach
+from cga_lessons.mapping2d import Scene, returns_reach, simulate_scan
 
 from .coverage import build_coverage
 from .logmap import line_map_from_scans

@@ -16,8 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d.laser import wrap_angle
-from cga_lessons.mapping2d.lines import Segment
+from cga_lessons.mapping2d import Segment, wrap_angle
 
 __all__ = [
     "as_segment_array",

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from cga_lessons.mapping2d.laser import compose, invert
+from cga_lessons.mapping2d import compose, invert
 
 __all__ = ["ScanHistory", "merge", "normalise"]
 

@@ -43,7 +43,7 @@ from __future__ import annotations
 import numpy as np
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d.lines import TWO_PI, diff_theta
+from cga_lessons.mapping2d import TWO_PI, diff_theta
 
 __all__ = [
     "THETA_XI",
@@ -60,7 +60,7 @@ __all__ = [
 THETA_XI = TWO_PI / 100
 
 
-def _endpoints(segments, func="hough_set", name="segments") -> np.ndarray:
+def endpoint_array(segments, func="hough_set", name="segments") -> np.ndarray:
     """Segments as a finite (K, 2, 2) endpoint array (no checks of length)."""
     arr = np.asarray(segments, float)
     if arr.ndim != 3 or arr.shape[1:] != (2, 2):
@@ -96,7 +96,7 @@ def hough_set(segments, origin=(0.0, 0.0)) -> np.ndarray:
     >>> hough_set([[[1.0, -1.0], [1.0, 1.0]], [[-1.0, -2.0], [1.0, -2.0]]]).round(6).tolist()
     [[1.0, 0.0], [2.0, 4.712389]]
     """
-    s = _endpoints(segments)
+    s = endpoint_array(segments)
     v = s[:, 1] - s[:, 0]
     length = np.hypot(v[:, 0], v[:, 1])
     if np.any(length == 0):

@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d.lines import extract_segments
+from cga_lessons.mapping2d import extract_segments
 
 from .geometry import check_scan, estimate_range_noise, transform_points
 

@@ -24,16 +24,16 @@ import time
 import numpy as np
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d.laser import (
+from cga_lessons.mapping2d import (
     OdometryModel,
     Scene,
     compose,
     relative,
+    returns_reach,
     simulate_odometry,
     simulate_scan,
     wrap_angle,
 )
-from cga_lessons.mapping2d.laser_facts import returns_reach
 
 from .eval import (
     HEADING_TOLERANCE,

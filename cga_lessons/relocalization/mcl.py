@@ -54,7 +54,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d.laser import compose, wrap_angle
+from cga_lessons.mapping2d import compose, wrap_angle
 
 from .geometry import as_segment_array, check_scan, prepare_map
 from .history import ScanHistory, merge, normalise

@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d.laser import OdometryModel
+from cga_lessons.mapping2d import OdometryModel
 
 from .beam import BeamModel
 from .mcl_search import SearchConfig

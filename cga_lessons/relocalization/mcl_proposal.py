@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from cga_lessons.mapping2d.laser import wrap_angle
+from cga_lessons.mapping2d import wrap_angle
 
 __all__ = ["Proposal", "propose", "confirms", "within"]
 

@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d.laser import OdometryModel, compose, relative, wrap_angle
+from cga_lessons.mapping2d import OdometryModel, compose, relative, wrap_angle
 
 __all__ = ["REGISTRATION_XY", "REGISTRATION_THETA", "ODOMETRY_GATE", "odometry_misfit"]
 

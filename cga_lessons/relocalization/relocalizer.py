@@ -59,7 +59,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d.lines import extract_segments
+from cga_lessons.mapping2d import extract_segments
 
 from .geometry import (
     Observation,

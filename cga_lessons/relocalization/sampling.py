@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d.laser import wrap_angle
+from cga_lessons.mapping2d import wrap_angle
 
 __all__ = ["KLDConfig", "kld_bound", "low_variance_indices", "kld_resample", "mode_estimate", "tempering"]
 

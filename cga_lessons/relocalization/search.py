@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from cga_lessons.mapping2d.laser import wrap_angle
+from cga_lessons.mapping2d import wrap_angle
 
 from .geometry import MapLines, ScanLines, rotation_matrix
 

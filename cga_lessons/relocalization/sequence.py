@@ -38,7 +38,7 @@ from __future__ import annotations
 import numpy as np
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d.laser import OdometryModel, compose, relative
+from cga_lessons.mapping2d import OdometryModel, compose, relative
 
 from .chain import Chain, SequenceRelocalization, refine_chains
 from .geometry import Observation, check_scan, estimate_range_noise, prepare_map

@@ -22,10 +22,9 @@ import numpy as np
 
 from cga_lessons import conformal as cga
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
-from cga_lessons.mapping2d import theta_correction, translation_correction
-from cga_lessons.mapping2d.lines import TWO_PI, diff_theta
+from cga_lessons.mapping2d import TWO_PI, diff_theta, theta_correction, translation_correction
 
-from .hough import THETA_XI, _endpoints, hough_set, vote_matrix_indexed
+from .hough import THETA_XI, endpoint_array, hough_set, vote_matrix_indexed
 
 __all__ = [
     "correspondences_from_votes",
@@ -125,7 +124,7 @@ def rotate_entities(segments, angle) -> np.ndarray:
     -------
     ndarray, shape (K, 2, 2)
     """
-    s = _endpoints(segments, "rotate_entities")
+    s = endpoint_array(segments, "rotate_entities")
     if len(s) == 0:
         return s.copy()
     R = cga.rotor([0.0, 0.0, 1.0], float(angle))  # (2.96)
@@ -139,7 +138,7 @@ def translate_entities(segments, translation) -> np.ndarray:
     -------
     ndarray, shape (K, 2, 2)
     """
-    s = _endpoints(segments, "translate_entities")
+    s = endpoint_array(segments, "translate_entities")
     if len(s) == 0:
         return s.copy()
     t = np.asarray(translation, float).reshape(2)
@@ -201,8 +200,8 @@ def thesis_relocalization(
         no correspondence was found, ``rotated`` and ``placed`` local segments
         (K, 2, 2) after steps 8 and 10 (None without ``entities``), ``M_h`` and ``L_h``.
     """
-    M = _endpoints(map_segments, "thesis_relocalization", "map_segments")
-    L = _endpoints(scan_segments, "thesis_relocalization", "scan_segments")
+    M = endpoint_array(map_segments, "thesis_relocalization", "map_segments")
+    L = endpoint_array(scan_segments, "thesis_relocalization", "scan_segments")
     M_h, L_h = hough_set(M), hough_set(L)
     V = vote_matrix_indexed(M_h, L_h, xi_theta, xi_rho, theta_xi)  # steps 1-5, (5.1)-(5.6)
     C = correspondences_from_votes(V, min_votes)  # step 6

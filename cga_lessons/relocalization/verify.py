@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from cga_lessons.mapping2d.laser import wrap_angle
+from cga_lessons.mapping2d import wrap_angle
 
 from .coverage import FREE, UNKNOWN, WALL
 from .geometry import MapLines, Observation, ScanLines, first_hits, pose_error, rotation_matrix

@@ -32,6 +32,28 @@ Nothing here draws (figures and widgets are in :mod:`cga_lessons.viz`).  This fa
   section 4.1)
 """
 
+from .camera import (
+    camera_center,
+    cameras_from_fundamental,
+    closest_points_on_rays,
+    epipolar_distance,
+    fundamental_8point,
+    optical_planes,
+    project,
+    projection_matrix_rt,
+    triangulate,
+)
+from .detect import DetectConfig, detect_entities
+from .detect_noise import triangulation_covariance
+from .detect_scenes import KINDS, SceneConfig, evaluate, scene_rig, stereo_scene
+from .epipolar import eight_point_matrix, epipolar_lines, epipoles
+from .experiments import (
+    entity_error_table,
+    format_table,
+    fundamental_comparison,
+    random_points_in_view,
+    triangulation_error_curve,
+)
 from .head import (
     StereoRig,
     StereoScene,
@@ -51,6 +73,8 @@ from .head import (
     square_polyline,
     stereo_head,
 )
+from .real import MOTORCYCLE_CALIBRATION, disparity_to_points, label_image, load_motorcycle, motorcycle_cameras
+from .render import render_views
 
 __all__ = [
     "StereoRig",
@@ -70,4 +94,35 @@ __all__ = [
     "square_polyline",
     "rotation_matrix",
     "look_at_rotation",
+    "label_image",
+    "closest_points_on_rays",
+    "epipolar_lines",
+    "project",
+    "triangulate",
+    "DetectConfig",
+    "KINDS",
+    "MOTORCYCLE_CALIBRATION",
+    "SceneConfig",
+    "camera_center",
+    "cameras_from_fundamental",
+    "detect_entities",
+    "disparity_to_points",
+    "eight_point_matrix",
+    "entity_error_table",
+    "epipolar_distance",
+    "epipoles",
+    "evaluate",
+    "format_table",
+    "fundamental_8point",
+    "fundamental_comparison",
+    "load_motorcycle",
+    "motorcycle_cameras",
+    "optical_planes",
+    "projection_matrix_rt",
+    "random_points_in_view",
+    "render_views",
+    "scene_rig",
+    "stereo_scene",
+    "triangulation_covariance",
+    "triangulation_error_curve",
 ]

@@ -55,7 +55,7 @@ def __getattr__(name):
 
 
 # ----------------------------------------------------------------- validation
-def _array(a, shape_tail: tuple, func: str, name: str) -> np.ndarray:
+def as_batch(a, shape_tail: tuple, func: str, name: str) -> np.ndarray:
     """``a`` as a float array of shape ``(N,) + shape_tail`` (a single item is promoted)."""
     try:
         arr = np.asarray(a, dtype=float)
@@ -71,7 +71,7 @@ def _array(a, shape_tail: tuple, func: str, name: str) -> np.ndarray:
     return arr
 
 
-def _matrix(a, shape: tuple, func: str, name: str) -> np.ndarray:
+def as_matrix(a, shape: tuple, func: str, name: str) -> np.ndarray:
     arr = np.asarray(a, dtype=float)
     if arr.shape != shape:
         raise InvalidInputError(f"{func}: {name} must have shape {shape}, got {arr.shape}")
@@ -81,7 +81,7 @@ def _matrix(a, shape: tuple, func: str, name: str) -> np.ndarray:
 
 
 def _check_rotation(R, func: str) -> np.ndarray:
-    R = _matrix(R, (3, 3), func, "R")
+    R = as_matrix(R, (3, 3), func, "R")
     if not np.allclose(R @ R.T, np.eye(3), atol=1e-9) or np.linalg.det(R) < 0:
         raise InvalidInputError(f"{func}: R is not a rotation matrix (R R^T != I or det R < 0)")
     return R
@@ -135,9 +135,9 @@ def projection_matrix(K, R, C) -> np.ndarray:
     -------
     P : ndarray, shape (3, 4)
     """
-    K = _matrix(K, (3, 3), "projection_matrix", "K")
+    K = as_matrix(K, (3, 3), "projection_matrix", "K")
     R = _check_rotation(R, "projection_matrix")
-    C = _matrix(C, (3,), "projection_matrix", "C")
+    C = as_matrix(C, (3,), "projection_matrix", "C")
     if abs(np.linalg.det(K)) < 1e-300:
         raise DegenerateGeometryError("projection_matrix: K is singular")
     return K @ R @ np.hstack([np.eye(3), -C[:, None]])
@@ -156,9 +156,9 @@ def projection_matrix_rt(K, R, t) -> np.ndarray:
     -------
     P : ndarray, shape (3, 4)
     """
-    K = _matrix(K, (3, 3), "projection_matrix_rt", "K")
+    K = as_matrix(K, (3, 3), "projection_matrix_rt", "K")
     R = _check_rotation(R, "projection_matrix_rt")
-    t = _matrix(t, (3,), "projection_matrix_rt", "t")
+    t = as_matrix(t, (3,), "projection_matrix_rt", "t")
     return K @ np.hstack([R, t[:, None]])
 
 
@@ -178,7 +178,7 @@ def decompose_projection(P):
     R : ndarray, shape (3, 3)
     C : ndarray, shape (3,)
     """
-    P = _matrix(P, (3, 4), "decompose_projection", "P")
+    P = as_matrix(P, (3, 4), "decompose_projection", "P")
     M = P[:, :3]
     if abs(np.linalg.det(M)) < 1e-12 * np.linalg.norm(M) ** 3:
         raise DegenerateGeometryError("decompose_projection: the left 3x3 block of P is singular (camera at infinity)")
@@ -251,8 +251,8 @@ def project(P, X, return_depth: bool = False):
     depth : ndarray, shape (N,)
         Only when ``return_depth``.
     """
-    P = _matrix(P, (3, 4), "project", "P")
-    X = _array(X, (3,), "project", "X")
+    P = as_matrix(P, (3, 4), "project", "P")
+    X = as_batch(X, (3,), "project", "X")
     lam_x = to_homogeneous(X) @ P.T
     lam = lam_x[:, 2]
     if np.any(np.abs(lam) <= 1e-14 * np.linalg.norm(lam_x, axis=1)):
@@ -277,7 +277,7 @@ def camera_center(P) -> np.ndarray:
     C : ndarray, shape (3,)
         Euclidean centre (raises for a camera at infinity).
     """
-    P = _matrix(P, (3, 4), "camera_center", "P")
+    P = as_matrix(P, (3, 4), "camera_center", "P")
     _, s, vt = np.linalg.svd(P)
     if s[2] <= 1e-12 * s[0]:
         raise DegenerateGeometryError("camera_center: P has rank < 3")
@@ -305,7 +305,7 @@ def optical_planes(P) -> np.ndarray:
     planes : ndarray, shape (3, 4)
         Row ``i`` is ``(n_x, n_y, n_z, d)`` with ``n . X + d = 0`` on plane i.
     """
-    P = _matrix(P, (3, 4), "optical_planes", "P")
+    P = as_matrix(P, (3, 4), "optical_planes", "P")
     norms = np.linalg.norm(P[:, :3], axis=1)
     if np.any(norms == 0):
         raise DegenerateGeometryError("optical_planes: a row of P has a zero normal")
@@ -323,7 +323,7 @@ def pseudo_inverse(P) -> np.ndarray:
     -------
     ndarray, shape (4, 3)
     """
-    P = _matrix(P, (3, 4), "pseudo_inverse", "P")
+    P = as_matrix(P, (3, 4), "pseudo_inverse", "P")
     PPt = P @ P.T
     if np.linalg.cond(PPt) > 1e14:
         raise DegenerateGeometryError("pseudo_inverse: P P^T is singular (rank of P < 3)")
@@ -347,8 +347,8 @@ def back_project(P, x):
     directions : ndarray, shape (N, 3)
         Unit directions, pointing in front of the camera.
     """
-    P = _matrix(P, (3, 4), "back_project", "P")
-    x = _array(x, (2,), "back_project", "x")
+    P = as_matrix(P, (3, 4), "back_project", "P")
+    x = as_batch(x, (2,), "back_project", "x")
     C = camera_center(P)
     Ch = np.append(C, 1.0)
     A = to_homogeneous(x) @ pseudo_inverse(P).T  # P+ x, homogeneous 4-vectors
@@ -379,7 +379,7 @@ def closest_points_on_rays(o1, d1, o2, d2, tol: float = 1e-12):
         The closest point on each line; ``|p1 - p2|`` is the rays' gap.
     """
     func = "closest_points_on_rays"
-    o1, d1, o2, d2 = (_array(a, (3,), func, n) for a, n in ((o1, "o1"), (d1, "d1"), (o2, "o2"), (d2, "d2")))
+    o1, d1, o2, d2 = (as_batch(a, (3,), func, n) for a, n in ((o1, "o1"), (d1, "d1"), (o2, "o2"), (d2, "d2")))
     if not len(o1) == len(d1) == len(o2) == len(d2):
         raise InvalidInputError(f"{func}: inputs have different numbers of rows")
     n1 = np.linalg.norm(d1, axis=1, keepdims=True)
@@ -440,10 +440,10 @@ def triangulate(P1, P2, x1, x2, method: str = "midpoint") -> np.ndarray:
     array([[ 0.1, -0.2,  3. ]])
     """
     func = "triangulate"
-    P1 = _matrix(P1, (3, 4), func, "P1")
-    P2 = _matrix(P2, (3, 4), func, "P2")
-    x1 = _array(x1, (2,), func, "x1")
-    x2 = _array(x2, (2,), func, "x2")
+    P1 = as_matrix(P1, (3, 4), func, "P1")
+    P2 = as_matrix(P2, (3, 4), func, "P2")
+    x1 = as_batch(x1, (2,), func, "x1")
+    x2 = as_batch(x2, (2,), func, "x2")
     if len(x1) != len(x2):
         raise InvalidInputError(f"{func}: x1 has {len(x1)} points but x2 has {len(x2)}")
     if method not in ("midpoint", "dlt"):

@@ -32,7 +32,6 @@ import numpy as np
 
 from cga_lessons import conformal as cga
 from cga_lessons.algebra import DegenerateGeometryError
-from cga_lessons.conformal import fitting as sf
 
 __all__ = ["KINDS", "MINIMAL", "CODIM", "DOF", "PARAM_NAMES", "hypotheses", "residuals", "fit", "fit_line", "blade",
            "orient", "basis"]  # fmt: skip
@@ -224,14 +223,14 @@ def fit(kind: str, X: np.ndarray) -> dict | None:
         return None
     try:
         if kind == "sphere":
-            f = sf.fit_sphere(X)
+            f = cga.fit_sphere(X)
             return {"center": f["center"], "radius": float(f["radius"])}
         if kind == "plane":
-            f = sf.fit_plane(X)
+            f = cga.fit_plane(X)
             n = orient(f["normal"])
             return {"normal": n, "distance": float(f["distance"] * (n @ f["normal"]))}
         if kind == "circle":
-            f = sf.fit_circle(X)
+            f = cga.fit_circle(X)
             return {"center": f["center"], "radius": float(f["radius"]), "normal": orient(f["normal"])}
         f = fit_line(X)
         return {"point": f["point"], "direction": f["direction"]}

@@ -12,7 +12,7 @@ import numpy as np
 
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
 
-from .camera import _array, _matrix, pseudo_inverse, to_homogeneous
+from .camera import as_batch, as_matrix, pseudo_inverse, to_homogeneous
 
 __all__ = [
     "skew",
@@ -38,7 +38,7 @@ def skew(v) -> np.ndarray:
     -------
     ndarray, shape (3, 3)
     """
-    a, b, c = _matrix(v, (3,), "skew", "v")
+    a, b, c = as_matrix(v, (3,), "skew", "v")
     return np.array([[0.0, -c, b], [c, 0.0, -a], [-b, a, 0.0]])
 
 
@@ -56,8 +56,8 @@ def eight_point_matrix(x1, x2) -> np.ndarray:
     -------
     Z : ndarray, shape (N, 9)
     """
-    x1 = _array(x1, (2,), "eight_point_matrix", "x1")
-    x2 = _array(x2, (2,), "eight_point_matrix", "x2")
+    x1 = as_batch(x1, (2,), "eight_point_matrix", "x1")
+    x2 = as_batch(x2, (2,), "eight_point_matrix", "x2")
     if len(x1) != len(x2):
         raise InvalidInputError(f"eight_point_matrix: x1 has {len(x1)} points but x2 has {len(x2)}")
     x, y = x1[:, 0], x1[:, 1]
@@ -84,7 +84,7 @@ def hartley_normalization(x):
     xn : ndarray, shape (N, 2)
         The normalised points.
     """
-    x = _array(x, (2,), "hartley_normalization", "x")
+    x = as_batch(x, (2,), "hartley_normalization", "x")
     c = x.mean(axis=0)
     mean_dist = np.mean(np.linalg.norm(x - c, axis=1))
     if mean_dist <= 1e-12 * max(1.0, np.abs(c).max()):
@@ -135,8 +135,8 @@ def fundamental_8point(x1, x2, normalize: bool = True, rank2: bool = True) -> np
         points on one plane, repeated points).
     """
     func = "fundamental_8point"
-    x1 = _array(x1, (2,), func, "x1")
-    x2 = _array(x2, (2,), func, "x2")
+    x1 = as_batch(x1, (2,), func, "x1")
+    x2 = as_batch(x2, (2,), func, "x2")
     if len(x1) != len(x2):
         raise InvalidInputError(f"{func}: x1 has {len(x1)} points but x2 has {len(x2)}")
     if len(x1) < 8:
@@ -176,8 +176,8 @@ def fundamental_from_cameras(P1, P2) -> np.ndarray:
     F : ndarray, shape (3, 3)
         Unit Frobenius norm, sign as in the module docstring.
     """
-    P1 = _matrix(P1, (3, 4), "fundamental_from_cameras", "P1")
-    P2 = _matrix(P2, (3, 4), "fundamental_from_cameras", "P2")
+    P1 = as_matrix(P1, (3, 4), "fundamental_from_cameras", "P1")
+    P2 = as_matrix(P2, (3, 4), "fundamental_from_cameras", "P2")
     _, s, vt = np.linalg.svd(P1)
     if s[2] <= 1e-12 * s[0]:
         raise DegenerateGeometryError("fundamental_from_cameras: P1 has rank < 3")
@@ -199,7 +199,7 @@ def epipoles(F):
     e1, e2 : ndarray, shape (3,)
         Homogeneous unit vectors: the epipole in image 1 and in image 2.
     """
-    F = _matrix(F, (3, 3), "epipoles", "F")
+    F = as_matrix(F, (3, 3), "epipoles", "F")
     u, s, vt = np.linalg.svd(F)
     if s[1] <= 1e-12 * s[0]:
         raise DegenerateGeometryError("epipoles: F has rank < 2")
@@ -222,8 +222,8 @@ def epipolar_lines(F, x1) -> np.ndarray:
         ``(a, b, c)`` with ``a x + b y + c = 0`` and ``a^2 + b^2 = 1``, so
         ``lines @ [x, y, 1]`` is a signed distance in pixels.
     """
-    F = _matrix(F, (3, 3), "epipolar_lines", "F")
-    x1 = _array(x1, (2,), "epipolar_lines", "x1")
+    F = as_matrix(F, (3, 3), "epipolar_lines", "F")
+    x1 = as_batch(x1, (2,), "epipolar_lines", "x1")
     lines = to_homogeneous(x1) @ F.T
     n = np.linalg.norm(lines[:, :2], axis=1, keepdims=True)
     if np.any(n == 0):
@@ -246,11 +246,11 @@ def epipolar_distance(F, x1, x2) -> np.ndarray:
     -------
     ndarray, shape (N,)
     """
-    F = _matrix(F, (3, 3), "epipolar_distance", "F")
+    F = as_matrix(F, (3, 3), "epipolar_distance", "F")
     l2 = epipolar_lines(F, x1)
     l1 = epipolar_lines(F.T, x2)
-    d2 = np.abs(np.sum(l2 * to_homogeneous(_array(x2, (2,), "epipolar_distance", "x2")), axis=1))
-    d1 = np.abs(np.sum(l1 * to_homogeneous(_array(x1, (2,), "epipolar_distance", "x1")), axis=1))
+    d2 = np.abs(np.sum(l2 * to_homogeneous(as_batch(x2, (2,), "epipolar_distance", "x2")), axis=1))
+    d1 = np.abs(np.sum(l1 * to_homogeneous(as_batch(x1, (2,), "epipolar_distance", "x1")), axis=1))
     return 0.5 * (d1 + d2)
 
 
@@ -275,8 +275,8 @@ def cameras_from_fundamental(F, v=(0.0, 0.0, 0.0), lam: float = 1.0):
     -------
     P1, P2 : ndarray, shape (3, 4)
     """
-    F = _matrix(F, (3, 3), "cameras_from_fundamental", "F")
-    v = _matrix(v, (3,), "cameras_from_fundamental", "v")
+    F = as_matrix(F, (3, 3), "cameras_from_fundamental", "F")
+    v = as_matrix(v, (3,), "cameras_from_fundamental", "v")
     if lam == 0 or not np.isfinite(lam):
         raise InvalidInputError(f"cameras_from_fundamental: lam must be a non-zero number, got {lam}")
     s = np.linalg.svd(F, compute_uv=False)

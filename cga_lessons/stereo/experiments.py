@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from cga_lessons.conformal import fitting as sf
+from cga_lessons import conformal
 
 from . import camera as cam
 from . import epipolar as epi
@@ -155,13 +155,13 @@ def entity_error_table(rig: StereoRig, scene: st.StereoScene, rng: np.random.Gen
         rec = st.reconstruct_entities(rig, {k: views[k] for k in keys})
         dense = {k: cam.triangulate(rig.P1, rig.P2, *views[k]) for k in ("circle", "plane", "sphere")}
         fits = {
-            ("circle", _ROWS[4][1]): sf.fit_circle(dense["circle"]),
-            ("circle", _ROWS[5][1]): sf.fit_circle_euclidean(dense["circle"]),
-            ("plane", _ROWS[7][1]): sf.fit_plane(dense["plane"]),
-            ("plane", _ROWS[8][1]): sf.fit_plane_euclidean(dense["plane"]),
-            ("sphere", _ROWS[10][1]): sf.fit_sphere(dense["sphere"]),
-            ("sphere", _ROWS[11][1]): sf.fit_sphere_kasa(dense["sphere"]),
-            ("sphere", _ROWS[12][1]): sf.fit_sphere_geometric(dense["sphere"]),
+            ("circle", _ROWS[4][1]): conformal.fit_circle(dense["circle"]),
+            ("circle", _ROWS[5][1]): conformal.fit_circle_euclidean(dense["circle"]),
+            ("plane", _ROWS[7][1]): conformal.fit_plane(dense["plane"]),
+            ("plane", _ROWS[8][1]): conformal.fit_plane_euclidean(dense["plane"]),
+            ("sphere", _ROWS[10][1]): conformal.fit_sphere(dense["sphere"]),
+            ("sphere", _ROWS[11][1]): conformal.fit_sphere_kasa(dense["sphere"]),
+            ("sphere", _ROWS[12][1]): conformal.fit_sphere_geometric(dense["sphere"]),
         }
         for row in _ROWS:
             entity = row[0]

@@ -17,7 +17,7 @@ from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
 from cga_lessons.paths import data_path
 
 from . import camera as cam
-from .camera import _matrix
+from .camera import as_matrix
 
 __all__ = ["StereoRig", "stereo_head", "random_rig", "load_rig", "rotation_matrix", "look_at_rotation"]
 
@@ -36,7 +36,7 @@ def rotation_matrix(axis, angle: float) -> np.ndarray:
     -------
     R : ndarray, shape (3, 3)
     """
-    axis = _matrix(axis, (3,), "rotation_matrix", "axis")
+    axis = as_matrix(axis, (3,), "rotation_matrix", "axis")
     n = np.linalg.norm(axis)
     if n == 0:
         raise DegenerateGeometryError("rotation_matrix: the axis is the zero vector")
@@ -60,9 +60,9 @@ def look_at_rotation(center, target, up=(0.0, 0.0, 1.0)) -> np.ndarray:
     R : ndarray, shape (3, 3)
         Rows are the camera's x, y, z axes expressed in world coordinates.
     """
-    center = _matrix(center, (3,), "look_at_rotation", "center")
-    target = _matrix(target, (3,), "look_at_rotation", "target")
-    up = _matrix(up, (3,), "look_at_rotation", "up")
+    center = as_matrix(center, (3,), "look_at_rotation", "center")
+    target = as_matrix(target, (3,), "look_at_rotation", "target")
+    up = as_matrix(up, (3,), "look_at_rotation", "up")
     z = target - center
     if np.linalg.norm(z) == 0:
         raise DegenerateGeometryError("look_at_rotation: center and target coincide")

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
-from cga_lessons.conformal.entities import (
+from cga_lessons.conformal import (
     circle_center_radius,
     circle_from_points,
     line_closest_point,
@@ -20,8 +20,8 @@ from cga_lessons.conformal.entities import (
     line_from_points,
     line_moment,
     point_line_distance,
+    up,
 )
-from cga_lessons.conformal.model import up
 
 from .core import (
     Derivation,

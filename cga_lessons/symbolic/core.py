@@ -24,7 +24,7 @@ import sympy as sp
 from sympy.polys.rings import PolyElement
 
 from cga_lessons.algebra import DegenerateGeometryError, Multivector
-from cga_lessons.conformal.model import G41, exact_constants, up
+from cga_lessons.conformal import G41, exact_constants, up
 
 __all__ = [
     "Check",

@@ -12,16 +12,16 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
-from cga_lessons.conformal.entities import (
+from cga_lessons.conformal import (
     plane_from_points,
     point_pair,
     point_pair_endpoints,
     point_pair_sphere,
     sphere_center_radius,
     sphere_from_points,
+    up,
 )
-from cga_lessons.conformal.entities import sphere as sphere_entity
-from cga_lessons.conformal.model import up
+from cga_lessons.conformal import sphere as sphere_entity
 
 from .core import (
     Derivation,

@@ -13,7 +13,7 @@ from math import comb
 import sympy as sp
 
 from cga_lessons.algebra import Algebra, Multivector
-from cga_lessons.conformal.model import up
+from cga_lessons.conformal import up
 
 from .core import Derivation, const, dot3, euclid, inverse
 

@@ -14,15 +14,16 @@ import numpy as np
 import sympy as sp
 
 from cga_lessons.algebra import commutator
-from cga_lessons.conformal.entities import line_from_points, plane
-from cga_lessons.conformal.model import up
-from cga_lessons.conformal.versors import (
+from cga_lessons.conformal import (
     decompose_motor,
     invert_in_sphere,
+    line_from_points,
+    plane,
     reflect_in_plane,
     rotor_about_line,
     rotor_angle_axis,
     translator,
+    up,
 )
 
 from .core import Derivation, Ring, add3, const, cross3, dot3, euclid, inverse, sub3

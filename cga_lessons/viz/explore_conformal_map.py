@@ -25,12 +25,10 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from cga_lessons import conformal as cga
+from cga_lessons import mapping2d
 from cga_lessons.algebra import InvalidInputError, Multivector
 from cga_lessons.errors import finite_real
-from cga_lessons.mapping2d import conformal as cmap
-from cga_lessons.mapping2d import laser, lines
-from cga_lessons.mapping2d.corrections import theta_correction, translation_correction
-from cga_lessons.mapping2d.geometry import SegmentSet
+from cga_lessons.mapping2d import SegmentSet, theta_correction, translation_correction
 
 from .controls import slider_panel
 from .laser import draw_scene
@@ -40,7 +38,7 @@ __all__ = ["CorrectionExplorer", "place", "ends", "line_members", "rotor_about",
 
 def place(PP: Multivector, pose) -> tuple[Multivector, Multivector]:
     """Point pairs of the laser frame put in the world by the laser motor of ``pose`` (3.17), ``M PP ~M`` (3.18)."""
-    M = cmap.laser_motor(pose)
+    M = mapping2d.laser_motor(pose)
     return (M * PP * ~M).grade(2), M
 
 
@@ -54,13 +52,13 @@ def line_members(PP: Multivector, centre) -> tuple[np.ndarray, np.ndarray]:
     """Oriented ``(rho, theta)`` of the lines ``PP ^ e`` seen from ``centre``: (3.14), (3.15) and (2.127)."""
     p1, p2 = ends(PP)
     segs = SegmentSet(p1, p2, np.zeros((len(p1), 6)), np.zeros((len(p1), 2), int))
-    return cmap.ConformalGeometry().hough(segs, np.asarray(centre, float))
+    return mapping2d.ConformalGeometry().hough(segs, np.asarray(centre, float))
 
 
 def rotor_about(centre, angle: float) -> Multivector:
     """The motor turning the plane by ``angle`` about the point ``centre``: ``T R ~T`` (2.94, 2.100)."""
     c = np.asarray(centre, float)
-    return cmap.robot_motor([c[0], c[1], angle]) * cga.translator([-c[0], -c[1], 0.0])
+    return mapping2d.robot_motor([c[0], c[1], angle]) * cga.translator([-c[0], -c[1], 0.0])
 
 
 def conformal_correction(PP_map: Multivector, PP_scan: Multivector, centre, theta_xi: float = np.radians(30)) -> dict:
@@ -73,7 +71,7 @@ def conformal_correction(PP_map: Multivector, PP_scan: Multivector, centre, thet
     """
     rho_g, th_g = line_members(PP_map, centre)
     rho_l, th_l = line_members(PP_scan, centre)
-    theta = theta_correction(lines.diff_theta(th_g, th_l, theta_xi))  # (3.8)
+    theta = theta_correction(mapping2d.diff_theta(th_g, th_l, theta_xi))  # (3.8)
     R = rotor_about(centre, theta)
     turned = (R * PP_scan * ~R).grade(2)
     rho_l, th_l = line_members(turned, centre)
@@ -111,14 +109,14 @@ class CorrectionExplorer:
     def __init__(self, scene="room", pose=(3.0, 2.0, 0.3), dx: float = 0.4, dy: float = -0.3,
                  dtheta_deg: float = 10.0, max_range: float = 5.0, theta_xi_deg: float = 30.0):  # fmt: skip
         func = "CorrectionExplorer"
-        self.scene = laser.load_scene(scene) if isinstance(scene, str) else scene
+        self.scene = mapping2d.load_scene(scene) if isinstance(scene, str) else scene
         self.pose = np.array([_check(v, func, "pose") for v in np.asarray(pose, float).reshape(3)])
         self.theta_xi_deg = _check(theta_xi_deg, func, "theta_xi_deg")
-        ranges, angles = laser.simulate_scan(self.scene, self.pose, None, max_range=max_range)
-        self.segments = lines.extract_segments(ranges, angles, max_range=max_range)  # laser frame
+        ranges, angles = mapping2d.simulate_scan(self.scene, self.pose, None, max_range=max_range)
+        self.segments = mapping2d.extract_segments(ranges, angles, max_range=max_range)  # laser frame
         if not self.segments:
             raise InvalidInputError(f"{func}: the scan from pose {self.pose.tolist()} sees no segment")
-        self.local = cmap.segment_point_pair(self.segments)  # PP* = p_i ^ p_f, section 3.2.1
+        self.local = mapping2d.segment_point_pair(self.segments)  # PP* = p_i ^ p_f, section 3.2.1
         self.map, self.true_motor = place(self.local, self.pose)
         self.error = np.zeros(3)
         ratios = {"width_ratios": [1.25, 1]}
@@ -168,7 +166,7 @@ class CorrectionExplorer:
         self.result = conformal_correction(self.map, self.placed, centre, np.radians(self.theta_xi_deg))
         self.correction = np.array([*self.result["t"], self.result["theta"]])
         self.corrected_pose = self.believed + self.correction  # (3.6), (3.7)
-        self.corrected_pose[2] = laser.wrap_angle(self.corrected_pose[2])
+        self.corrected_pose[2] = mapping2d.wrap_angle(self.corrected_pose[2])
         self._draw(centre)
 
     def _draw(self, centre) -> None:
@@ -191,7 +189,7 @@ class CorrectionExplorer:
         self.ax_hough.set_ylim(min(all_rho.min() - 0.5, 0.0), all_rho.max() + 0.5)
         dx, dy, dth = self.error
         x, y, h = self.corrected_pose
-        off = np.abs(np.r_[self.corrected_pose[:2] - self.pose[:2], laser.wrap_angle(h - self.pose[2])]).max()
+        off = np.abs(np.r_[self.corrected_pose[:2] - self.pose[:2], mapping2d.wrap_angle(h - self.pose[2])]).max()
         self.ax.set_title(f"pose error dx {dx:+.2f} m, dy {dy:+.2f} m, dtheta {dth:+.1f} deg\n"
                           f"corrected pose ({x:.2f} m, {y:.2f} m, {np.degrees(h):.1f} deg) "
                           f"{'=' if off < 1e-9 else '!='} the true pose", fontsize=10)  # fmt: skip

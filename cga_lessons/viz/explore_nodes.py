@@ -17,7 +17,7 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from cga_lessons.exploration import cases as cases
+from cga_lessons import exploration
 
 from .controls import slider_panel
 from .exploration import plot_nodes
@@ -46,7 +46,7 @@ class NodeExplorer:
             changes["sphere_diameter"] = self.diameter
         else:
             changes["sphere_center"] = None
-        self.result = cases.run_scenario(**changes)
+        self.result = exploration.run_scenario(**changes)
         self.counts = self.result.labels.counts()
         self.ax.clear()
         plot_nodes(self.ax, self.result, "xy")

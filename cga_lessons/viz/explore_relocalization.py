@@ -29,13 +29,20 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.collections import LineCollection
 
+from cga_lessons import mapping2d
 from cga_lessons.algebra import InvalidInputError
 from cga_lessons.errors import finite_real
-from cga_lessons.mapping2d import laser
-from cga_lessons.relocalization import RelocParams, pose_error, prepare_map, relocalize
-from cga_lessons.relocalization.eval import HEADING_TOLERANCE, POSITION_TOLERANCE
-from cga_lessons.relocalization.geometry import transform_points
-from cga_lessons.relocalization.hough import hough_set, shifted_set_corrected
+from cga_lessons.relocalization import (
+    HEADING_TOLERANCE,
+    POSITION_TOLERANCE,
+    RelocParams,
+    hough_set,
+    pose_error,
+    prepare_map,
+    relocalize,
+    shifted_set_corrected,
+    transform_points,
+)
 
 from .controls import slider_panel
 
@@ -118,7 +125,7 @@ class RelocalizationExplorer:
     """
 
     def __init__(self, scene="office", pose=None, seed: int | None = 0, n_show: int = 6):
-        self.scene = laser.load_scene(scene) if isinstance(scene, str) else scene
+        self.scene = mapping2d.load_scene(scene) if isinstance(scene, str) else scene
         self.ref = prepare_map(self.scene.walls)
         self.params = RelocParams()
         start = (8.0, 3.5, np.radians(30.0)) if pose is None else pose
@@ -198,7 +205,7 @@ class RelocalizationExplorer:
     def _relocalize(self):
         """Scan from the true pose (same noise at every pose), relocalize, and read the thesis's votes."""
         rng = None if self.seed is None else np.random.default_rng(self.seed)
-        self.scan = laser.simulate_scan(self.scene, self.pose, rng)
+        self.scan = mapping2d.simulate_scan(self.scene, self.pose, rng)
         self.result = r = relocalize(self.ref, scan=self.scan)
         self.scan_segments = r.scan_segments
         self.L_h = hough_set(r.scan_segments) if len(r.scan_segments) else np.zeros((0, 2))  # rho from the laser
@@ -246,7 +253,7 @@ class RelocalizationExplorer:
         if "y" in given:
             self.pose[1] = given["y"]
         if "theta_deg" in given:
-            self.pose[2] = float(laser.wrap_angle(np.radians(given["theta_deg"])))
+            self.pose[2] = float(mapping2d.wrap_angle(np.radians(given["theta_deg"])))
         self._relocalize()
         self._draw_votes()
         self._draw_map()
@@ -275,7 +282,7 @@ class RelocalizationExplorer:
                                 fontsize=10)  # fmt: skip
 
     def _draw_map(self):
-        pts, _ = laser.scan_points(*self.scan)
+        pts, _ = mapping2d.scan_points(*self.scan)
         world = transform_points(pts, self.pose) if len(pts) else np.zeros((0, 2))
         self._scan_pts.set_data(world[:, 0], world[:, 1])
         self._robot.set_data(*_triangles(self.pose, 0.45))

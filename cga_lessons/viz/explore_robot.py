@@ -28,12 +28,11 @@ from matplotlib.ticker import MaxNLocator
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.map3d import FusedMap
-from cga_lessons.map3d.robot import DOFS, Robot, RobotState
+from cga_lessons.map3d import DOFS, FusedMap, Robot, RobotState
 
 from .controls import slider_panel
 from .map3d import plot_fused_map, robot_primitives
-from .scene3d import FRAME_COLORS, Box, Cylinder, Frame, _box_faces, _cylinder_grid
+from .scene3d import FRAME_COLORS, Box, Cylinder, Frame, box_faces, cylinder_grid
 
 __all__ = ["RobotExplorer"]
 
@@ -43,10 +42,10 @@ _SIGHT = (0.85, 0.1, 0.55)  # the line of sight, magenta: no object of the map h
 def _faces(p) -> list:
     """The polygons of a solid of :func:`robot_primitives` (a box, or a cylinder's side and both caps)."""
     if isinstance(p, Box):
-        return _box_faces(p.corners())
+        return box_faces(p.corners())
     if not isinstance(p, Cylinder):
         raise InvalidInputError(f"RobotExplorer: cannot draw a {type(p).__name__} of the robot as a solid")
-    grid = np.stack(_cylinder_grid(p), axis=-1)  # (2, n + 1, 3): the rings at both ends, first point repeated
+    grid = np.stack(cylinder_grid(p), axis=-1)  # (2, n + 1, 3): the rings at both ends, first point repeated
     sides = [np.array([grid[0, k], grid[0, k + 1], grid[1, k + 1], grid[1, k]]) for k in range(grid.shape[1] - 1)]
     return sides + [grid[0, :-1], grid[1, :-1]]
 

@@ -19,7 +19,7 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from cga_lessons.mapping2d import laser, lines
+from cga_lessons import mapping2d
 
 from .controls import slider_panel
 from .laser import draw_scene
@@ -31,7 +31,7 @@ class HoughExplorer:
     """One scan of ``scene`` from a movable pose, drawn in the world and in Hough space."""
 
     def __init__(self, scene="office", pose=None, seed: int | None = 0, max_range: float = 5.0):
-        self.scene = laser.load_scene(scene) if isinstance(scene, str) else scene
+        self.scene = mapping2d.load_scene(scene) if isinstance(scene, str) else scene
         self.pose = np.array(self.scene.trajectory[60] if pose is None else pose, float)
         self.seed, self.max_range = seed, float(max_range)  # seed None: a noise-free scan
         self.fig, (self.ax_world, self.ax_hough) = plt.subplots(1, 2, figsize=(11, 4.3))
@@ -57,10 +57,10 @@ class HoughExplorer:
         if y is not None:
             self.pose[1] = float(y)
         if theta_deg is not None:
-            self.pose[2] = float(laser.wrap_angle(np.radians(theta_deg)))
+            self.pose[2] = float(mapping2d.wrap_angle(np.radians(theta_deg)))
         rng = None if self.seed is None else np.random.default_rng(self.seed)  # the same noise at every pose
-        ranges, angles = laser.simulate_scan(self.scene, self.pose, rng, max_range=self.max_range)
-        self.segments = lines.extract_segments(ranges, angles, max_range=self.max_range)
+        ranges, angles = mapping2d.simulate_scan(self.scene, self.pose, rng, max_range=self.max_range)
+        self.segments = mapping2d.extract_segments(ranges, angles, max_range=self.max_range)
         self.hough = np.array([s.hough() for s in self.segments]).reshape(-1, 2)  # (rho, theta), robot frame
         world = [s.transformed(self.pose) for s in self.segments]
         xs, ys = [], []

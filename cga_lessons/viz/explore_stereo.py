@@ -15,8 +15,8 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from cga_lessons.stereo import camera as cam
-from cga_lessons.stereo.rig import stereo_head
+from cga_lessons import stereo
+from cga_lessons.stereo import stereo_head
 
 from .controls import slider_panel
 
@@ -48,10 +48,10 @@ class DepthErrorExplorer:
         for Z in self.depths:
             lateral = rng.uniform(-0.1, 0.1, (self.n_points, 2)) * Z  # a small patch in the middle of the view
             X = Z * fwd + lateral[:, :1] * right + lateral[:, 1:] * down
-            x1, x2 = cam.project(rig.P1, X), cam.project(rig.P2, X)
+            x1, x2 = stereo.project(rig.P1, X), stereo.project(rig.P2, X)
             x1 = x1 + rng.normal(scale=self.noise_px, size=x1.shape)
             x2 = x2 + rng.normal(scale=self.noise_px, size=x2.shape)
-            Xh = cam.triangulate(rig.P1, rig.P2, x1, x2, method="dlt")
+            Xh = stereo.triangulate(rig.P1, rig.P2, x1, x2, method="dlt")
             out.append(np.sqrt(np.mean(((Xh - X) @ fwd) ** 2)))
         return np.array(out)
 

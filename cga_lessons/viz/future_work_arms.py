@@ -16,7 +16,7 @@ import numpy as np
 from cga_lessons import conformal as cga
 from cga_lessons import kinematics as kin
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.kinematics.arms import DHParameters
+from cga_lessons.kinematics import DHParameters
 
 from .future_work import as_points, metric_box
 

@@ -15,7 +15,7 @@ from matplotlib.patches import Patch
 
 from cga_lessons import stereo as st
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.stereo.real import label_image
+from cga_lessons.stereo import label_image
 
 from .future_work import as_points, metric_box
 

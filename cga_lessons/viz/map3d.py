@@ -15,8 +15,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.map3d import FusedMap
-from cga_lessons.map3d.robot import Robot, RobotState
+from cga_lessons.map3d import FusedMap, Robot, RobotState
 
 from .scene3d import Box, Cylinder, Frame, PointCloud, Polyline, Quad, Sphere, draw_matplotlib, scene_bounds
 

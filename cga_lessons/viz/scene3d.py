@@ -359,7 +359,7 @@ def set_equal_3d(ax, lo, hi, pad=0.05):
 
 
 # ---------------------------------------------------------------- matplotlib drawing
-def _box_faces(corners):
+def box_faces(corners):
     idx = [(0, 1, 3, 2), (4, 5, 7, 6), (0, 1, 5, 4), (2, 3, 7, 6), (0, 2, 6, 4), (1, 3, 7, 5)]
     return [corners[list(f)] for f in idx]
 
@@ -373,7 +373,7 @@ def _sphere_grid(center, radius, n=14):
     return x, y, z
 
 
-def _cylinder_grid(cyl, n=16):
+def cylinder_grid(cyl, n=16):
     R = cyl.axis_rotation()
     t = np.linspace(0, 2 * np.pi, n + 1)
     ring = cyl.radius * (np.outer(np.cos(t), R[:, 0]) + np.outer(np.sin(t), R[:, 1]))  # (n+1, 3)
@@ -412,7 +412,7 @@ def draw_matplotlib(ax, primitives, *, limits=None, labels=True, pad=0.05):
         if isinstance(p, Box):
             ax.add_collection3d(
                 Poly3DCollection(
-                    _box_faces(p.corners()), facecolors=p.color, alpha=p.opacity, edgecolors="0.25", linewidths=0.3
+                    box_faces(p.corners()), facecolors=p.color, alpha=p.opacity, edgecolors="0.25", linewidths=0.3
                 )
             )
         elif isinstance(p, Quad):
@@ -422,7 +422,7 @@ def draw_matplotlib(ax, primitives, *, limits=None, labels=True, pad=0.05):
         elif isinstance(p, Sphere):
             ax.plot_surface(*_sphere_grid(p.center, p.radius), color=p.color, alpha=p.opacity, linewidth=0, shade=True)
         elif isinstance(p, Cylinder):
-            ax.plot_surface(*_cylinder_grid(p), color=p.color, alpha=p.opacity, linewidth=0, shade=True)
+            ax.plot_surface(*cylinder_grid(p), color=p.color, alpha=p.opacity, linewidth=0, shade=True)
         elif isinstance(p, Polyline):
             ax.plot(*p.points.T, color=p.color, lw=p.width * 0.6)
         elif isinstance(p, PointCloud):

@@ -6,7 +6,6 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from cga_lessons import stereo as st
-from cga_lessons.stereo import epipolar as epi
 
 __all__ = [
     "plot_views",
@@ -46,8 +45,8 @@ def plot_epipolar_lines(left, right, x1, x2, F, figsize=(9, 3.4)):
     """Points of each view and their epipolar lines ``F x`` / ``F^T x'`` (A.6) in the other view."""
     h, w = left.shape[:2]
     fig, axes = plt.subplots(1, 2, figsize=figsize)
-    l2 = epi.epipolar_lines(F, x1)
-    l1 = epi.epipolar_lines(F.T, x2)
+    l2 = st.epipolar_lines(F, x1)
+    l1 = st.epipolar_lines(F.T, x2)
     for ax, img, pts, lines, t in (
         (axes[0], left, x1, l1, "left: x and F^T x'"),
         (axes[1], right, x2, l2, "right: x' and F x"),

@@ -29,7 +29,7 @@ ENTRIES = [
         label="4.3",
         title="M_lu: laser frame to unified frame",
         status="erratum",
-        implementation=f"{R}.laser_chain, {R}.laser_chain_as_printed, cga_lessons.map3d.geometer_chains.geometer_chains",
+        implementation=f"{R}.laser_chain, {R}.laser_chain_as_printed, cga_lessons.map3d.geometer.geometer_chains",
         printed="M_lu = M_cl M_pos",
         correct="M_lu = T_pos M_cl R_pos (= M_pos M_lsr)",
         note="the printed order is right only for a laser not turned on the robot (M_cl is then a translation and "
@@ -80,7 +80,7 @@ ENTRIES = [
         label="4.9",
         title="M_eu: stereo frame to unified frame",
         status="erratum",
-        implementation=f"{R}.stereo_chain, {R}.stereo_chain_as_printed, cga_lessons.map3d.geometer_chains.geometer_chains",
+        implementation=f"{R}.stereo_chain, {R}.stereo_chain_as_printed, cga_lessons.map3d.geometer.geometer_chains",
         printed="M_eu = T_opt T_ep R_mpt",
         correct="M_eu = T_opt T_ep M_mpt",
         note="R_mpt is not defined; (4.8) defines the motor M_mpt for this place; its rotor alone (R_pt) drops "
