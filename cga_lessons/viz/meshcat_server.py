@@ -36,12 +36,12 @@ import threading
 import time
 import warnings
 import weakref
-from pathlib import Path
 
 import numpy as np
 import zmq
 
 from cga_lessons.algebra import InvalidInputError
+from cga_lessons.paths import PROJECT_ROOT
 
 with warnings.catch_warnings():  # meshcat 0.3.2 imports a pyzmq module that warns it is deprecated; harmless here
     warnings.filterwarnings("ignore", message="zmq.eventloop.ioloop is deprecated", category=DeprecationWarning)
@@ -121,7 +121,8 @@ def _serve(parent_pid: int, use_pdeathsig: bool):
 
 # ====================================================================== client side
 def _package_root() -> str:
-    return str(Path(__file__).resolve().parents[2])
+    """The folder that holds the package (put on the server's ``PYTHONPATH``)."""
+    return str(PROJECT_ROOT)
 
 
 def _stop_process(proc: subprocess.Popen, timeout: float = 5.0):
