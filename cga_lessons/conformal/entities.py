@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector, is_sympy
+from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector, any_sympy, is_sympy
 
 from . import entities_frame as _F
 from .model import (
@@ -33,7 +33,6 @@ from .model import (
     IE,
     E,
     Ic,
-    any_symbolic,
     check_points,
     down,
     einf,
@@ -72,7 +71,7 @@ __all__ = [
 
 def _c(X: Multivector):
     """Constants matching the coefficient kind of X (exact for SymPy)."""
-    if any_symbolic(X):
+    if any_sympy(X):
         return exact_constants()
     return {"einf": einf, "E": E, "IE": IE, "Ic": Ic, "ep": ep}
 
@@ -107,7 +106,7 @@ def dual_form(X: Multivector) -> Multivector:
 def _euclid_point(x, func: str):
     """Float coordinates of x (Euclidean, or a conformal point); None when symbolic."""
     if isinstance(x, Multivector):
-        if any_symbolic(x):
+        if any_sympy(x):
             return None
         _F.split(x, func, "x")  # NaN/inf check, named
         return down(x)
@@ -183,7 +182,7 @@ def point_pair_endpoints(PP: Multivector, min_separation: float | None = None):
     """
     g = grade_of(PP, "point_pair_endpoints", (2, 3), "PP")
     B = PP if g == 2 else dual_form(PP)
-    if any_symbolic(B):
+    if any_sympy(B):
         import sympy
 
         c = _c(B)
@@ -214,7 +213,7 @@ def point_pair_sphere(PP: Multivector) -> Multivector:
     """
     g = grade_of(PP, "point_pair_sphere", (2, 3), "PP")
     B = PP if g == 2 else dual_form(PP)
-    if any_symbolic(B):
+    if any_sympy(B):
         S = (B * (B ^ _c(B)["einf"]).inv()).grade(1)
         return normalize_point(S, "point_pair_sphere")
     m, h2, _, _ = _F.read_pair(B, "point_pair_sphere", "PP")
@@ -281,7 +280,7 @@ def sphere_center_radius(S: Multivector):
     """
     g = grade_of(S, "sphere_center_radius", (1, 4), "S")
     s = S if g == 1 else standard_form(S)
-    if any_symbolic(s):
+    if any_sympy(s):
         import sympy
 
         s = normalize_point(s, "sphere_center_radius")
@@ -306,7 +305,7 @@ def point_sphere_side(x, S: Multivector, atol: float = 1e-9):
     g = grade_of(S, "point_sphere_side", (1, 4), "S")
     s = S if g == 1 else standard_form(S)
     xe = _euclid_point(x, "point_sphere_side")
-    if xe is None or any_symbolic(s):
+    if xe is None or any_sympy(s):
         X = up(x) if not isinstance(x, Multivector) else normalize_point(x, "point_sphere_side")
         v = np.asarray((X | normalize_point(s, "point_sphere_side")).scalar(), dtype=float)
     else:
@@ -362,7 +361,7 @@ def plane_normal_distance(P: Multivector):
     p = P if g == 1 else standard_form(P)
     if g == 4:
         p = -p  # e ^ a ^ b ^ c (2.77) dualises to -(N + d e) with N along (b-a)x(c-a)
-    if any_symbolic(p):
+    if any_sympy(p):
         import sympy
 
         n = euclidean(p)
@@ -408,7 +407,7 @@ def normalize_line(L: Multivector) -> Multivector:
     the E part d (2.81), not summed from the squares of the coefficients.
     """
     Ld = as_dual_line(L, "normalize_line")
-    if any_symbolic(Ld):
+    if any_sympy(Ld):
         import sympy
 
         return L / sympy.sqrt((Ld * Ld).scalar())
@@ -422,7 +421,7 @@ def line_direction(L: Multivector):
     For ``line_from_points(a, b)`` this is ``(b - a)/|b - a|``.  Raises
     :class:`InvalidInputError` for a circle (or any round).
     """
-    if any_symbolic(L):
+    if any_sympy(L):
         Ln = normalize_line(L)
         return euclidean(as_dual_line(Ln, "line_direction") | _c(Ln)["E"])
     d, _ = _line_dm(L, "line_direction")
@@ -438,7 +437,7 @@ def line_moment(L: Multivector):
     adds other grades; see the erratum in the registry.  In floats: the e
     part of L* (``a x d``) over |d|.
     """
-    if any_symbolic(L):
+    if any_sympy(L):
         Ln = normalize_line(as_dual_line(L, "line_moment"))
         return -euclidean(_c(Ln)["ep"] | standard_form(Ln))
     d, mu = _line_dm(L, "line_moment")
@@ -447,7 +446,7 @@ def line_moment(L: Multivector):
 
 def line_closest_point(L: Multivector):
     """Point of the line closest to the origin, p = -r . M with M = m I_E, Eq. (2.129) (= r x m)."""
-    if not any_symbolic(L):
+    if not any_sympy(L):
         d, mu = _line_dm(L, "line_closest_point")
         return np.cross(d, mu) / _F.dot(d, d)[..., None]
     r, m = line_direction(L), line_moment(L)
@@ -468,7 +467,7 @@ def point_line_distance(x, L: Multivector):
     """
     Ld = as_dual_line(L, "point_line_distance")
     xe = _euclid_point(x, "point_line_distance")
-    if not (xe is None or any_symbolic(Ld)):
+    if not (xe is None or any_sympy(Ld)):
         d, mu = _F.read_line(Ld, "point_line_distance", "L")
         nd = _F.norm(d)
         p0 = np.cross(d, mu) / (nd * nd)[..., None]
@@ -538,7 +537,7 @@ def circle_center_radius(Z: Multivector):
     """
     g = grade_of(Z, "circle_center_radius", (2, 3), "Z")
     Zd = Z if g == 3 else dual_form(Z)
-    if any_symbolic(Zd):
+    if any_sympy(Zd):
         z = standard_form(Zd)
         center, radius = sphere_center_radius(((_c(z)["einf"] | z) * z).grade(1))
         n, _ = plane_normal_distance(-circle_plane(z))  # z* ^ e = -(e ^ a ^ b ^ c)

@@ -41,6 +41,7 @@ from cga_lessons.algebra import (
     Multivector,
     absmax,
     all_finite,
+    any_sympy,
     is_real_single,
     is_sympy,
 )
@@ -217,11 +218,7 @@ def up(x) -> Multivector:
 
 def point_weight(X: Multivector):
     """-e . X, the homogeneous weight of a conformal point or sphere (2.111, 2.115)."""
-    return -(X | einf).scalar() if not any_symbolic(X) else -(X | exact_constants()["einf"]).scalar()
-
-
-def any_symbolic(X: Multivector) -> bool:
-    return any(is_sympy(v) for v in X._c.values())
+    return -(X | einf).scalar() if not any_sympy(X) else -(X | exact_constants()["einf"]).scalar()
 
 
 def normalize_point(X: Multivector, func: str = "normalize_point") -> Multivector:
@@ -249,7 +246,7 @@ def normalize_point(X: Multivector, func: str = "normalize_point") -> Multivecto
 
 def euclidean(X: Multivector):
     """The e1, e2, e3 coefficients of a multivector as an array (3,) or (N, 3)."""
-    if any_symbolic(X):
+    if any_sympy(X):
         import sympy
 
         return sympy.Matrix([X._c.get(b, sympy.Integer(0)) for b in (1, 2, 4)])  # exact zeros, not 0.0
@@ -279,9 +276,9 @@ def down(X: Multivector):
         raise InvalidInputError(f"down: expected a conformal point (Multivector), got {type(X).__name__}")
     if is_real_single(X):
         return _down_one(X)
-    if X.shape and not any_symbolic(X):
+    if X.shape and not any_sympy(X):
         return _down_batch(X)
-    if not any_symbolic(X):
+    if not any_sympy(X):
         scale = max((absmax(v) for v in X._c.values()), default=0.0)
         bad = [
             G41.blade_names[b] for b, v in X._c.items() if G41.grades[b] != 1 and absmax(v) > 1e-9 * max(scale, 1e-300)
@@ -292,7 +289,7 @@ def down(X: Multivector):
     if bad:
         raise InvalidInputError(f"down: a conformal point is a vector (grade 1), got blades {bad}")
     Xn = normalize_point(X, "down")
-    if any_symbolic(Xn):
+    if any_sympy(Xn):
         c = exact_constants()
         return euclidean(((Xn ^ c["E"]) * c["E"]).simplify())
     return euclidean((Xn ^ E) * E)

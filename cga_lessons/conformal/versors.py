@@ -41,13 +41,14 @@ from cga_lessons.algebra import (
     DegenerateGeometryError,
     InvalidInputError,
     Multivector,
+    any_sympy,
     is_real_batch,
     is_real_single,
     is_sympy,
 )
 from cga_lessons.algebra import exp as _exp
 
-from .model import G41, IE, E, any_symbolic, check_points, down, einf, exact_constants, up, vector
+from .model import G41, IE, E, check_points, down, einf, exact_constants, up, vector
 from .versors_rigid import decompose_motor, matrix_to_motor, motor_to_matrix, rotor_angle_axis
 
 __all__ = [
@@ -69,7 +70,7 @@ __all__ = [
 
 
 def _consts(X: Multivector):
-    return exact_constants() if any_symbolic(X) else {"einf": einf, "E": E, "IE": IE}
+    return exact_constants() if any_sympy(X) else {"einf": einf, "E": E, "IE": IE}
 
 
 # --------------------------------------------------------------- application
@@ -148,7 +149,7 @@ def apply_to_points(V: Multivector, x) -> np.ndarray:
     arr, sym = check_points(x, "apply_to_points")
     if not isinstance(V, Multivector):
         raise InvalidInputError(f"apply_to_points: V: expected a versor (Multivector), got {type(V).__name__}")
-    if sym or any_symbolic(V):
+    if sym or any_sympy(V):
         return down(apply(V, up(arr)))
     affine = G41.rigid_motion(V) if V.algebra is G41 else None
     if affine is None:
@@ -260,7 +261,7 @@ def _exact(a):
 def _translator(t, func: str, name: str) -> Multivector:
     tv = vector(t, func, name)
     c = _consts(tv)
-    half = 0.5 if not any_symbolic(tv) else exact_constants()["eo"]["e-"]  # 1/2, exact when symbolic
+    half = 0.5 if not any_sympy(tv) else exact_constants()["eo"]["e-"]  # 1/2, exact when symbolic
     return (c["einf"] * tv) * half + 1
 
 
@@ -392,7 +393,7 @@ def reflect_in_plane(P: Multivector, X: Multivector) -> Multivector:
 
     g = grade_of(P, "reflect_in_plane", (1, 4))
     Pv = P if g == 1 else standard_form(P)
-    if not any_symbolic(Pv) and np.max(np.abs(np.asarray((Pv | einf).scalar(), dtype=float))) > 1e-12:
+    if not any_sympy(Pv) and np.max(np.abs(np.asarray((Pv | einf).scalar(), dtype=float))) > 1e-12:
         raise InvalidInputError("reflect_in_plane: P . e != 0, P is a sphere (use invert_in_sphere)")
     return apply(Pv, X)
 
