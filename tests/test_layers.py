@@ -68,7 +68,7 @@ def imported_modules(source: str, name: list[str], is_package: bool):
             yield node.lineno, module, [alias.name for alias in node.names]
 
 
-def layer_of(dotted: str, names=None):
+def layer_of(dotted: str):
     """The layer package a ``cga_lessons...`` import reaches (``None`` for the root's own names)."""
     parts = dotted.split(".")
     if len(parts) >= 2:
