@@ -28,7 +28,7 @@ def _wrapped(a):
 
 @pytest.mark.parametrize("pose", [MEETING_ROOM, (16.5, 10.5, -2.4), (12.26, 10.57, 0.18), (3.51, 11.51, 0.7)])
 def test_in_the_open_the_best_candidate_is_the_true_pose(pose):
-    """Within the method's stated tolerance (``relocalization_eval``: 10 cm, 2 degrees) of the simulator's pose."""
+    """Within the method's stated tolerance (``relocalization.eval``: 10 cm, 2 degrees) of the simulator's pose."""
     assert POSITION_TOLERANCE == pytest.approx(0.10) and HEADING_TOLERANCE == pytest.approx(np.radians(2.0))
     ex = RelocalizationExplorer(pose=pose)
     best = ex.candidates[0]
