@@ -19,6 +19,7 @@ import numpy as np
 import pytest
 
 from cga_lessons import data_path, equations
+from cga_lessons.cli import SEGMENT_COLUMNS
 from cga_lessons.cli import commands as cli
 from cga_lessons.mapping2d import laser
 
@@ -104,7 +105,7 @@ def test_map2d_synthetic_log_map_lies_on_the_walls(room_log, tmp_path, capsys):
     png, seg_csv, pose_csv = (tmp_path / "out" / f"room_{s}" for s in ("map.png", "segments.csv", "poses.csv"))
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10_000
     rows = read_rows(seg_csv)
-    assert list(rows[0]) == list(cli.SEGMENT_COLUMNS) and len(rows) >= 4
+    assert list(rows[0]) == list(SEGMENT_COLUMNS) and len(rows) >= 4
     ends = np.array(
         [[float(r[c]) for c in ("x_start", "y_start")] for r in rows]
         + [[float(r[c]) for c in ("x_end", "y_end")] for r in rows]
@@ -112,7 +113,7 @@ def test_map2d_synthetic_log_map_lies_on_the_walls(room_log, tmp_path, capsys):
     d = point_to_walls(ends, scene.walls)
     assert np.median(d) < 0.03 and d.max() < 0.15
     for r in rows:  # the Hough columns are the normal form (3.3) of the stored end points
-        (x0, y0, x1, y1, rho, theta) = (float(r[c]) for c in cli.SEGMENT_COLUMNS[:6])
+        (x0, y0, x1, y1, rho, theta) = (float(r[c]) for c in SEGMENT_COLUMNS[:6])
         assert abs(x0 * np.cos(theta) + y0 * np.sin(theta) - rho) < 1e-4
         assert abs(x1 * np.cos(theta) + y1 * np.sin(theta) - rho) < 1e-4
     poses = np.array([[float(r[c]) for c in ("x", "y", "theta")] for r in read_rows(pose_csv)])

@@ -14,13 +14,13 @@ import numpy as np
 import pytest
 
 from cga_lessons.algebra import InvalidInputError
+from cga_lessons.cli import SEGMENT_COLUMNS, segments_csv
 from cga_lessons.cli import commands as cli
 from cga_lessons.cli import io as cli_io
-from cga_lessons.cli import segments_csv
 from cga_lessons.mapping2d import laser
 from cga_lessons.mapping2d.lines import Segment
 
-HEADER = ",".join(cli.SEGMENT_COLUMNS)
+HEADER = ",".join(SEGMENT_COLUMNS)
 
 
 def run(argv, capsys):

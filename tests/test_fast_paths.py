@@ -13,7 +13,7 @@ import sympy as sp
 
 from cga_lessons import conformal as cga
 from cga_lessons.algebra import Algebra, InvalidInputError, Multivector
-from cga_lessons.algebra.core import stack_rows
+from cga_lessons.algebra.versor_matrices import stack_rows
 from cga_lessons.conformal import G41, versors
 
 RNG_SEED = 20240807

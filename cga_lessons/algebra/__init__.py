@@ -21,22 +21,12 @@ modules:
   (2.82)
 """
 
-from .core import (
-    REAL_TYPES,
-    Algebra,
-    DegenerateGeometryError,
-    GeometryError,
-    InvalidInputError,
-    Multivector,
-    absmax,
-    all_finite,
-    any_sympy,
-    commutator,
-    exp,
-    is_real_batch,
-    is_real_single,
-    is_sympy,
-)
+from cga_lessons.errors import DegenerateGeometryError, GeometryError, InvalidInputError
+
+from .coefficients import REAL_TYPES, absmax, all_finite, any_sympy, is_real_batch, is_real_single, is_sympy
+from .core import Algebra
+from .exponential import exp
+from .multivector import Multivector, commutator
 from .versor_matrices import motor_tolerance
 
 __all__ = [

@@ -69,36 +69,18 @@ from itertools import combinations
 
 import numpy as np
 
-from cga_lessons.errors import DegenerateGeometryError, GeometryError, InvalidInputError
+from cga_lessons.errors import InvalidInputError
 
-# The names below are re-exported: the rest of the package, the tests and the
-# notebooks import them from this module, their public home.
-from .coefficients import (  # noqa: F401
-    FLOAT_TYPES,
-    PLAIN_TYPES,
-    REAL_TYPES,
-    absmax,
-    all_finite,
-    any_sympy,
-    is_float_single,
-    is_real_batch,
-    is_real_single,
+from .coefficients import (
     is_sympy,
     is_zero,
 )
-from .exponential import exp  # noqa: F401
-from .multivector import Multivector, commutator, mv_from_dict, mv_from_pairs  # noqa: F401
-from .products import PRODUCT_CHUNK, ProductTermsMixin, compile_product, run_product  # noqa: F401
-from .versor_matrices import VersorMatricesMixin, stack_rows  # noqa: F401
+from .multivector import Multivector
+from .products import ProductTermsMixin
+from .versor_matrices import VersorMatricesMixin
 
 __all__ = [
     "Algebra",
-    "Multivector",
-    "GeometryError",
-    "DegenerateGeometryError",
-    "InvalidInputError",
-    "commutator",
-    "exp",
 ]
 
 

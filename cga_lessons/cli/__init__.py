@@ -13,6 +13,8 @@ in ``__all__``; its modules:
   copy of MathJax 2.7 beside the pages
 """
 
-from .commands import SEGMENT_COLUMNS, CLIError, build_parser, main, read_segments_csv, write_segments_csv
+from .commands import build_parser, main
+from .io import CLIError
+from .segments_csv import SEGMENT_COLUMNS, read_segments_csv, write_segments_csv
 
 __all__ = ["main", "build_parser", "CLIError", "SEGMENT_COLUMNS", "read_segments_csv", "write_segments_csv"]

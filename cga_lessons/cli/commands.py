@@ -38,9 +38,12 @@ from types import SimpleNamespace
 from cga_lessons.paths import PROJECT_ROOT
 
 from .io import CLIError, StagedOutputs, check_output_dir, check_output_files  # CLIError lives beside the checks
-from .segments_csv import SEGMENT_COLUMNS, read_segments_csv, write_segments_csv
+from .segments_csv import read_segments_csv, write_segments_csv
 
-__all__ = ["main", "build_parser", "CLIError", "SEGMENT_COLUMNS", "read_segments_csv", "write_segments_csv"]
+__all__ = [
+    "main",
+    "build_parser",
+]
 
 
 def _non_negative_int(text):

@@ -20,8 +20,7 @@ from pathlib import Path
 from cga_lessons.paths import PROJECT_ROOT
 
 from . import site_math
-from .commands import CLIError
-from .io import OutputExistsError, OutputPathError, StagedOutputs, check_output_dir, check_output_files
+from .io import CLIError, OutputExistsError, OutputPathError, StagedOutputs, check_output_dir, check_output_files
 
 __all__ = ["export_html"]
 

@@ -23,26 +23,18 @@ in ``__all__``; its modules:
   8-point algorithm on a plane
 """
 
-from .checking import (
-    CheckResult,
-    Exercise,
+from .checking import CheckResult, Exercise, UnknownExerciseError, check, evaluate, exercise, get, given, list_exercises
+from .compare import (
     Malformed,
-    UnknownExerciseError,
     Wrong,
     as_array,
     as_expression,
     as_float,
-    check,
     compare_expression,
     compare_matrix,
     compare_multivector,
     compare_number,
     compare_vector,
-    evaluate,
-    exercise,
-    get,
-    given,
-    list_exercises,
 )
 
 __all__ = [

@@ -14,7 +14,8 @@ import numpy as np
 from cga_lessons.algebra import Algebra, Multivector
 from cga_lessons.stereo import rotation_matrix  # Rodrigues in plain NumPy: independent of the algebra
 
-from .checking import (
+from .checking import exercise
+from .compare import (
     Malformed,
     Wrong,
     as_array,
@@ -24,7 +25,6 @@ from .checking import (
     compare_multivector,
     compare_number,
     compare_vector,
-    exercise,
 )
 
 

@@ -11,7 +11,8 @@ import math
 
 import numpy as np
 
-from .checking import Malformed, Wrong, as_array, compare_expression, compare_number, compare_vector, exercise
+from .checking import exercise
+from .compare import Malformed, Wrong, as_array, compare_expression, compare_number, compare_vector
 
 
 def _symbols(*names):

@@ -11,7 +11,8 @@ import numpy as np
 
 from cga_lessons.stereo import rotation_matrix  # Rodrigues in plain NumPy: independent of the algebra
 
-from .checking import Malformed, Wrong, as_array, compare_expression, compare_matrix, compare_vector, exercise
+from .checking import exercise
+from .compare import Malformed, Wrong, as_array, compare_expression, compare_matrix, compare_vector
 
 
 def _h(R=None, t=None) -> np.ndarray:

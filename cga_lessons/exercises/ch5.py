@@ -10,7 +10,8 @@ import math
 
 import numpy as np
 
-from .checking import Wrong, as_array, compare_number, compare_vector, exercise
+from .checking import exercise
+from .compare import Wrong, as_array, compare_number, compare_vector
 
 _TWO_PI = 2 * math.pi
 

@@ -11,7 +11,8 @@ import math
 
 import numpy as np
 
-from .checking import Wrong, as_float, compare_number, compare_vector, exercise
+from .checking import exercise
+from .compare import Wrong, as_float, compare_number, compare_vector
 
 # --------------------------------------------------------------------------- ch6.1: a two-joint arm
 

@@ -16,7 +16,7 @@ nothing else.  A checker receives the student's answer and either returns
 :class:`Malformed` when the answer cannot be read at all).  The helpers
 :func:`compare_number`, :func:`compare_vector`, :func:`compare_multivector`,
 :func:`compare_expression` and :func:`compare_matrix` (in
-:mod:`cga_lessons.exercises.compare`, re-exported here) do the diagnosis for
+:mod:`cga_lessons.exercises.compare`, exported by the package) do the diagnosis for
 the common kinds of answer.
 
 A later chapter adds ``ch3.py`` with, for instance::
@@ -49,24 +49,14 @@ from typing import Any
 
 from cga_lessons.algebra import InvalidInputError
 
-from .compare import (  # noqa: F401 - re-exported: the checkers' toolbox
+from .compare import (
     Malformed,
     Wrong,
-    as_array,
-    as_expression,
-    as_float,
-    compare_expression,
-    compare_matrix,
-    compare_multivector,
-    compare_number,
-    compare_vector,
 )
 
 __all__ = [
     "Exercise",
     "CheckResult",
-    "Wrong",
-    "Malformed",
     "UnknownExerciseError",
     "exercise",
     "check",
@@ -74,14 +64,6 @@ __all__ = [
     "get",
     "given",
     "list_exercises",
-    "compare_number",
-    "compare_vector",
-    "compare_matrix",
-    "compare_multivector",
-    "compare_expression",
-    "as_float",
-    "as_array",
-    "as_expression",
 ]
 
 VERDICTS = ("right", "wrong", "unanswered", "malformed")

@@ -11,7 +11,8 @@ import numpy as np
 
 from cga_lessons.stereo import rotation_matrix  # Rodrigues in plain NumPy: independent of the algebra
 
-from .checking import Wrong, as_float, compare_number, compare_vector, exercise
+from .checking import exercise
+from .compare import Wrong, as_float, compare_number, compare_vector
 
 _K = np.array([[700.0, 0.0, 320.0], [0.0, 700.0, 240.0], [0.0, 0.0, 1.0]])
 

@@ -48,26 +48,8 @@ Nothing here draws (figures and widgets are in :mod:`cga_lessons.viz`).  This fa
   maps, measured the field's way)
 """
 
-from .build import (
-    MapBuilder,
-    MapParams,
-    MapResult,
-    PlainGeometry,
-    PoseGraph,
-    SegmentSet,
-    build_map,
-    correspondences,
-    format_log_benchmark,
-    line_variances,
-    map_errors,
-    map_point_errors,
-    pose_correction,
-    pose_errors,
-    proximity_matrix,
-    read_log_benchmark,
-    theta_correction,
-    translation_correction,
-)
+from .build import MapResult, build_map
+from .builder import MapBuilder
 from .conformal import (
     ConformalGeometry,
     c2e,
@@ -78,6 +60,10 @@ from .conformal import (
     segment_point_pair,
     sphere_case,
 )
+from .corrections import line_variances, pose_correction, theta_correction, translation_correction
+from .eval import format_log_benchmark, map_errors, map_point_errors, pose_errors, read_log_benchmark
+from .geometry import PlainGeometry, SegmentSet, correspondences, proximity_matrix
+from .graph import PoseGraph
 from .laser import (
     CarmenLog,
     OdometryModel,
@@ -96,6 +82,7 @@ from .laser import (
 )
 from .laser_facts import returns_reach
 from .lines import TWO_PI, Segment, diff_theta, diff_theta_as_printed, extract_segments, split_points
+from .params import MapParams
 from .scan_registration import register_scans
 from .trajectories import absolute_trajectory_error, odometry_repeats_poses, relative_pose_error, write_tum
 

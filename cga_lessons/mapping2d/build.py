@@ -73,7 +73,7 @@ correspondence), :mod:`cga_lessons.mapping2d.corrections` (3.6-3.12),
 :mod:`cga_lessons.mapping2d.loops` and :mod:`cga_lessons.mapping2d.graph`
 (revisits and the pose graph), :mod:`cga_lessons.mapping2d.params` (the
 thresholds) and :mod:`cga_lessons.mapping2d.eval` (errors against the truth);
-this module re-exports what callers use.
+the package's facade, :mod:`cga_lessons.mapping2d`, exports what callers use.
 """
 
 from __future__ import annotations
@@ -87,37 +87,17 @@ from cga_lessons.algebra import InvalidInputError
 
 from .adjust import adjust_built_map
 from .builder import MapBuilder
-from .corrections import line_variances, odometry_covariance, pose_correction, theta_correction, translation_correction
-from .eval import format_log_benchmark, map_errors, map_point_errors, pose_errors, read_log_benchmark
-from .geometry import PlainGeometry, SegmentSet, correspondences, proximity_matrix, transform_sums  # noqa: F401 - re-exported for callers of earlier versions
-from .graph import relative_pose  # noqa: F401 - re-exported
+from .corrections import odometry_covariance
+from .geometry import PlainGeometry, SegmentSet
 from .laser import compose, relative, scan_points
 from .lines import extract_segments
-from .loops import LoopCloser, PoseGraph
+from .loops import LoopCloser
 from .params import MapParams
 
 __all__ = [
-    "MapParams",
     "MapResult",
     "build_map",
-    "proximity_matrix",
-    "correspondences",
-    "theta_correction",
-    "translation_correction",
-    "pose_correction",
-    "line_variances",
-    "pose_errors",
-    "map_errors",
-    "map_point_errors",
-    "read_log_benchmark",
-    "format_log_benchmark",
-    "PlainGeometry",
-    "SegmentSet",
-    "MapBuilder",
-    "PoseGraph",
 ]
-
-_Builder = MapBuilder  # the name of earlier versions
 
 
 # --------------------------------------------------------------------------- parameters and result

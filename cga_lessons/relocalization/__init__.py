@@ -59,7 +59,7 @@ from .eval import (
     reference_from_log,
     scan_agreement,
 )
-from .geometry import transform_points
+from .geometry import ReferenceMap, as_segment_array, estimate_range_noise, pose_error, prepare_map, transform_points
 from .hough import (
     hough_comparison,
     hough_differences,
@@ -71,24 +71,13 @@ from .hough import (
 )
 from .likelihood import BeamModel
 from .lookaround import evaluate_look_around, look_around
-from .relocalizer import (
-    Candidate,
-    MCLConfig,
-    MCLEstimate,
-    MonteCarloLocalizer,
-    ReferenceMap,
-    Relocalization,
-    RelocParams,
-    as_segment_array,
-    combined_noise,
-    estimate_range_noise,
-    pose_error,
-    prepare_map,
-    relocalize,
-)
+from .mcl import MCLEstimate, MonteCarloLocalizer
+from .mcl_config import MCLConfig
+from .relocalizer import Relocalization, RelocParams, combined_noise, relocalize
 from .sampling import kld_bound
 from .sequence import Relocalizer, relocalize_sequence
 from .thesis import correspondences_from_votes, rotate_entities, thesis_relocalization, translate_entities
+from .verify import Candidate
 
 __all__ = [
     "MonteCarloLocalizer",

@@ -26,8 +26,9 @@ from cga_lessons.algebra import InvalidInputError
 from cga_lessons.mapping2d import Scene, returns_reach, simulate_scan
 
 from .coverage import build_coverage
+from .geometry import ReferenceMap, pose_error, prepare_map
 from .logmap import line_map_from_scans
-from .relocalizer import ReferenceMap, pose_error, prepare_map, relocalize
+from .relocalizer import relocalize
 
 __all__ = [
     "POSITION_TOLERANCE",

@@ -43,7 +43,7 @@ from .eval import (
     reference_from_log,
     scan_agreement,
 )
-from .relocalizer import pose_error, prepare_map
+from .geometry import pose_error, prepare_map
 from .sequence import relocalize_sequence
 
 __all__ = ["look_around", "evaluate_look_around", "evaluate_log_sequences"]

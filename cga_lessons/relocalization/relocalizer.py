@@ -68,27 +68,16 @@ from .geometry import (
     as_segment_array,
     check_scan,
     estimate_range_noise,
-    pose_error,
     prepare_map,
 )
-from .mcl import MCLConfig, MCLEstimate, MonteCarloLocalizer
 from .search import pose_hypotheses, propose_rotations
 from .thesis import thesis_relocalization
-from .verify import Candidate, decide, match_lines, pose_covariance, screen_hypotheses, verify_hypotheses
+from .verify import decide, match_lines, pose_covariance, screen_hypotheses, verify_hypotheses
 
 __all__ = [
-    "MonteCarloLocalizer",
-    "MCLConfig",
-    "MCLEstimate",
     "RelocParams",
-    "Candidate",
     "Relocalization",
-    "ReferenceMap",
-    "prepare_map",
-    "as_segment_array",
     "relocalize",
-    "pose_error",
-    "estimate_range_noise",
     "combined_noise",
 ]
 

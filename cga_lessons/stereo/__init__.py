@@ -55,26 +55,21 @@ from .experiments import (
     triangulation_error_curve,
 )
 from .head import (
-    StereoRig,
     StereoScene,
     circle_center_via_plane,
     circle_polyline,
     entity_errors,
     line_polyline,
-    load_rig,
     load_scene,
-    look_at_rotation,
     observe,
-    random_rig,
     random_scene,
     reconstruct_entities,
-    rotation_matrix,
     sample_scene,
     square_polyline,
-    stereo_head,
 )
 from .real import MOTORCYCLE_CALIBRATION, disparity_to_points, label_image, load_motorcycle, motorcycle_cameras
 from .render import render_views
+from .rig import StereoRig, load_rig, look_at_rotation, random_rig, rotation_matrix, stereo_head
 
 __all__ = [
     "StereoRig",

@@ -12,7 +12,7 @@ describes: point (2.62, 2.114), point pair (2.68, 2.131), line (2.81,
 
 World frame: x forward, y to the left, z up, metres (see ``data/stereo_make.py``).
 
-Companion modules: :mod:`cga_lessons.stereo.rig` (the head, re-exported here),
+Companion modules: :mod:`cga_lessons.stereo.rig` (the head),
 :mod:`cga_lessons.conformal.fitting` (least-squares fits in the conformal model, RANSAC),
 :mod:`cga_lessons.stereo.render` (OpenCV images of the scene),
 :mod:`cga_lessons.stereo.real` (the Middlebury motorcycle pair) and
@@ -32,14 +32,10 @@ from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
 from cga_lessons.paths import data_path
 
 from . import camera as cam
-from .rig import StereoRig, load_rig, look_at_rotation, random_rig, rotation_matrix, stereo_head
+from .rig import StereoRig
 
 __all__ = [
-    "StereoRig",
     "StereoScene",
-    "stereo_head",
-    "random_rig",
-    "load_rig",
     "load_scene",
     "random_scene",
     "sample_scene",
@@ -50,8 +46,6 @@ __all__ = [
     "line_polyline",
     "circle_polyline",
     "square_polyline",
-    "rotation_matrix",
-    "look_at_rotation",
 ]
 
 

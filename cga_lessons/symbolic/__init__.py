@@ -14,33 +14,20 @@ Nothing here draws (figures and widgets are in :mod:`cga_lessons.viz`).  This fa
 * :mod:`~cga_lessons.symbolic.versors`: Symbolic derivations of the conformal transformations (section 2.3.4,
 """
 
-from .derivations import (
-    DERIVATIONS,
-    ERRATA,
+from .circles_lines import circle_properties, line_properties
+from .core import Check, Derivation, Ring, is_zero, proportional, same
+from .derivations import DERIVATIONS, ERRATA, Erratum, errata_table, run_all, verify_errata
+from .entities import point_pair_extraction, sphere_and_plane
+from .model import (
     MINKOWSKI_PROPERTIES,
-    Check,
-    Derivation,
-    Erratum,
-    Ring,
     basis_and_product_axioms,
-    circle_properties,
     clifford_product_plane,
-    conformal_transformations,
-    errata_table,
-    is_zero,
-    line_properties,
     minkowski_plane,
     null_cone_points,
-    point_pair_extraction,
     projection_rejection,
-    proportional,
-    rotors_and_motors,
-    run_all,
-    same,
-    sphere_and_plane,
     stereographic_projection,
-    verify_errata,
 )
+from .versors import conformal_transformations, rotors_and_motors
 
 __all__ = [
     "Check",

@@ -48,10 +48,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .circles_lines import circle_properties, line_properties
-from .core import Check, Derivation, Ring, is_zero, proportional, same
 from .entities import point_pair_extraction, sphere_and_plane
 from .model import (
-    MINKOWSKI_PROPERTIES,
     basis_and_product_axioms,
     clifford_product_plane,
     minkowski_plane,
@@ -62,25 +60,6 @@ from .model import (
 from .versors import conformal_transformations, rotors_and_motors
 
 __all__ = [
-    "Check",
-    "Derivation",
-    "Ring",
-    "is_zero",
-    "same",
-    "proportional",
-    "clifford_product_plane",
-    "basis_and_product_axioms",
-    "stereographic_projection",
-    "minkowski_plane",
-    "MINKOWSKI_PROPERTIES",
-    "projection_rejection",
-    "null_cone_points",
-    "sphere_and_plane",
-    "circle_properties",
-    "line_properties",
-    "point_pair_extraction",
-    "conformal_transformations",
-    "rotors_and_motors",
     "DERIVATIONS",
     "run_all",
     "Erratum",
