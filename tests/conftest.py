@@ -37,3 +37,15 @@ def hall():
         np.array([[3.6, 6.8], [4.4, 6.8], [4.4, 7.3], [3.6, 7.3]]),
     ]
     return Scene("hall", wall_polygons(outline) + boxes, np.zeros((1, 3)))
+
+
+def pytest_terminal_summary(terminalreporter):
+    """The fuzz of bad inputs counts what it tried (``tests/test_fuzz.py``)."""
+    import sys
+
+    harness = sys.modules.get("fuzz.harness")
+    if harness is not None and harness.CALLS["inputs"]:
+        counts = ", ".join(f"{k} {v}" for k, v in harness.TALLY.most_common())
+        terminalreporter.write_line(
+            f"fuzz of bad inputs: {harness.CALLS['cases']} cases, {harness.CALLS['inputs']} bad inputs: {counts}"
+        )

@@ -1,7 +1,8 @@
 """The package's layers, read from its source: every module imports only from layers below its own.
 
-Layer 0 is ``errors`` and ``paths``; 1 ``algebra``; 2 ``conformal``; 3 ``symbolic``, ``mapping2d``, ``stereo``,
-``exploration``, ``kinematics``; 4 ``map3d``, ``relocalization``; 5 ``equations``, ``exercises``, ``viz``; 6 ``cli``.
+Layer 0 is ``errors``, ``checks`` and ``paths`` (the latter two may import ``errors``); 1 ``algebra``; 2
+``conformal``; 3 ``symbolic``, ``mapping2d``, ``stereo``, ``exploration``, ``kinematics``; 4 ``map3d``,
+``relocalization``; 5 ``equations``, ``exercises``, ``viz``; 6 ``cli``.
 A module may import its own package's modules and any package of a lower layer, another package only through its
 facade (its ``__init__``: names, not modules; ``viz`` is the one package whose modules are its face), and no private
 name (``_x``) of another module; layers 0-4 never draw (no matplotlib, meshcat or widgets).  The package's
@@ -24,6 +25,7 @@ import cga_lessons
 PACKAGE = Path(cga_lessons.__file__).resolve().parent
 LAYERS = {
     "errors": 0,
+    "checks": 0,
     "paths": 0,
     "algebra": 1,
     "conformal": 2,
@@ -114,7 +116,7 @@ def violations_of(path: Path, source: str | None = None) -> list[str]:
                 continue
             if target not in LAYERS:
                 out.append(f"{where}: imports {target!r} from the package's root; import it from its layer")
-            elif LAYERS[target] >= LAYERS[own]:
+            elif LAYERS[target] >= LAYERS[own] and not (target == "errors" and LAYERS[own] == 0):
                 out.append(
                     f"{where}: {own} (layer {LAYERS[own]}) imports {module}{'' if names is None else ' ' + str(names)}"
                     f" of {target} (layer {LAYERS[target]}): only lower layers may be imported"

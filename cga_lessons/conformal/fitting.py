@@ -31,7 +31,7 @@ import numpy as np
 
 from cga_lessons import conformal as cga
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
-from cga_lessons.errors import finite_rows
+from cga_lessons.checks import rows
 
 __all__ = [
     "fit_sphere",
@@ -50,7 +50,7 @@ _BLADES = [1, 2, 4, 8, 16]  # e1 e2 e3 e+ e-
 
 
 def _points(X, func: str, at_least: int) -> np.ndarray:
-    X = finite_rows(X, func, "points", 3)  # the shared check: numbers, shape (N, 3), finite
+    X = rows(X, func, "points", 3)  # the shared check: numbers, shape (N, 3), finite
     if len(X) < at_least:
         raise DegenerateGeometryError(f"{func}: need at least {at_least} points, got {len(X)}")
     return X

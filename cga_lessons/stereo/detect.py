@@ -63,7 +63,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.errors import finite_rows
+from cga_lessons.checks import rows
 
 from . import detect_models as dm
 from .detect_noise import as_noise_model
@@ -159,7 +159,7 @@ class DetectConfig:
 
 
 def _check_cloud(X, func: str, at_least: int) -> np.ndarray:
-    X = finite_rows(X, func, "X", 3, at_least=at_least)  # the shared check: numbers, shape (N, 3), finite, count
+    X = rows(X, func, "X", 3, at_least=at_least)  # the shared check: numbers, shape (N, 3), finite, count
     if np.ptp(X, axis=0).max() == 0:
         raise InvalidInputError(f"{func}: X: all points coincide")
     return X

@@ -27,7 +27,7 @@ import numpy as np
 from cga_lessons import conformal as cga
 from cga_lessons import mapping2d
 from cga_lessons.algebra import InvalidInputError, Multivector
-from cga_lessons.errors import finite_real
+from cga_lessons.checks import real
 from cga_lessons.mapping2d import SegmentSet, theta_correction, translation_correction
 
 from .controls import slider_panel
@@ -83,7 +83,7 @@ def conformal_correction(PP_map: Multivector, PP_scan: Multivector, centre, thet
 
 def _check(value, func: str, name: str) -> float:
     """A slider's value as a float; NaN, inf, a bool or a string raise InvalidInputError (a ValueError) naming both."""
-    return finite_real(value, func, name)
+    return real(value, func, name)
 
 
 def _polyline(p1: np.ndarray, p2: np.ndarray) -> tuple[list, list]:

@@ -25,7 +25,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from cga_lessons.algebra import Algebra, InvalidInputError, Multivector
-from cga_lessons.errors import finite_real
+from cga_lessons.checks import real
 
 from .controls import slider_panel
 
@@ -54,7 +54,7 @@ def reflect(v, n) -> np.ndarray:
 
 def _check(value, func: str, name: str, positive: bool = False) -> float:
     """A slider's value as a float; NaN, inf, a bool or a string raise InvalidInputError (a ValueError) naming both."""
-    v = finite_real(value, func, name)
+    v = real(value, func, name)
     if positive and v <= 0:
         raise InvalidInputError(f"{func}: {name}: must be positive, got {v!r}")
     return v

@@ -31,7 +31,7 @@ from matplotlib.collections import LineCollection
 
 from cga_lessons import mapping2d
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.errors import finite_real
+from cga_lessons.checks import real
 from cga_lessons.relocalization import (
     HEADING_TOLERANCE,
     POSITION_TOLERANCE,
@@ -129,7 +129,7 @@ class RelocalizationExplorer:
         self.ref = prepare_map(self.scene.walls)
         self.params = RelocParams()
         start = (8.0, 3.5, np.radians(30.0)) if pose is None else pose
-        self.pose = np.array([finite_real(v, "RelocalizationExplorer", f"pose[{k}]") for k, v in enumerate(start)])
+        self.pose = np.array([real(v, "RelocalizationExplorer", f"pose[{k}]") for k, v in enumerate(start)])
         if self.pose.shape != (3,):
             raise InvalidInputError(f"RelocalizationExplorer: pose must have 3 entries, got {len(self.pose)}")
         self.seed, self.n_show = seed, int(n_show)
@@ -244,7 +244,7 @@ class RelocalizationExplorer:
     def update(self, x: float | None = None, y: float | None = None, theta_deg: float | None = None) -> None:
         """Move the true pose (metres, heading in degrees), rescan with the same noise, relocalize and redraw."""
         given = {
-            k: finite_real(v, "RelocalizationExplorer.update", k)
+            k: real(v, "RelocalizationExplorer.update", k)
             for k, v in (("x", x), ("y", y), ("theta_deg", theta_deg))
             if v is not None
         }  # all checked first

@@ -19,7 +19,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.errors import finite_rows as as_points  # the shared check, under the name the figures use
+from cga_lessons.checks import rows as as_points  # the shared check, under the name the figures use
 
 from .laser import draw_walls
 
