@@ -170,14 +170,18 @@ def text(value, func: str, name: str, *, empty: bool = False) -> str:
 def _as_float_array(value, func: str, name: str) -> np.ndarray:
     if value is None or isinstance(value, (str, bytes)):
         raise fail(func, name, f"must be numbers, got {_short(value)}")
-    if isinstance(value, np.ndarray) and value.dtype.kind == "c" or np.iscomplexobj(value):
-        raise fail(func, name, "must be real numbers, got complex ones")
     try:
-        a = np.asarray(value, dtype=float)
+        raw = np.asarray(value)
+        if raw.dtype.kind == "c":
+            raise fail(func, name, "must be real numbers, got complex ones")
+        a = np.asarray(raw, dtype=float)
     except OverflowError:
         raise fail(func, name, "contains NaN or inf (a number too large for a float)") from None
-    except (TypeError, ValueError):
-        raise fail(func, name, f"must be an array of numbers, got {_short(value)}") from None
+    except (TypeError, ValueError) as exc:
+        if isinstance(exc, InvalidInputError):
+            raise
+        what = "rows of different lengths" if "inhomogeneous" in str(exc) else _short(value)
+        raise fail(func, name, f"must be an array of numbers, got {what}") from None
     return a
 
 

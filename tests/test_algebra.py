@@ -1,5 +1,6 @@
 """The algebra core G(p,q,r): axioms, products, involutions, exp; cross-checked against kingdon."""
 
+import copy
 import math
 
 import numpy as np
@@ -237,12 +238,51 @@ def test_symbolic_matches_numeric():
 
 
 def test_invalid_algebra_and_mixing():
-    with pytest.raises(InvalidInputError):
+    with pytest.raises(InvalidInputError, match="Algebra: p: must be >= 0"):
         Algebra(-1)
-    with pytest.raises(InvalidInputError):
+    with pytest.raises(InvalidInputError, match=r"Multivector \*: other: is a multivector of Algebra\(3, 0, 0\)"):
         G41.blade("e1") * G3.blade("e1")
-    with pytest.raises(InvalidInputError):
+    with pytest.raises(InvalidInputError, match="Algebra.vector: coeffs: the last axis must have length 5"):
         G41.vector([1.0, 2.0])
+
+
+def test_operators_refuse_bad_operands_clearly():
+    """Division by zero, NaN/inf operands, overflow and foreign types: a clear error naming the operator."""
+    X = G3.vector([1.0, 2.0, 3.0]) + 1.0
+    with pytest.raises(InvalidInputError, match="Multivector /: other: division by zero"):
+        X / 0.0
+    for bad in (math.nan, math.inf, np.array([1.0, math.nan])):
+        with pytest.raises(InvalidInputError, match=r"Multivector \*: other: (is|contains) NaN or inf"):
+            X * bad
+        with pytest.raises(InvalidInputError, match=r"Multivector \+: other: (is|contains) NaN or inf"):
+            X + bad
+    nan_coefficients = Multivector(G3, {1: math.nan})  # the constructor takes the map as it is
+    with pytest.raises(InvalidInputError, match=r"Multivector \^: other: the result has a NaN or inf coefficient"):
+        X ^ nan_coefficients
+    with pytest.raises(InvalidInputError, match="overflows a float"):
+        G3.vector([1e200, 0.0, 0.0]) * 1e200
+    with pytest.raises(DegenerateGeometryError, match="Multivector /: other: has no inverse"):
+        X / (X * 0.0)
+    for call in (lambda: X + None, lambda: X * "text", lambda: X.scalar_product(None), lambda: X.isclose([1.0])):
+        with pytest.raises(InvalidInputError, match="other: expected a Multivector"):
+            call()
+    with pytest.raises(TypeError):  # a type of someone else's: Python's protocol (NotImplemented), not ours
+        X * object()
+    with pytest.raises(InvalidInputError, match="Multivector.grade: k: must be >= 0"):
+        X.grade(-1)
+    with pytest.raises(KeyError, match="Multivector\\[\\]: name: 'e4' is not a blade name"):
+        X["e4"]
+
+
+def test_reflected_operations_equality_and_copies_still_work():
+    X = G3.vector([1.0, 2.0, 3.0])
+    t = sp.Symbol("t")
+    assert (t * X)["e1"] == 1.0 * t and (X * 2)["e3"] == 6 and (np.float64(2.0) * X)["e2"] == 4.0
+    assert (np.array([1.0, 2.0]) * X).shape == (2,) and (2.0 / G3.scalar(4.0)).scalar() == 0.5
+    assert (X == None) is False and (X != "text") is True  # noqa: E711 (== None must not raise)
+    assert not (X == Multivector(G3, {1: math.nan}))
+    Y = copy.deepcopy(X)
+    assert Y.algebra is G3 and Y == X and (Y + X) == 2 * X
 
 
 # ------------------------------------------------------------------ kingdon

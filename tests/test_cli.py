@@ -192,9 +192,7 @@ def test_map2d_bad_logs_are_clear_errors(tmp_path, capsys, content, message):
 
 @pytest.mark.parametrize("args", [["--limit", "0"], ["--max-range", "-1"], ["--max-range", "nan"], ["--odometry", "x"]])
 def test_map2d_bad_arguments_exit_with_usage_status(tmp_path, capsys, args):
-    with pytest.raises(SystemExit) as exc:
-        cli.main(["map2d", str(tmp_path / "x.log"), *args])
-    assert exc.value.code == 2
+    assert cli.main(["map2d", str(tmp_path / "x.log"), *args]) == 2  # argparse's status, returned
     assert "error" in capsys.readouterr().err
 
 
@@ -302,9 +300,8 @@ def test_map2d_tum_file_uses_the_scan_index_when_the_log_time_stands_still(room_
 
 @pytest.mark.parametrize("args", [["--seed", "-1"], ["--seed", "x"], ["--odometry", "simulate"]])
 def test_map2d_bad_seed_arguments_exit_with_usage_status(tmp_path, capsys, args):
-    with pytest.raises(SystemExit) as exc:
-        cli.main(["map2d", str(tmp_path / "x.log"), "--odometry", "simulated", *args])
-    assert exc.value.code == 2 and "error" in capsys.readouterr().err
+    assert cli.main(["map2d", str(tmp_path / "x.log"), "--odometry", "simulated", *args]) == 2
+    assert "error" in capsys.readouterr().err
 
 
 def test_map2d_seed_without_simulated_odometry_is_a_clear_error(room_log, tmp_path, capsys):
@@ -314,8 +311,7 @@ def test_map2d_seed_without_simulated_odometry_is_a_clear_error(room_log, tmp_pa
 
 
 def test_map2d_help_states_the_drift_model_it_uses(capsys):
-    with pytest.raises(SystemExit):
-        cli.main(["map2d", "--help"])
+    assert cli.main(["map2d", "--help"]) == 0
     text = " ".join(capsys.readouterr().out.split())
     model = laser.OdometryModel()
     assert "OdometryModel" in text and "simulated" in text

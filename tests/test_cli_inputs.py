@@ -249,7 +249,7 @@ def test_write_segments_csv_never_clobbers_nor_leaves_a_partial_file(tmp_path):
         end, n_points = [1, 0], "lots"
 
     for bad, word in [(None, "segment 2 (NoneType)"), (NotFinite(), "finite"), (BadCount(), "n_points 'lots'")]:
-        with pytest.raises(InvalidInputError, match=r"write_segments_csv: segment 2") as exc:
+        with pytest.raises(InvalidInputError, match=r"write_segments_csv: segments: segment 2") as exc:
             cli.write_segments_csv(path, [*good, bad], overwrite=True)  # the bad one last: nothing written before
         assert word in str(exc.value)
         assert path.read_text() == "the user's map\n" and sorted(p.name for p in tmp_path.iterdir()) == ["map.csv"]

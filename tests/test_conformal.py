@@ -461,3 +461,85 @@ def test_point_pair_endpoints_order_eq_2_131_erratum():
     assert np.allclose(minus, a) and np.allclose(plus, b)  # corrected -+ order: p1 = a first
     p1, p2 = cga.point_pair_endpoints(B)
     assert np.allclose(p1, a) and np.allclose(p2, b)
+
+
+# ------------------------------------------------------------ bad input: the checks layer's words
+def test_point_input_is_refused_clearly():
+    with pytest.raises(InvalidInputError, match=r"^up: x: must be real numbers, got complex"):
+        cga.up([1.0 + 2j, 0.0, 0.0])  # was truncated to its real part
+    with pytest.raises(InvalidInputError, match=r"^up: x: coordinates too large"):
+        cga.up([[0.0, 0.0, 0.0], [1e200, 0.0, 0.0]])
+    with pytest.raises(InvalidInputError, match=r"^sphere: radius: must be a real number"):
+        cga.sphere([0, 0, 0], "1.0")  # was read as 1.0
+    with pytest.raises(InvalidInputError, match=r"^sphere: center, radius: must have the same length, got 2 and 3"):
+        cga.sphere(np.eye(3)[:2], [1.0, 2.0, 3.0])
+    assert cga.sphere([0, 0, 0], [1.0, 2.0]).shape == (2,)  # one centre, several radii: concentric spheres
+    with pytest.raises(InvalidInputError, match=r"^plane: distance: is NaN or inf"):
+        cga.plane([0, 0, 1], np.nan)
+    n, d = cga.plane_normal_distance(cga.plane([3e200, 0.0, 4e200], 1.0))  # |normal|^2 overflows: scaled first
+    assert np.allclose(n, [0.6, 0.0, 0.8]) and d == 1.0
+    with pytest.raises(InvalidInputError, match=r"^point_sphere_side: atol: must be >= 0"):
+        cga.point_sphere_side([0, 0, 0], cga.sphere([0, 0, 0], 1.0), atol=-1.0)
+    PP = cga.point_pair([0, 0, 0], [1, 0, 0])
+    with pytest.raises(DegenerateGeometryError, match=r"^point_pair_endpoints: PP: .* below min_separation = 2"):
+        cga.point_pair_endpoints(PP, min_separation=2.0)
+    with pytest.raises(InvalidInputError, match=r"^point_pair_endpoints: min_separation: must be >= 0"):
+        cga.point_pair_endpoints(PP, min_separation=-1.0)
+
+
+def test_down_reads_points_only():
+    X = cga.up(RNG.normal(size=(5, 3)) * 100)
+    M = cga.motor([1.0, 2.0, 3.0], 0.7, [1e3, -2e3, 5e2])
+    assert np.allclose(cga.down(cga.apply(M, X)), cga.apply_to_points(M, cga.down(X)), atol=1e-9)
+    assert np.allclose(cga.down(1e-200 * X), cga.down(X)) and np.allclose(cga.down(1e200 * X), cga.down(X))
+    for S in (
+        cga.sphere([1.0, 2.0, 3.0], 0.5),
+        cga.sphere(RNG.normal(size=(4, 3)), 0.5),
+        1e-200 * cga.sphere([0, 0, 0], 1),
+    ):
+        with pytest.raises(InvalidInputError, match=r"^down: X: X \. X != 0: a sphere"):
+            cga.down(S)
+    with pytest.raises(InvalidInputError, match=r"^down: X: expected a multivector of G\(4,1\), got ndarray"):
+        cga.down(np.zeros(32))
+    with pytest.raises(InvalidInputError, match=r"^euclidean: X: the coefficients contain NaN"):
+        cga.euclidean(cga.Multivector(cga.G41, {1: np.nan}))
+    with pytest.raises(InvalidInputError, match=r"^point_weight: X: expected a conformal point or sphere"):
+        cga.point_weight(cga.line_from_points([0, 0, 0], [1, 0, 0]))
+
+
+def test_fits_refuse_bad_input_by_name():
+    ring = np.array([[1.0, 0, 0], [0, 1, 0], [-1, 0, 0], [0, -1, 0], [0.6, 0.8, 0]])
+    with pytest.raises(DegenerateGeometryError, match=r"^fit_sphere: X: the points lie on a circle"):
+        cga.fit_sphere(ring)  # was: one sphere of the pencil through the circle, chosen by round-off
+    with pytest.raises(DegenerateGeometryError, match=r"^fit_sphere_kasa: X: all points coincide"):
+        cga.fit_sphere_kasa(np.ones((5, 3)))
+    with pytest.raises(InvalidInputError, match=r"^fit_plane: X: must be an array of numbers"):
+        cga.fit_plane([[0.0, 0.0, 0.0], [1.0, 0.0], [0.0, 1.0, 0.0]])
+    with pytest.raises(InvalidInputError, match=r"^fit_circle: X: coordinates too large"):
+        cga.fit_circle(ring * 1e300)
+    sphere_pts = np.vstack([np.eye(3), -np.eye(3)])
+    with pytest.raises(InvalidInputError, match=r"^fit_sphere_geometric: init: has no 'radius'"):
+        cga.fit_sphere_geometric(sphere_pts, init={"center": [0, 0, 0]})
+    with pytest.raises(InvalidInputError, match=r"^fit_sphere_geometric: iterations: must be a whole number"):
+        cga.fit_sphere_geometric(sphere_pts, iterations=2.5)
+    with pytest.raises(DegenerateGeometryError, match=r"^fit_sphere_geometric: X: the points lie on a plane"):
+        cga.fit_sphere_geometric(ring, init={"center": [0, 0, 1], "radius": 1.0})
+    fit = cga.fit_sphere_geometric(sphere_pts, init={"center": [0.1, 0, 0], "radius": 2.0})
+    assert np.allclose(fit["center"], 0, atol=1e-12) and fit["radius"] == pytest.approx(1.0)
+    with pytest.raises(InvalidInputError, match=r"^fit_circle_euclidean: iterations: must be >= 0"):
+        cga.fit_circle_euclidean(ring, iterations=-1)
+    cloud = np.array([[x, y, 0.0] for x in range(4) for y in range(4)], float)
+    rng = np.random.default_rng(0)
+    for kw, match in [
+        ({"rng": 0}, r"^segment_planes: rng: expected a numpy.random.Generator"),
+        ({"threshold": 0.0}, r"^segment_planes: threshold: must be > 0"),
+        ({"min_inliers": 2.5}, r"^segment_planes: min_inliers: must be a whole number"),
+        ({"n_planes": True}, r"^segment_planes: n_planes: must be a whole number, got the bool"),
+        ({"iterations": 0}, r"^segment_planes: iterations: must be >= 1"),
+    ]:
+        with pytest.raises(InvalidInputError, match=match):
+            cga.segment_planes(cloud, **{"rng": rng, "min_inliers": 5, **kw})
+    with pytest.raises(DegenerateGeometryError, match=r"^segment_planes: X: every sampled triple is collinear"):
+        cga.segment_planes(np.outer(np.arange(6.0), [1, 2, 3]), rng, min_inliers=3)
+    fits, labels = cga.segment_planes(cloud, rng, n_planes=1, threshold=0.01, iterations=20, min_inliers=5)
+    assert len(fits) == 1 and np.all(labels == 0)

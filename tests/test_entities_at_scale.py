@@ -22,7 +22,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from cga_lessons import conformal as cga
-from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
+from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector
 
 mpmath.mp.dps = 50
 EPS = float(np.finfo(float).eps)
@@ -274,6 +274,11 @@ def test_batches_match_single_entities_far_out():
 UNIT = cga.sphere([0, 0, 0], 1.0)
 
 
+def spoiled(X, value=np.nan):
+    """X with every coefficient times ``value`` (NaN or inf), made directly: the algebra refuses ``X * nan``."""
+    return Multivector(cga.G41, {k: v * value for k, v in X.coeffs.items()})
+
+
 @pytest.mark.parametrize(
     "call, match",
     [
@@ -285,12 +290,17 @@ UNIT = cga.sphere([0, 0, 0], 1.0)
         (lambda: cga.sphere_from_points(*(1e160 * TETRA)), "^sphere_from_points: a: coordinates too large"),
         (lambda: cga.circle_from_points([0, 0, 0], [1e100, 0, 0], [0, 1e100, 0]), "^circle_from_points: a, b, c: .*"),
         (lambda: cga.point_line_distance([1e200, 0, 0], cga.line_from_points([0, 0, 0], [1, 0, 0])), "^point_line_"),
-        (lambda: cga.point_sphere_side([0, 0, 0.5], UNIT * np.nan), "^point_sphere_side: S: .*NaN"),
-        (lambda: cga.point_sphere_side(cga.up([0, 0, 0.5]) * np.nan, UNIT), "^point_sphere_side: x: .*NaN"),
-        (lambda: cga.sphere_center_radius(UNIT * np.inf), "^sphere_center_radius: S: .*NaN or inf"),
-        (lambda: cga.point_pair_endpoints(cga.point_pair([0, 0, 0], [1, 0, 0]) * np.nan), "^point_pair_endpoints: PP"),
-        (lambda: cga.circle_center_radius(cga.circle_from_points(*TETRA[:3]) * np.nan), "^circle_center_radius: Z"),
-        (lambda: cga.plane_normal_distance(cga.plane([0, 0, 1], 1.0) * np.nan), "^plane_normal_distance: P: .*NaN"),
+        (lambda: cga.point_sphere_side([0, 0, 0.5], spoiled(UNIT)), "^point_sphere_side: S: .*NaN"),
+        (lambda: cga.point_sphere_side(spoiled(cga.up([0, 0, 0.5])), UNIT), "^point_sphere_side: x: .*NaN"),
+        (lambda: cga.sphere_center_radius(spoiled(UNIT, np.inf)), "^sphere_center_radius: S: .*NaN or inf"),
+        (lambda: cga.point_pair_endpoints(spoiled(cga.point_pair([0, 0, 0], [1, 0, 0]))), "^point_pair_endpoints: PP"),
+        (lambda: cga.circle_center_radius(spoiled(cga.circle_from_points(*TETRA[:3]))), "^circle_center_radius: Z"),
+        (lambda: cga.plane_normal_distance(spoiled(cga.plane([0, 0, 1], 1.0))), "^plane_normal_distance: P: .*NaN"),
+        (lambda: cga.line_direction(spoiled(cga.line_from_points([0, 0, 0], [1, 0, 0]))), "^line_direction: L: .*NaN"),
+        (lambda: cga.down(spoiled(cga.up([1.0, 2.0, 3.0]))), "^down: X: .*NaN"),
+        (lambda: cga.up([1.0 + 1j, 2.0, 3.0]), "^up: x: must be real numbers, got complex"),
+        (lambda: cga.up(np.array([[1.0, 2.0, 3.0]], dtype=complex)), "^up: x: must be real numbers, got complex"),
+        (lambda: cga.point_pair([0, 0, 0], [[1, 0, 0], [2, 0]]), "^point_pair: b: .*rows of different lengths"),
     ],
 )
 def test_overflow_and_nan_raise_invalid_input(call, match):
@@ -319,6 +329,15 @@ PLANE = cga.plane([0, 0, 1], 2.0)
         (lambda: cga.point_pair_endpoints(LINE ^ cga.up([0, 1, 0])), InvalidInputError, "^point_pair_endpoints: PP: "),
         (lambda: cga.sphere_center_radius(LINE), InvalidInputError, "^sphere_center_radius: S: expected a blade"),
         (lambda: cga.line_direction(cga.up([1, 2, 3])), InvalidInputError, "^line_direction: L: expected a blade"),
+        (lambda: cga.circle_plane(LINE), DegenerateGeometryError, "^circle_plane: Z: .*a line"),
+        (lambda: cga.circle_plane(cga.point_pair([0, 0, 0], [1, 0, 0])), DegenerateGeometryError, "^circle_plane: Z: "),
+        (lambda: cga.point_pair_sphere(CIRCLE), DegenerateGeometryError, "^point_pair_sphere: PP: .*imaginary"),
+        (lambda: cga.down(SPHERE), InvalidInputError, r"^down: X: X \. X != 0: a sphere"),
+        (lambda: cga.down(cga.sphere(np.eye(3), 1.0)), InvalidInputError, r"^down: X: X \. X != 0: a sphere"),
+        (lambda: cga.point_sphere_side(SPHERE, UNIT), InvalidInputError, "^point_sphere_side: x: .*a sphere"),
+        (lambda: cga.point_line_distance(PLANE, LINE), DegenerateGeometryError, "^point_line_distance: x: "),
+        (lambda: cga.point_weight(LINE), InvalidInputError, "^point_weight: X: expected a conformal point or sphere"),
+        (lambda: cga.normalize_point(CIRCLE), InvalidInputError, "^normalize_point: X: expected a conformal point"),
     ],
 )
 def test_readers_reject_the_wrong_entity(call, error, match):

@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from cga_lessons import symbolic
-from cga_lessons.equations import core as equations
+from cga_lessons import equations, symbolic
+from cga_lessons.equations import readme
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -54,7 +54,7 @@ def test_readme_table_is_current(rendered):
     body = text.split(equations.README_START)[1].split(equations.README_END)[0]
     assert body == "\n" + rendered, (
         "README.md's equation table is stale (the registry or the code it links to changed): "
-        f"regenerate it with `{equations.REGENERATE}` and commit README.md"
+        f"regenerate it with `{readme.REGENERATE}` and commit README.md"
     )
 
 
@@ -126,9 +126,9 @@ def test_every_registered_implementation_and_test_is_linked(rendered):
 
 
 def test_markdown_escaping_keeps_cells_and_code_intact():
-    assert split_row("| " + equations._md("a | b * c_d <x>") + " | 2 |") == [r"a \| b \* c\_d \<x\>", "2"]
-    assert split_row("| " + equations._code("A | B") + " |") == [r"`A \| B`"]
-    assert equations._code("a`b") == "`` a`b ``"
+    assert split_row("| " + readme._md("a | b * c_d <x>") + " | 2 |") == [r"a \| b \* c\_d \<x\>", "2"]
+    assert split_row("| " + readme._code("A | B") + " |") == [r"`A \| B`"]
+    assert readme._code("a`b") == "`` a`b ``"
 
 
 def test_text_table_lists_todo_only_when_asked():
@@ -175,3 +175,18 @@ def test_text_table_keeps_names_tests_and_the_errata_forms_whole():
             assert t.strip() in text
         if e.status == "erratum":
             assert f"printed: {e.printed}" in text and f"correct: {e.correct}" in text
+
+
+def test_a_wrong_equation_number_part_or_argument_is_refused_clearly(tmp_path, capsys):
+    with pytest.raises(ValueError, match="coverage: prefix: no equation number of the thesis starts with '9.'"):
+        equations.coverage("9.")
+    with pytest.raises(ValueError, match="ordered_entries: part: must be one of"):
+        equations.ordered_entries("9")
+    with pytest.raises(ValueError, match="Entry: label: '2.999' is not a numbered equation of the thesis"):
+        equations.Entry("2.999", "a title", "todo")
+    with pytest.raises(ValueError, match="readme_is_current: path: no such file"):
+        equations.readme_is_current(tmp_path / "missing.md")
+    assert equations.main(["--no-such-option"]) == 2  # argparse's usage on stderr, no SystemExit
+    assert "unrecognized arguments" in capsys.readouterr().err
+    with pytest.raises(ValueError, match="main: argv: expected a list of strings"):
+        equations.main("--todo")

@@ -256,13 +256,36 @@ def test_malformed_answers_say_what_was_expected(exercise_id, answer):
 
 
 def test_unknown_ids_raise_with_suggestions():
-    with pytest.raises(exercises.UnknownExerciseError, match=r"no exercise 'ch2\.13'.*Did you mean") as err:
+    with pytest.raises(
+        exercises.UnknownExerciseError, match=r"check: exercise_id: there is no exercise 'ch2\.13'.*Did you mean"
+    ) as err:
         exercises.check("ch2.13", 1.0)
     assert isinstance(err.value, ValueError) and isinstance(err.value, InvalidInputError)
-    with pytest.raises(exercises.UnknownExerciseError, match="must be a string"):
-        exercises.check(2.4, 1.0)
-    with pytest.raises(InvalidInputError, match="no hidden input"):
+    with pytest.raises(exercises.UnknownExerciseError, match="evaluate: exercise_id: the exercise id must be a string"):
+        exercises.evaluate(2.4, 1.0)
+    with pytest.raises(InvalidInputError, match="given: exercise_id: exercise ch2.4 has no hidden input"):
         exercises.given("ch2.4")
+    with pytest.raises(InvalidInputError, match="list_exercises: part: no exercise belongs to 'ch99'"):
+        exercises.list_exercises("ch99")
+
+
+def test_a_wrong_answer_names_the_helper_and_prints_only_the_reason():
+    """Wrong is a ValueError of the package naming the helper and its arguments; check() prints the reason alone."""
+    with pytest.raises(exercises.Wrong, match="compare_number: value, truth: the sign is wrong") as err:
+        exercises.compare_number(-2.0, 2.0)
+    assert isinstance(err.value, InvalidInputError) and err.value.reason == "the sign is wrong."
+    with pytest.raises(exercises.Malformed, match="compare_vector: value: the answer should be an array"):
+        exercises.compare_vector("text", [1.0, 2.0, 3.0])
+    with pytest.raises(InvalidInputError, match="compare_number: truth: is NaN or inf"):
+        exercises.compare_number(1.0, math.nan)
+    with pytest.raises(InvalidInputError, match="compare_vector: rtol: must be >= 0"):
+        exercises.compare_vector([1.0], [1.0], rtol=-1.0)
+    result = exercises.evaluate("ch2.4", 12.5)
+    assert (
+        result.message.startswith("ch2.4: not right yet: the sign is wrong.") and "compare_number" not in result.message
+    )
+    with pytest.raises(exercises.Wrong, match="as_array: answer: .* is complex"):
+        exercises.as_array(np.array([1.0 + 1j, 2.0]), (2,))
 
 
 def test_check_prints_one_line_and_returns_the_verdict(capsys):

@@ -375,6 +375,20 @@ def test_degenerate_input_raises_clear_errors():
     assert issubclass(DegenerateGeometryError, GeometryError) and issubclass(GeometryError, ValueError)
 
 
+def test_wrong_kinds_and_sizes_are_refused_by_name():
+    grid, view = ex.make_grid(), ex.CameraView((0.0, 0.0, 10.0), np.pi, np.radians(150))
+    with pytest.raises(InvalidInputError, match="seen_nodes: view: expected a CameraView"):
+        ex.seen_nodes(grid.nodes, ex.SphereObstacle((0.0, 0.0, 0.0), 1.0))
+    with pytest.raises(InvalidInputError, match="cells_touched_by_sphere: obstacle: expected a SphereObstacle"):
+        ex.cells_touched_by_sphere(grid, view)
+    with pytest.raises(InvalidInputError, match="NodeLabels: seen: expected a 1-D array of bools"):
+        ex.NodeLabels(np.array([1, 0]), np.zeros(2, bool), np.zeros(2, bool))  # 0/1 would index nodes, not mask them
+    with pytest.raises(InvalidInputError, match=r"make_grid: x_range, spacing: .* nodes"):
+        ex.make_grid((0.0, 1e12), (0.0, 1.0), (0.0, 1.0), 1.0)
+    with pytest.raises(InvalidInputError, match="detour: n_arc: must be >= 2"):
+        ep.detour([0.0, 0.0], [100.0, 0.0], [50.0, 1.0], 10.0, n_arc=1)
+
+
 # ------------------------------------------------------------ document cases
 def test_document_cases_3_1_4():
     """The six tests of 3.1.4.  The document gives no sphere centre; ours reproduces its 6 -> 8 occupied nodes,
@@ -396,7 +410,7 @@ def test_document_cases_3_1_4():
     assert (base.labels.occupied.sum(), res["sphere diameter 25 cm (fig. 3.8b)"].labels.occupied.sum()) == (6, 8)
     assert res["spacing 20 cm (fig. 3.9a)"].grid.shape == (13, 13, 2)
     assert res["workspace enlarged (fig. 3.9b)"].grid.shape == (14, 14, 3)
-    with pytest.raises(TypeError):
+    with pytest.raises(InvalidInputError, match="run_scenario: not_a_field: is not a setting of Scenario"):
         cases.run_scenario(not_a_field=1)
     assert replace(cases.Scenario(), sphere_center=None).obstacle() is None
 

@@ -36,13 +36,13 @@ def test_the_bundled_logs_return_from_far_less_than_their_scanners_are_specified
 @pytest.mark.parametrize(
     "ranges, coverage, match",
     [
-        ([np.inf, np.inf], 0.99, "ranges holds no finite positive reading"),
-        ([0.0, -1.0], 0.99, "ranges holds no finite positive reading"),
-        ([1.0, 2.0], 0.0, "coverage must lie in"),
-        ([1.0, 2.0], 1.5, "coverage must lie in"),
-        ([1.0, 2.0], float("nan"), "coverage must lie in"),
-        ([1.0, 2.0], "0.9", "coverage must lie in"),
-        ([1.0, 2.0], True, "coverage must lie in"),
+        ([np.inf, np.inf], 0.99, "ranges: holds no finite positive reading"),
+        ([0.0, -1.0], 0.99, "ranges: holds no finite positive reading"),
+        ([1.0, 2.0], 0.0, "coverage: must be > 0.0"),
+        ([1.0, 2.0], 1.5, "coverage: must be <= 1.0"),
+        ([1.0, 2.0], float("nan"), "coverage: is NaN or inf"),
+        ([1.0, 2.0], "0.9", "coverage: must be a real number"),
+        ([1.0, 2.0], True, "coverage: must be a real number, got the bool"),
     ],
 )
 def test_returns_reach_refuses_bad_input(ranges, coverage, match):
@@ -57,11 +57,11 @@ def test_no_return_codes_of_a_log_without_returns_is_empty():
 @pytest.mark.parametrize(
     "kw, match",
     [
-        (dict(min_beams=1), "min_beams must be an integer >= 2"),
-        (dict(min_beams=2.5), "min_beams must be an integer >= 2"),
-        (dict(band=float("nan")), "band must lie in"),
-        (dict(band=1.0), "band must lie in"),
-        (dict(band=-0.1), "band must lie in"),
+        (dict(min_beams=1), "min_beams: must be >= 2"),
+        (dict(min_beams=2.5), "min_beams: must be a whole number"),
+        (dict(band=float("nan")), "band: is NaN or inf"),
+        (dict(band=1.0), "band: must be < 1.0"),
+        (dict(band=-0.1), "band: must be >= 0.0"),
     ],
 )
 def test_no_return_codes_refuses_bad_settings(kw, match):

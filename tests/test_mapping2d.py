@@ -378,7 +378,7 @@ def test_build_map_degenerate_scans_give_no_correction_never_nan():
 def test_build_map_rejects_bad_input():
     room = load_scene("room")
     scans = simulate_scans(room, room.trajectory[:3])
-    with pytest.raises(InvalidInputError, match="build_map: 3 scans but 2"):
+    with pytest.raises(InvalidInputError, match="build_map: scans, odometry: 3 scans but 2"):
         build_map(scans, room.trajectory[:2])
     with pytest.raises(InvalidInputError, match="method"):
         build_map(scans, room.trajectory[:3], method="icp")

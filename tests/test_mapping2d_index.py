@@ -79,7 +79,7 @@ def test_index_query_is_a_superset_of_the_boxes_that_meet_and_checks_its_input()
         index.update([1, 2], lo[:1], hi[:1])
     with pytest.raises(InvalidInputError, match="lo <= hi"):
         index.update([1], hi[:1] + 1.0, lo[:1])
-    with pytest.raises(InvalidInputError, match="SegmentIndex.query: the box has NaN"):
+    with pytest.raises(InvalidInputError, match="SegmentIndex.query: lo, hi: the box has NaN"):
         index.query([np.nan, 0.0], [1.0, 1.0])
 
 

@@ -301,7 +301,8 @@ def test_lines_degenerate_input():
         motor_from_lines([L1, L3], [L1, L2])
     with pytest.raises(DegenerateGeometryError, match="^motor_from_lines: source_lines: needs at least 2"):
         motor_from_lines([L1], [L1])
-    with pytest.raises(InvalidInputError, match="^motor_from_lines: target_lines: 3 lines do not match"):
+    both = "source_lines, target_lines"
+    with pytest.raises(InvalidInputError, match=f"^motor_from_lines: {both}: must have the same length, got 2 and 3"):
         motor_from_lines([L1, L3], [L1, L3, L2])
     with pytest.raises(InvalidInputError, match="^motor_from_lines: source_lines: expected CGA lines"):
         motor_from_lines([cga.up([1.0, 2, 3]), L3], [L1, L3])
@@ -339,7 +340,7 @@ def test_mean_motor_inputs_and_errors():
     batch = cga.motor(np.eye(3), [0.1, 0.2, 0.3], np.eye(3))
     single = mean_motor([batch.batch_item(i) for i in range(3)])
     assert (mean_motor(batch) - single).iszero(atol=1e-14)
-    with pytest.raises(DegenerateGeometryError, match="^mean_motor: the mean rotation is not unique"):
+    with pytest.raises(DegenerateGeometryError, match="^mean_motor: motors: the mean rotation is not unique"):
         mean_motor([cga.rotor([0, 0, 1], 0.0), cga.rotor([0, 0, 1], np.pi)])
     with pytest.raises(InvalidInputError, match="^mean_motor: motors: needs at least one"):
         mean_motor([])

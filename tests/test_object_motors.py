@@ -78,7 +78,7 @@ def test_bad_input_names_the_function_and_the_argument():
         motor_between(cga.sphere([0, 0, 0], 1.0), cga.sphere([0, 0, 0], 1.0) + cga.einf * 1.0)  # imaginary
     with pytest.raises(InvalidInputError, match="motor_between: Y: a"):
         motor_between(L, cga.circle_from_points([1, 0, 0], [0, 1, 0], [0, 0, 1]))
-    with pytest.raises(InvalidInputError, match="motor_between: X: coefficients contain NaN"):
-        motor_between(L * float("nan"), L)
+    with pytest.raises(InvalidInputError, match="motor_between: X: contains NaN or inf"):
+        motor_between(cga.Multivector(cga.G41, {b: float("nan") for b in L.coeffs}), L)
     with pytest.raises(InvalidInputError, match="not a blade"):
         motor_between(L + cga.line_from_points([0, 0, 1], [0, 1, 1]), L)

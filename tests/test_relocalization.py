@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from cga_lessons import data_path
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
 from cga_lessons.mapping2d.laser import compose, load_scene, read_carmen_log, simulate_scan, wrap_angle
 from cga_lessons.mapping2d.lines import Segment, diff_theta, extract_segments
 from cga_lessons.relocalization import ReferenceMap, prepare_map, relocalize
@@ -292,15 +292,20 @@ def test_relocalize_input_forms_agree(hall):
 @pytest.mark.parametrize(
     "kwargs, match",
     [
-        (dict(map_segments=np.zeros((0, 2, 2)), scan_segments=np.ones((2, 2, 2))), "map_segments is empty"),
+        (dict(map_segments=np.zeros((0, 2, 2)), scan_segments=np.ones((2, 2, 2))), "map_segments: is empty"),
         (dict(map_segments=np.full((3, 2, 2), np.nan), scan_segments=np.ones((2, 2, 2))), "NaN"),
-        (dict(map_segments=np.ones((3, 4)), scan_segments=np.ones((2, 2, 2))), r"shape \(K, 2, 2\)"),
-        (dict(map_segments=[[[0, 0], [0, 0]]], scan_segments=np.ones((2, 2, 2))), "zero length"),
+        (
+            dict(map_segments=np.ones((3, 4)), scan_segments=np.ones((2, 2, 2))),
+            r"map_segments: expected shape \(N, 2, 2\)",
+        ),
         (dict(map_segments=[[[0, 0], [1, 0]]], scan_segments=[[[0, 0], [1, np.inf]]]), "NaN or inf"),
         (dict(map_segments=[[[0, 0], [1, 0]]]), "give scan_segments"),
         (dict(map_segments=[[[0, 0], [1, 0]]], scan=(np.ones(5), np.linspace(0, 1, 4))), "equal 1-D shapes"),
         (dict(map_segments=[[[0, 0], [1, 0]]], scan=(np.ones(4), np.array([0, 1, 1, 2.0]))), "strictly increasing"),
-        (dict(map_segments=[[[0, 0], [1, 0]]], scan=(np.ones(4), np.array([0, 1, np.nan, 2.0]))), "finite"),
+        (
+            dict(map_segments=[[[0, 0], [1, 0]]], scan=(np.ones(4), np.array([0, 1, np.nan, 2.0]))),
+            "angles: contains NaN",
+        ),
         (dict(map_segments=[[[0, 0], [1, 0]]], scan=np.ones(4)), "pair"),
         (dict(map_segments=[[[0, 0], [1, 0]]], scan_segments=np.ones((2, 2, 2)), max_range=0.0), "max_range"),
         (dict(map_segments=[[[0, 0], [1, 0]]], scan_segments=np.ones((2, 2, 2)), nonsense=1), "unknown parameter"),
@@ -309,7 +314,30 @@ def test_relocalize_input_forms_agree(hall):
 def test_relocalize_bad_input_raises(kwargs, match):
     with pytest.raises(InvalidInputError, match=match) as info:
         relocalize(**kwargs)
-    assert "relocalize" in str(info.value)
+    assert str(info.value).startswith("relocalize: ")
+
+
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(xi_theta=np.nan), "relocalize: xi_theta: is NaN or inf"),
+        (dict(xi_rho=None), "relocalize: xi_rho: must be a real number"),
+        (dict(min_score="0.5"), "relocalize: min_score: must be a real number"),
+        (dict(n_verify=2.5), "relocalize: n_verify: must be a whole number"),
+        (dict(params="strict"), "relocalize: params: expected a RelocParams"),
+        (dict(extraction={"nonsense": 1}), "relocalize: extraction: unknown setting"),
+        (dict(max_range="5"), "relocalize: max_range: must be a real number"),
+    ],
+)
+def test_relocalize_refuses_bad_thresholds(kwargs, match):
+    """Thresholds of the wrong type or NaN are refused, not turned into a failed relocalization."""
+    with pytest.raises(InvalidInputError, match=match):
+        relocalize([[[0, 0], [1, 0]]], np.ones((2, 2, 2)), **kwargs)
+
+
+def test_a_zero_length_segment_is_degenerate():
+    with pytest.raises(DegenerateGeometryError, match="relocalize: map_segments: segment 0 has zero length"):
+        relocalize([[[0, 0], [0, 0]]], np.ones((2, 2, 2)))
 
 
 def test_too_few_lines_is_an_explicit_failure():

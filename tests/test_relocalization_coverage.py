@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from cga_lessons import data_path
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
 from cga_lessons.mapping2d.laser import CarmenLog, read_carmen_log, simulate_odometry
 from cga_lessons.relocalization import RelocParams, prepare_map, relocalize
 from cga_lessons.relocalization import verify as verify
@@ -145,13 +145,17 @@ def test_robust_end_is_the_median_of_the_ends_near_the_last():
         (lambda: build_coverage([(np.ones(3), np.arange(3.0))], [[0, 0, np.nan]], max_range=5.0), "NaN"),
         (lambda: build_coverage([(np.ones(3), np.arange(3.0))], np.zeros((1, 3)), max_range=0.0), "max_range"),
         (lambda: build_coverage([(np.ones(3), np.zeros(3))], np.zeros((1, 3)), max_range=5.0), "increasing"),
-        (lambda: prepare_map([[[0, 0], [1, 0]]], coverage="grid"), "coverage must be a Coverage"),
-        (lambda: merge_segments([[[0, 0], [0, 0]]]), "positive length"),
+        (lambda: prepare_map([[[0, 0], [1, 0]]], coverage="grid"), "prepare_map: coverage: expected a Coverage"),
     ],
 )
 def test_bad_inputs_raise(call, match):
     with pytest.raises(InvalidInputError, match=match):
         call()
+
+
+def test_a_segment_of_zero_length_is_degenerate():
+    with pytest.raises(DegenerateGeometryError, match="merge_segments: segments: segment 0 has zero length"):
+        merge_segments([[[0, 0], [0, 0]]])
 
 
 # --------------------------------------------------------------------------- a real log
@@ -203,5 +207,5 @@ def test_runs_of_three_with_simulated_odometry(intel_slice):
     wrong = (ev.status == "ok") & ~ev.success
     assert wrong.sum() <= 2
     assert np.all(ev.position_error[wrong] < 0.2) and np.all(ev.heading_error[wrong] < np.radians(4))  # not gross
-    with pytest.raises(InvalidInputError, match="odometry must have shape"):
+    with pytest.raises(InvalidInputError, match=r"evaluate_log_sequences: odometry: expected shape \(280, 3\)"):
         evaluate_log_sequences(intel_slice, starts, odometry=odo[:-1])

@@ -168,11 +168,11 @@ def test_recovers_after_a_kidnapping(office):
 
 def test_bad_inputs_raise(office):
     scan = laser.simulate_scan(office, office.trajectory[0])
-    with pytest.raises(InvalidInputError, match="MonteCarloLocalizer: map_segments is empty"):
+    with pytest.raises(InvalidInputError, match="MonteCarloLocalizer: map_segments: is empty"):
         MonteCarloLocalizer(np.zeros((0, 2, 2)), rng=0)
-    with pytest.raises(InvalidInputError, match="MonteCarloLocalizer: map_segments must have shape"):
+    with pytest.raises(InvalidInputError, match="MonteCarloLocalizer: map_segments: expected shape"):
         MonteCarloLocalizer(np.zeros((3, 2)), rng=0)
-    with pytest.raises(InvalidInputError, match="MonteCarloLocalizer: map_segments contains NaN"):
+    with pytest.raises(InvalidInputError, match="MonteCarloLocalizer: map_segments: contains NaN"):
         MonteCarloLocalizer(np.array([[[0.0, 0.0], [np.nan, 1.0]]]), rng=0)
     with pytest.raises(InvalidInputError, match="MonteCarloLocalizer: rng"):
         MonteCarloLocalizer(office.walls, rng=None)

@@ -122,9 +122,10 @@ def test_stop_when_confident_uses_fewer_scans(hall):
     "call, match",
     [
         (lambda w, s: relocalize_sequence(w, [s], np.zeros((2, 3))), "one row per scan"),
-        (lambda w, s: relocalize_sequence(w, [], np.zeros((0, 3))), "one row per scan"),
-        (lambda w, s: Relocalizer(w).add(s, [0.0, np.nan, 0.0]), "odometry must be a finite"),
-        (lambda w, s: Relocalizer(w).add(s, [0.0, 0.0]), "odometry must be a finite"),
+        (lambda w, s: relocalize_sequence(w, [], np.zeros((0, 3))), "scans: expected at least one scan"),
+        (lambda w, s: relocalize_sequence(w, [s], [[0.0, 0.0, 0.0]], window="3"), "relocalize_sequence: window"),
+        (lambda w, s: Relocalizer(w).add(s, [0.0, np.nan, 0.0]), r"Relocalizer.add: odometry: contains NaN"),
+        (lambda w, s: Relocalizer(w).add(s, [0.0, 0.0]), r"Relocalizer.add: odometry: expected shape \(3,\)"),
         (lambda w, s: Relocalizer(w).add((s[0][:5], s[1]), [0.0, 0.0, 0.0]), "equal 1-D shapes"),
         (lambda w, s: Relocalizer(w, max_chains=0), "max_chains"),
         (lambda w, s: Relocalizer(w, window=0), "window"),

@@ -272,13 +272,20 @@ def test_bad_input_raises():
     assert robot.state.tilt == 0.0  # a refused change leaves the robot as it was
     with pytest.raises(InvalidInputError, match="laser_mount"):
         rb.RobotGeometry(laser_mount=(0.1, 0.0, 0.3))
-    with pytest.raises(InvalidInputError, match="finite"):
+    with pytest.raises(InvalidInputError, match="RobotGeometry: baseline: is NaN or inf"):
         rb.RobotGeometry(baseline=np.inf)
     with pytest.raises(DegenerateGeometryError, match="parallel"):
         rb.Robot(rb.RobotGeometry(tilt_direction=(0.0, 0.0, 1.0)))
-    with pytest.raises(InvalidInputError, match="finite"):
+    with pytest.raises(InvalidInputError, match="chain_motors: x: contains NaN or inf"):
         rb.chain_motors(x=np.array([0.0, np.inf]))
     with pytest.raises(InvalidInputError, match="no motor"):
         robot["M_xyz"]
     with pytest.raises(InvalidInputError, match="Multivector"):
         rb.to_unified(robot["M_lu"], np.zeros(3))
+    sphere = cga.sphere([0.0, 0.0, 0.0], 1.0)
+    with pytest.raises(InvalidInputError, match="base_motor_as_printed: R_lsr: not an even versor"):
+        rb.base_motor_as_printed(robot["T_pos"], sphere)  # a motor argument given a sphere
+    with pytest.raises(InvalidInputError, match="Robot.update: roll: unknown degree of freedom"):
+        robot.update(roll=0.1)
+    with pytest.raises(InvalidInputError, match="base_rotor: theta: contains NaN or inf"):
+        rb.base_rotor(np.array([0.0, np.nan]))

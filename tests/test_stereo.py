@@ -257,7 +257,7 @@ def test_conformal_fits_commute_with_similarities(angle, scale, shift):
 def test_fits_reject_degenerate_points():
     rng = np.random.default_rng(2)
     flat = np.column_stack([rng.normal(size=(20, 2)), np.zeros(20)])
-    with pytest.raises(DegenerateGeometryError, match="fit_sphere: the points lie on a plane"):
+    with pytest.raises(DegenerateGeometryError, match="fit_sphere: X: the points lie on a plane"):
         sf.fit_sphere(flat)
     line = np.outer(np.linspace(0, 1, 10), [1.0, 2.0, 3.0])
     for fit in (sf.fit_plane, sf.fit_circle, sf.fit_plane_euclidean):

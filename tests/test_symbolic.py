@@ -216,3 +216,28 @@ def test_symbolic_point_pairs_and_circles_stay_exact_and_refuse_collinear_points
     assert all(isinstance(v, sp.Integer) for v in tuple(q1) + tuple(q2))
     with pytest.raises(cga.DegenerateGeometryError, match="circle_from_points: a, b, c: the 3 points are collinear"):
         cga.circle_from_points([0, 0, 0], [1, 0, 0], [sp.Integer(2), 0, 0])
+
+
+def test_derivations_are_computed_once_and_returned_as_copies():
+    """A second call costs nothing and returns a Derivation of its own (adding to it leaves the next call's alone)."""
+    first = symbolic.minkowski_plane()
+    first.add_bool("a note of mine", "2.56", True)
+    second = symbolic.minkowski_plane()
+    assert "a note of mine" not in second.names() and second.names() == first.names()[:-1]
+    assert second.checks[0] is first.checks[0]  # the checks themselves are shared (frozen)
+
+
+def test_the_machinery_refuses_bad_input_clearly():
+    d = symbolic.minkowski_plane()
+    with pytest.raises(KeyError, match=r"Derivation\[\]: name: .*no check named 'nope'"):
+        d["nope"]
+    with pytest.raises(cga.InvalidInputError, match="Derivation.for_label: label: '2.999' is not an equation"):
+        d.for_label("2.999")
+    with pytest.raises(cga.InvalidInputError, match="Derivation.add: name: check .* recorded twice"):
+        d.add(d.names()[0], "2.56", 1, 1)
+    with pytest.raises(cga.InvalidInputError, match="basis_and_product_axioms: signatures: must be <= 10"):
+        symbolic.basis_and_product_axioms([(11, 0, 0)])
+    with pytest.raises(cga.InvalidInputError, match="Ring: symbols: expected SymPy symbols"):
+        Ring(["x"])
+    with pytest.raises(cga.InvalidInputError, match="is_zero: rel: expected a Ring or None"):
+        symbolic.is_zero(sp.Integer(0), rel="text")

@@ -257,13 +257,31 @@ def test_scene_html_is_offline_and_complete():
 def test_export_html_refuses_to_overwrite(tmp_path):
     target = tmp_path / "scene.html"
     target.write_text("keep me")
-    with pytest.raises(FileExistsError, match="force=True"):
+    with pytest.raises(InvalidInputError, match=r"export_html: path: .* exists \(pass overwrite=True"):
         export_html(small_scene(), target)
     assert target.read_text() == "keep me"
-    out = export_html(small_scene(), target, force=True)
+    out = export_html(small_scene(), target, overwrite=True)
     assert out == target and "MeshCat.Viewer" in target.read_text()
-    with pytest.raises(FileNotFoundError, match="does not exist"):
+    target.write_text("keep me")
+    assert export_html(small_scene(), target, force=True) == target  # the older name of overwrite
+    assert "MeshCat.Viewer" in target.read_text()
+    with pytest.raises(InvalidInputError, match="export_html: path: no such folder"):
         export_html(small_scene(), tmp_path / "missing" / "scene.html")
+    with pytest.raises(InvalidInputError, match="export_html: primitives: the scene is empty"):
+        export_html([], tmp_path / "empty.html")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["scene.html"]  # no page, no partial file left
+
+
+def test_export_html_leaves_no_partial_file(tmp_path, monkeypatch):
+    import cga_lessons.viz.meshcat_scene as mc
+
+    def fail_midway(*args, **kwargs):
+        raise OSError("disk full")
+
+    monkeypatch.setattr(mc.os, "replace", fail_midway)
+    with pytest.raises(OSError, match="disk full"):
+        export_html(small_scene(), tmp_path / "scene.html")
+    assert list(tmp_path.iterdir()) == []
 
 
 # ============================================================ live server: loopback only, no orphans

@@ -136,7 +136,7 @@ def test_scene_iframe_rejects_bad_sizes(kwargs, words):
 
 
 def test_scene_iframe_rejects_bad_scenes():
-    with pytest.raises(InvalidInputError, match="scene_iframe: the scene is empty"):
+    with pytest.raises(InvalidInputError, match="scene_iframe: primitives: the scene is empty"):
         scene_iframe([])
     with pytest.raises(InvalidInputError, match="scene_iframe"):
         scene_iframe([small_scene()[0], "a ball"])

@@ -324,9 +324,10 @@ def test_tables_format_the_records(tmp_path):
 @pytest.mark.parametrize(
     "call, match",
     [
-        (lambda: fw.draw_particles(None, np.zeros((3, 2))), r"draw_particles: particles: expected shape \(N, 3\)"),
-        (lambda: fw.draw_particles(None, [[0, 0, np.nan]]), "draw_particles: particles: contains NaN"),
-        (lambda: fw.covariance_ellipse([0, 0], [[1, 2], [0, 1]]), "covariance_ellipse: covariance: not symmetric"),
+        (lambda: fw.draw_particles(plt.subplots()[1], np.zeros((3, 2))), r"draw_particles: particles: expected shape"),
+        (lambda: fw.draw_particles(plt.subplots()[1], [[0, 0, np.nan]]), "draw_particles: particles: contains NaN"),
+        (lambda: fw.draw_particles(None, np.zeros((3, 3))), "draw_particles: ax: expected a matplotlib axes"),
+        (lambda: fw.covariance_ellipse([0, 0], [[1, 2], [0, 1]]), "covariance_ellipse: cov: not symmetric"),
         (lambda: fw.covariance_ellipse([0, 0], np.eye(2), n_sigma=-1), "covariance_ellipse: n_sigma"),
         (lambda: fw.covariance_ellipse("ab", np.eye(2)), "covariance_ellipse: mean"),
         (lambda: fw.mcl_figure(np.zeros((2, 2)), [[]]), "mcl_figure: map_segments"),
@@ -337,7 +338,8 @@ def test_tables_format_the_records(tmp_path):
         (lambda: fwa.chain_points(ur5(), np.zeros(6), np.zeros((2, 3)), [0, 9]), "chain_points: attached"),
         (lambda: fwa.dh_home_points({"d": [1]}), "dh_home_points: p"),
         (lambda: fwa.arm_figure(ur5(), np.zeros((4, 6)), n_drawn=9), "arm_figure: n_drawn"),
-        (lambda: fwa.draw_frame(None, np.eye(3)), "draw_frame: H"),
+        (lambda: fwa.draw_frame(plt.figure().add_subplot(projection="3d"), np.eye(3)), "draw_frame: H"),
+        (lambda: fwa.draw_frame(None, np.eye(4)), "draw_frame: ax: expected a matplotlib 3D axis"),
         (lambda: fws.depth_noise(-1.0, 0.1, 700.0), "depth_noise: z"),
         (lambda: fws.depth_noise(1.0, 0.0, 700.0), "depth_noise: baseline"),
         (lambda: fws.depth_noise_figure({"a": (0.1, 700.0, (2.0, 1.0))}), "depth_noise_figure"),

@@ -5,6 +5,8 @@ Layer 1 of the package: imports the errors and paths of layer 0 only (``tests/te
 here draws (figures and widgets are in :mod:`cga_lessons.viz`).  This facade exports the names in ``__all__``; its
 modules:
 
+* :mod:`~cga_lessons.algebra.access`: Reading and comparing a multivector: coefficients by blade name, batches,
+  arrays, ``isclose`` and ``==``
 * :mod:`~cga_lessons.algebra.coefficients`: The three kinds of coefficient a multivector holds, and cheap tests for
   them
 * :mod:`~cga_lessons.algebra.core`: The geometric algebra G(p, q, r) of chapter 2 (section 2.2)
@@ -15,6 +17,8 @@ modules:
   bivector (2.37)
 * :mod:`~cga_lessons.algebra.inverse`: Norms and the inverse of a multivector (2.19)
 * :mod:`~cga_lessons.algebra.multivector`: The Multivector type of :mod:`cga_lessons.algebra` and its operators
+* :mod:`~cga_lessons.algebra.operands`: The checks of the algebra's operands (on :mod:`cga_lessons.checks`): what
+  the operators refuse, and what they check where
 * :mod:`~cga_lessons.algebra.products`: Products of multivectors: the cached (blade, blade, result, sign) terms and
   the code that runs them
 * :mod:`~cga_lessons.algebra.versor_matrices`: A versor's action as one matrix per grade, built in closed form

@@ -15,6 +15,8 @@ import numbers
 
 import numpy as np
 
+from cga_lessons.checks import fail
+
 PLAIN_TYPES = frozenset((float, int, np.float64, np.ndarray))
 
 
@@ -48,10 +50,18 @@ REAL_TYPES = frozenset((float, np.float64, int))
 FLOAT_TYPES = frozenset((float, np.float64))
 
 
+def _not_a_multivector(M, func: str):
+    return fail(func, "M", f"expected a Multivector, got {type(M).__name__}")
+
+
 def is_real_single(M) -> bool:
     """True when every coefficient of ``M`` is one real number (no batch, no SymPy)."""
     real = REAL_TYPES
-    for v in M._c.values():
+    try:
+        values = M._c.values()
+    except AttributeError:
+        raise _not_a_multivector(M, "is_real_single") from None
+    for v in values:
         if type(v) not in real:
             return False
     return True
@@ -70,7 +80,11 @@ def is_real_batch(M) -> bool:
     """True when ``M`` is a numeric batch: real arrays (at least one) and real numbers, no SymPy."""
     real = REAL_TYPES
     seen = False
-    for v in M._c.values():
+    try:
+        values = M._c.values()
+    except AttributeError:
+        raise _not_a_multivector(M, "is_real_batch") from None
+    for v in values:
         if type(v) is np.ndarray:
             if v.dtype.kind not in "fiu" or not v.ndim:
                 return False
@@ -81,7 +95,12 @@ def is_real_batch(M) -> bool:
 
 
 def any_sympy(*mvs) -> bool:
-    return any(is_sympy(v) for m in mvs for v in m._c.values())
+    """True when a coefficient of one of the multivectors ``mvs`` is a SymPy expression."""
+    try:
+        return any(is_sympy(v) for m in mvs for v in m._c.values())
+    except AttributeError:
+        bad = next(m for m in mvs if not hasattr(m, "_c"))
+        raise fail("any_sympy", "mvs", f"expected Multivectors, got {type(bad).__name__}") from None
 
 
 def absmax(v) -> float:
@@ -89,7 +108,10 @@ def absmax(v) -> float:
     t = type(v)
     if t is float or t is np.float64 or t is int:
         return float(abs(v))
-    return float(np.max(np.abs(v)))
+    try:
+        return float(np.max(np.abs(v)))
+    except (TypeError, ValueError) as exc:
+        raise fail("absmax", "v", f"expected a real number or a non-empty array of them ({exc})") from None
 
 
 def all_finite(arr: np.ndarray) -> bool:
@@ -99,6 +121,18 @@ def all_finite(arr: np.ndarray) -> bool:
     exactly when no element is NaN or inf, unless the squares overflow (only
     for |a| > 1e154), in which case the full test decides.
     """
+    if type(arr) is not np.ndarray:
+        if arr is None or isinstance(arr, (str, bytes)):
+            raise fail("all_finite", "arr", f"expected an array of numbers, got {arr!r:.40}")
+        try:
+            arr = np.asarray(arr)
+        except ValueError as exc:
+            raise fail("all_finite", "arr", f"expected an array of numbers ({exc})") from None
+    kind = arr.dtype.kind
+    if kind not in "fiub":
+        if kind != "c":
+            raise fail("all_finite", "arr", f"expected an array of numbers, got an array of {arr.dtype}")
+        return bool(np.isfinite(arr).all())
     if arr.size <= 8:
         return all(map(math.isfinite, arr.ravel().tolist()))
     if arr.dtype == np.float64 and arr.size > 512 and arr.flags.c_contiguous:

@@ -52,6 +52,8 @@ from there.  The code lives in one module per idea::
 
     core.py                     Algebra: blades as bitmaps, signs (2.10), names, constructors
     multivector.py              Multivector and its operators; commutator (2.36)
+    access.py                   reading coefficients (X["e12"]), batches, arrays; isclose and ==
+    operands.py                 the checks of operands: what the operators and methods refuse
     products.py                 cached product terms, compiled straight-line code, float tables
     versor_matrices.py          versor matrices per grade in closed form (2.82), apply_matrices
     inverse.py                  norms and the inverse (2.19)
@@ -60,28 +62,42 @@ from there.  The code lives in one module per idea::
     coefficients.py             the three kinds of coefficient: float, array batch, SymPy
 
 and the errors (GeometryError, DegenerateGeometryError, InvalidInputError) in :mod:`cga_lessons.errors`.
+Every operator and method refuses bad operands with one of them, naming what the user wrote
+(``"Multivector /: other: division by zero"``, ``"Algebra.vector: coeffs: contains NaN or inf"``).
 """
 
 from __future__ import annotations
 
-import numbers
 from itertools import combinations
 
 import numpy as np
 
-from cga_lessons.errors import InvalidInputError
+from cga_lessons.checks import fail, integer, text
 
 from .coefficients import (
     is_sympy,
     is_zero,
 )
 from .multivector import Multivector
+from .operands import AlgebraKind, BladeNameError, blade_bitmaps, coefficient, coefficient_array
 from .products import ProductTermsMixin
 from .versor_matrices import VersorMatricesMixin
 
 __all__ = [
     "Algebra",
 ]
+
+
+def _labels(labels, n: int) -> list:
+    """The labels of the basis vectors: ``n`` distinct non-empty strings (default ``"1", "2", ...``)."""
+    if labels is None:
+        return [str(i + 1) for i in range(n)] if n < 10 else [f"({i + 1})" for i in range(n)]
+    if isinstance(labels, (str, bytes)) or not hasattr(labels, "__iter__"):
+        raise fail("Algebra", "labels", f"expected a sequence of {n} strings, got {labels!r:.40}")
+    labels = [text(v, "Algebra", "labels") for v in labels]
+    if len(labels) != n or len(set(labels)) != n:
+        raise fail("Algebra", "labels", f"need {n} distinct labels, got {labels!r}")
+    return labels
 
 
 def _popcount(x: int) -> int:
@@ -102,7 +118,7 @@ def _reorder_sign(a: int, b: int) -> int:
     return -1 if swaps & 1 else 1
 
 
-class Algebra(ProductTermsMixin, VersorMatricesMixin):
+class Algebra(ProductTermsMixin, VersorMatricesMixin, AlgebraKind):
     """The geometric algebra G(p, q, r), equations (2.9)-(2.10).
 
     Parameters
@@ -129,18 +145,12 @@ class Algebra(ProductTermsMixin, VersorMatricesMixin):
     """
 
     def __init__(self, p: int, q: int = 0, r: int = 0, labels=None):
-        for name, v in (("p", p), ("q", q), ("r", r)):
-            if not isinstance(v, numbers.Integral) or v < 0:
-                raise InvalidInputError(f"Algebra: {name} must be a non-negative integer, got {v!r}")
-        self.p, self.q, self.r = int(p), int(q), int(r)
-        self.n = n = self.p + self.q + self.r
+        p, q, r = (integer(v, "Algebra", name, low=0) for name, v in (("p", p), ("q", q), ("r", r)))
+        self.p, self.q, self.r = p, q, r
+        self.n = n = p + q + r
         if n > 10:
-            raise InvalidInputError(f"Algebra: dimension p+q+r = {n} is too large for this dense sign table (max 10)")
-        if labels is None:
-            labels = [str(i + 1) for i in range(n)] if n < 10 else [f"({i + 1})" for i in range(n)]
-        labels = list(labels)
-        if len(labels) != n or len(set(labels)) != n:
-            raise InvalidInputError(f"Algebra: need {n} distinct labels, got {labels!r}")
+            raise fail("Algebra", "p, q, r", f"dimension p+q+r = {n} is too large for this dense sign table (max 10)")
+        labels = _labels(labels, n)
         self.labels = labels
         self.metric = tuple([1] * self.p + [-1] * self.q + [0] * self.r)
         self.dim = 1 << n
@@ -190,14 +200,21 @@ class Algebra(ProductTermsMixin, VersorMatricesMixin):
 
         ``"e31"`` gives the bitmap of ``e13`` and sign -1 (``e31 = -e13``).
         A repeated factor is contracted with its square, so ``"e11"`` is the
-        scalar 1 in G(3).
+        scalar 1 in G(3).  A name that is not a blade's raises an
+        :class:`~cga_lessons.algebra.InvalidInputError` that is also a ``KeyError``.
         """
+        hit = self._name_to_blade.get(name) if type(name) is str else None
+        return hit if hit is not None else self._parse(name, "Algebra.parse_blade", "name")
+
+    def _parse(self, name, func: str, arg: str) -> tuple[int, int]:
+        """:meth:`parse_blade` with the errors naming ``func`` and its argument ``arg``."""
+        text(name, func, arg, empty=True)
         if name in self._name_to_blade:
             return self._name_to_blade[name]
         if name in ("1", "", "scalar"):
             return 0, 1
         if not name.startswith("e"):
-            raise KeyError(f"{name!r} is not a blade name of G{self.signature}")
+            raise BladeNameError(f"{func}: {arg}: {name!r} is not a blade name of G{self.signature}")
         rest = name[1:]
         factors = []
         labels = sorted(self.labels, key=len, reverse=True)
@@ -208,15 +225,23 @@ class Algebra(ProductTermsMixin, VersorMatricesMixin):
                     rest = rest[len(lab) :]
                     break
             else:
-                raise KeyError(f"{name!r} is not a blade name of G{self.signature} (labels {self.labels})")
+                raise BladeNameError(
+                    f"{func}: {arg}: {name!r} is not a blade name of G{self.signature} (labels {self.labels})"
+                )
         blade, sign = 0, 1
         for i in factors:
             sign *= self._sign_list[blade][1 << i]
             blade ^= 1 << i
         if sign == 0:
-            raise KeyError(f"{name!r} is zero in G{self.signature} (a null vector squared)")
+            raise BladeNameError(f"{func}: {arg}: {name!r} is zero in G{self.signature} (a null vector squared)")
         self._name_to_blade[name] = (blade, sign)
         return blade, sign
+
+    def __copy__(self):
+        return self  # one algebra: copies of its multivectors combine with the originals
+
+    def __deepcopy__(self, memo):
+        return self
 
     @property
     def signature(self) -> tuple[int, int, int]:
@@ -228,27 +253,35 @@ class Algebra(ProductTermsMixin, VersorMatricesMixin):
     # ----------------------------------------------------------- constructors
     def blade(self, name: str, coeff=1.0) -> Multivector:
         """The basis blade called ``name`` (any factor order) times ``coeff``."""
-        b, s = self.parse_blade(name)
+        b, s = self._parse(name, "Algebra.blade", "name")
+        coeff = coefficient(coeff, "Algebra.blade", "coeff")
         return Multivector(self, {b: coeff if s == 1 else -coeff})
 
     def scalar(self, value) -> Multivector:
-        return Multivector(self, {0: value})
+        """The scalar ``value`` (a number, an array for a batch, or a SymPy expression) as a multivector."""
+        return Multivector(self, {0: coefficient(value, "Algebra.scalar", "value")})
 
     def basis_vectors(self) -> list[Multivector]:
         """The n basis vectors e_1 ... e_n (2.9)."""
         return [Multivector(self, {1 << i: 1.0}) for i in range(self.n)]
 
     def vector(self, coeffs) -> Multivector:
-        """A grade-1 multivector from ``coeffs`` of shape (n,) or (N, n) (a batch)."""
+        """A grade-1 multivector from ``coeffs`` of shape (n,) or (N, n) (a batch); SymPy entries stay exact."""
+        func = "Algebra.vector"
         arr = coeffs
         if isinstance(arr, (list, tuple)) and arr and all(is_sympy(c) for c in arr):
+            if len(arr) != self.n:
+                raise fail(func, "coeffs", f"expected {self.n} coefficients, got {len(arr)}")
             return Multivector(self, {1 << i: c for i, c in enumerate(arr) if not is_zero(c)})
-        arr = np.asarray(coeffs)
-        if arr.shape[-1] != self.n:
-            raise InvalidInputError(f"vector: last axis must have length {self.n}, got shape {arr.shape}")
-        if arr.dtype == object:
-            return Multivector(self, {1 << i: arr[..., i] if arr.ndim > 1 else arr[i] for i in range(self.n)})
-        arr = arr.astype(float)
+        try:
+            obj = np.asarray(coeffs)
+        except ValueError:  # ragged: coefficient_array says so
+            obj = None
+        if obj is not None and obj.dtype == object and obj.ndim and any(is_sympy(v) for v in obj.flat):
+            if obj.shape[-1] != self.n:
+                raise fail(func, "coeffs", f"the last axis must have length {self.n}, got shape {obj.shape}")
+            return Multivector(self, {1 << i: obj[..., i] if obj.ndim > 1 else obj[i] for i in range(self.n)})
+        arr = coefficient_array(coeffs, func, "coeffs", self.n)
         if arr.ndim == 1:
             return Multivector(self, {1 << i: float(arr[i]) for i in range(self.n) if arr[i] != 0})
         return Multivector(self, {1 << i: arr[..., i] for i in range(self.n)})
@@ -263,10 +296,9 @@ class Algebra(ProductTermsMixin, VersorMatricesMixin):
         ``blades`` defaults to all blades in the order of (2.9)
         (``self.blade_order``).
         """
-        blades = self.blade_order if blades is None else blades
-        arr = np.asarray(arr, dtype=float)
-        if arr.shape[-1] != len(blades):
-            raise InvalidInputError(f"from_array: last axis must have length {len(blades)}, got shape {arr.shape}")
+        func = "Algebra.from_array"
+        blades = self.blade_order if blades is None else blade_bitmaps(blades, func, "blades", self.dim)
+        arr = coefficient_array(arr, func, "arr", len(blades), " (one entry per blade of blades)")
         if arr.ndim == 1:
             return Multivector(self, {b: float(arr[i]) for i, b in enumerate(blades) if arr[i] != 0})
         return Multivector(self, {b: arr[..., i] for i, b in enumerate(blades)})

@@ -13,9 +13,14 @@ it is not used alone.
 
 from __future__ import annotations
 
+import numbers
+
 import numpy as np
 
+from cga_lessons.checks import fail
+
 from .coefficients import is_sympy
+from .operands import coefficient, finite_out
 
 
 class DisplayMixin:
@@ -27,6 +32,8 @@ class DisplayMixin:
         """Apply ``sympy.simplify`` (or ``fn``) to every coefficient and drop zeros."""
         import sympy
 
+        if fn is not None and not callable(fn):
+            raise fail("Multivector.simplify", "fn", f"expected a function, got {type(fn).__name__} {fn!r:.40}")
         fn = fn or sympy.simplify
         return type(self)(self.algebra, {b: fn(v) if is_sympy(v) else v for b, v in self._c.items()}, _prune=True)
 
@@ -36,16 +43,24 @@ class DisplayMixin:
         return self.simplify(sympy.expand)
 
     def subs(self, *args, **kwargs):
-        """SymPy substitution in every coefficient."""
-        return type(self)(
-            self.algebra,
-            {b: v.subs(*args, **kwargs) if is_sympy(v) else v for b, v in self._c.items()},
-            _prune=True,
-        )
+        """SymPy substitution in every coefficient: ``X.subs(old, new)``, ``X.subs({old: new})``."""
+        news = list(args[0].values()) if len(args) == 1 and isinstance(args[0], dict) else list(args[1:2])
+        for v in news:
+            if isinstance(v, (numbers.Number, np.ndarray)) and not is_sympy(v):
+                coefficient(v, "Multivector.subs", "new")
+        try:
+            out = {b: v.subs(*args, **kwargs) if is_sympy(v) else v for b, v in self._c.items()}
+        except (TypeError, ValueError, AttributeError) as exc:
+            raise fail("Multivector.subs", "old, new", f"SymPy cannot substitute {args!r:.60}: {exc}") from None
+        return finite_out(type(self)(self.algebra, out, _prune=True), "Multivector.subs", "old, new")
 
     def map(self, fn):
-        """Apply ``fn`` to every coefficient."""
-        return type(self)(self.algebra, {b: fn(v) for b, v in self._c.items()}, _prune=True)
+        """Apply ``fn`` to every coefficient (its results must be finite numbers, arrays or SymPy expressions)."""
+        if not callable(fn):
+            raise fail("Multivector.map", "fn", f"expected a function, got {type(fn).__name__} {fn!r:.40}")
+        return finite_out(
+            type(self)(self.algebra, {b: fn(v) for b, v in self._c.items()}, _prune=True), "Multivector.map", "fn"
+        )
 
     # ------------------------------------------------------------- display
     def _fmt_coeff(self, v) -> str:

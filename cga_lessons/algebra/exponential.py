@@ -246,7 +246,7 @@ def _exp_numeric(B: Multivector) -> Multivector:
         out = _exp_bivector(alg, X, blades, pos, shape)
     if factor is not None:
         with np.errstate(over="ignore", invalid="ignore"):
-            out = out * (factor if shape else float(factor))
+            out = out._scale(factor if shape else float(factor))  # unchecked: the test below says why
         if not all(np.all(np.isfinite(v)) for v in out._c.values()):
             raise InvalidInputError(
                 f"exp: B: the result overflows a float: exp of the scalar part (up to {float(np.max(vals[0])):.6g}) "
@@ -383,11 +383,13 @@ def _exp_series(B: Multivector, terms: int = 30) -> Multivector:
     X = Multivector(B.algebra, {b: np.ldexp(v, -k) if v.ndim else math.ldexp(float(v), -k) for b, v in vals.items()})
     out = Multivector(B.algebra, {0: 1.0})
     term = Multivector(B.algebra, {0: 1.0})
-    for i in range(1, terms):
-        term = term * X * (1.0 / i)
-        out = out + term
-    for _ in range(k):
-        out = out * out
+    alg = B.algebra
+    with np.errstate(over="ignore", invalid="ignore"):  # unchecked products: the test below names exp
+        for i in range(1, terms):
+            term = alg._product(term, X, "gp")._scale(1.0 / i)
+            out = out._plus(term)
+        for _ in range(k):
+            out = alg._product(out, out, "gp")
     bad = [b for b, v in out._c.items() if not np.all(np.isfinite(v))]
     if bad:
         raise InvalidInputError(f"exp: B: the result overflows a float (coefficients of B up to {size:.3g})")

@@ -15,9 +15,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from cga_lessons.errors import DegenerateGeometryError
+from cga_lessons.checks import degenerate, fail
 
 from .coefficients import REAL_TYPES, is_real_single, is_sympy
+from .operands import finite_out, not_finite
+
+_INV = "Multivector.inv"
 
 
 class NormsAndInverseMixin:
@@ -40,15 +43,22 @@ class NormsAndInverseMixin:
 
     def normalized(self):
         """M / norm(M); raises when the norm is zero."""
+        func = "Multivector.normalized"
+        bad = not_finite(self)
+        if bad is not None:
+            raise fail(func, "self", f"coefficient of {bad} is NaN or inf")
         n = self.norm()
         if not is_sympy(n) and np.any(np.asarray(n) == 0):
-            raise DegenerateGeometryError("normalized: the multivector has zero norm")
-        return self / n
+            raise degenerate(func, "self", "the multivector has zero norm")
+        return finite_out(type(self)(self.algebra, {b: v / n for b, v in self._c.items()}), func, "self")
 
     def inv(self):
         """Inverse (2.19).  Versors and blades use M~ / (M M~); otherwise a linear solve."""
         if not self._c:
-            raise DegenerateGeometryError("inv: the zero multivector has no inverse")
+            raise degenerate(_INV, "self", "the zero multivector has no inverse")
+        bad = not_finite(self)
+        if bad is not None:
+            raise fail(_INV, "self", f"coefficient of {bad} is NaN or inf")
         rev = ~self
         mm = self * rev
         if any(is_sympy(v) for v in mm._c.values()):
@@ -66,13 +76,13 @@ class NormsAndInverseMixin:
             d = mm._c.get(0, 0)
             if is_sympy(d):
                 if d == 0:
-                    raise DegenerateGeometryError("inv: M ~M = 0, the multivector is null and has no inverse")
+                    raise degenerate(_INV, "self", "M ~M = 0, the multivector is null and has no inverse")
             elif type(d) in REAL_TYPES:
                 if d == 0:
-                    raise DegenerateGeometryError("inv: M ~M = 0, the multivector is null and has no inverse")
+                    raise degenerate(_INV, "self", "M ~M = 0, the multivector is null and has no inverse")
             elif np.any(np.asarray(d) == 0):
-                raise DegenerateGeometryError("inv: M ~M = 0, the multivector is null and has no inverse")
-            return rev / d
+                raise degenerate(_INV, "self", "M ~M = 0, the multivector is null and has no inverse")
+            return finite_out(type(self)(self.algebra, {b: v / d for b, v in rev._c.items()}), _INV, "self")
         # also try M^ ~M (covers M with mixed parity such as 1 + e when scalar)
         return self._general_inverse()
 
@@ -92,7 +102,7 @@ class NormsAndInverseMixin:
             rhs = sympy.zeros(alg.dim, 1)
             rhs[pos[0], 0] = 1
             if mat.det() == 0:
-                raise DegenerateGeometryError("inv: the multivector is not invertible")
+                raise degenerate(_INV, "self", "the multivector is not invertible")
             sol = mat.LUsolve(rhs)
             return type(self)(alg, {b: sympy.simplify(sol[pos[b], 0]) for b in alg.blade_order}, _prune=True)
         shape = self.shape
@@ -109,5 +119,9 @@ class NormsAndInverseMixin:
         try:
             sol = np.linalg.solve(mats, rhs[..., None])[..., 0]
         except np.linalg.LinAlgError as exc:
-            raise DegenerateGeometryError("inv: the multivector is not invertible") from exc
-        return alg.from_array(sol)
+            raise degenerate(_INV, "self", "the multivector is not invertible") from exc
+        if not np.all(np.isfinite(sol)):
+            raise degenerate(_INV, "self", "the multivector is not invertible (singular to working precision)")
+        if sol.ndim == 1:
+            return type(self)(alg, {b: float(sol[i]) for i, b in enumerate(blades) if sol[i] != 0})
+        return type(self)(alg, {b: sol[..., i] for i, b in enumerate(blades)})

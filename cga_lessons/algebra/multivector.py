@@ -17,16 +17,18 @@ Import these names from :mod:`cga_lessons.algebra`, their public home.
 
 from __future__ import annotations
 
-import numbers
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from cga_lessons.errors import InvalidInputError
+from cga_lessons.checks import fail, instance, integer
+from cga_lessons.errors import DegenerateGeometryError, GeometryError
 
-from .coefficients import absmax, is_real_batch, is_real_single, is_sympy, is_zero
+from .access import AccessMixin
+from .coefficients import is_real_batch, is_real_single, is_zero
 from .display import DisplayMixin
 from .inverse import NormsAndInverseMixin
+from .operands import AlgebraKind, finite_multivector, finite_out, no_inverse, not_finite, scalar_operand
 
 if TYPE_CHECKING:
     from .core import Algebra
@@ -34,17 +36,26 @@ if TYPE_CHECKING:
 __all__ = ["Multivector", "commutator"]
 
 
-class Multivector(NormsAndInverseMixin, DisplayMixin):
+class Multivector(AccessMixin, NormsAndInverseMixin, DisplayMixin):
     """A multivector of an :class:`~cga_lessons.algebra.Algebra`: a sparse map blade -> coefficient.
 
     Coefficients are floats, NumPy arrays (a batch, all of one shape) or SymPy
     expressions.  Read a coefficient by blade name, ``X["e12"]`` (zero where
     absent; ``X["e21"]`` is ``-X["e12"]``); :meth:`blades` lists the non-zero
-    ones.
+    ones.  The constructor takes the map ``{blade bitmap: coefficient}`` as it
+    is (it is the building block of every operation); make multivectors from
+    checked input with :meth:`Algebra.vector <cga_lessons.algebra.Algebra.vector>`,
+    :meth:`~cga_lessons.algebra.Algebra.blade`, :meth:`~cga_lessons.algebra.Algebra.from_array` ...
 
-    The norms and the inverse (2.19) come from
-    :class:`~cga_lessons.algebra.inverse.NormsAndInverseMixin`, the display and
-    the SymPy helpers from :class:`~cga_lessons.algebra.display.DisplayMixin`.
+    The operators refuse what they cannot combine with a clear error
+    (``"Multivector *: other: ..."``): a NaN or inf number or array, a
+    multivector of another algebra, a division by zero or by a multivector
+    without inverse, and (for single multivectors) NaN or inf coefficients
+    and results that overflow; see :mod:`cga_lessons.algebra.operands`.
+
+    Coefficient access comes from :class:`~cga_lessons.algebra.access.AccessMixin`, the norms and the
+    inverse (2.19) from :class:`~cga_lessons.algebra.inverse.NormsAndInverseMixin`, the display and the
+    SymPy helpers from :class:`~cga_lessons.algebra.display.DisplayMixin`.
     """
 
     __slots__ = ("algebra", "_c")
@@ -52,10 +63,16 @@ class Multivector(NormsAndInverseMixin, DisplayMixin):
     __array_ufunc__ = None
 
     def __init__(self, algebra: Algebra, coeffs: dict | None = None, _prune: bool = False):
-        self.algebra = algebra
-        c = coeffs or {}
+        if not isinstance(algebra, AlgebraKind):
+            raise fail("Multivector", "algebra", f"expected an Algebra, got {type(algebra).__name__}")
+        c = {} if coeffs is None else coeffs
+        if type(c) is not dict:
+            if not isinstance(c, dict):
+                raise fail("Multivector", "coeffs", f"expected a dict {{blade bitmap: coefficient}}, got {c!r:.40}")
+            c = dict(c)
         if _prune:
             c = {k: v for k, v in c.items() if not is_zero(v)}
+        self.algebra = algebra
         self._c = c
 
     def _sympy_(self):
@@ -65,95 +82,58 @@ class Multivector(NormsAndInverseMixin, DisplayMixin):
 
         raise sympy.SympifyError(self)
 
-    # -------------------------------------------------------------- access
-    def __getitem__(self, name):
-        if isinstance(name, str):
-            b, s = self.algebra.parse_blade(name)
-        else:
-            b, s = int(name), 1
-            if not 0 <= b < self.algebra.dim:
-                raise IndexError(f"blade bitmap {b} outside 0..{self.algebra.dim - 1}")
-        v = self._c.get(b, 0.0)
-        return v if s == 1 else -v
-
-    def blades(self) -> list[str]:
-        """Names of the blades with a non-zero coefficient, in the order of (2.9)."""
-        order = self.algebra.blade_order
-        return [self.algebra.blade_names[b] for b in order if b in self._c]
-
-    def items(self):
-        """(blade name, coefficient) pairs in the order of (2.9)."""
-        return [(self.algebra.blade_names[b], self._c[b]) for b in self.algebra.blade_order if b in self._c]
-
-    @property
-    def coeffs(self) -> dict:
-        """The raw sparse map ``{bitmap: coefficient}`` (read only by convention)."""
-        return self._c
-
-    @property
-    def shape(self) -> tuple:
-        """Batch shape: () for a single multivector, (N,) for N of them."""
-        for v in self._c.values():
-            if isinstance(v, np.ndarray):
-                return v.shape
-        return ()
-
-    def __len__(self):
-        shape = self.shape
-        if not shape:
-            raise TypeError("a single multivector has no len(); use .shape for batches")
-        return shape[0]
-
-    def __iter__(self):
-        """The items of a batch, one multivector each; a single multivector is not iterable."""
-        shape = self.shape
-        if not shape:
-            raise TypeError("a single multivector is not iterable; use .items() for its blades")
-        return (self.batch_item(i) for i in range(shape[0]))
-
-    def __getattr__(self, name):
-        # blade access as attributes is deliberately not offered: X["e12"] is explicit.
-        raise AttributeError(name)
-
-    def batch_item(self, index) -> Multivector:
-        """One multivector (or a sub-batch) of a batch: ``X.batch_item(3)``."""
-        out = {}
-        for b, v in self._c.items():
-            out[b] = v[index] if isinstance(v, np.ndarray) else v
-        return Multivector(self.algebra, out, _prune=True)
-
-    def to_array(self, blades=None) -> np.ndarray:
-        """Coefficients as an array, last axis over ``blades`` (default all, order of (2.9))."""
-        alg = self.algebra
-        blades = alg.blade_order if blades is None else blades
-        shape = self.shape
-        out = np.zeros(shape + (len(blades),))
-        for i, b in enumerate(blades):
-            if b in self._c:
-                out[..., i] = self._c[b]
-        return out
-
-    def grades_present(self) -> list[int]:
-        return sorted({self.algebra.grades[b] for b in self._c})
-
     # ---------------------------------------------------------- arithmetic
-    def _coerce(self, other) -> Multivector:
+    def _coerce(self, other, func: str):
+        """``other`` as a multivector of this algebra; NotImplemented for a type of someone else's."""
         if isinstance(other, Multivector):
             if other.algebra is not self.algebra:
-                raise InvalidInputError(f"cannot combine multivectors of {self.algebra} and {other.algebra}")
+                raise fail(func, "other", f"is a multivector of {other.algebra}, not of {self.algebra}")
             return other
-        if isinstance(other, np.ndarray) or isinstance(other, numbers.Number) or is_sympy(other):
-            return Multivector(self.algebra, {0: other}, _prune=True)
-        return NotImplemented
-
-    def __add__(self, other):
-        other = self._coerce(other)
+        other = scalar_operand(other, func)
         if other is NotImplemented:
-            return NotImplemented
+            return other
+        return Multivector(self.algebra, {0: other}, _prune=True)
+
+    def _operand(self, other, func: str):
+        """:meth:`_coerce` for a method, where no reflected operation can take over: refuses every other type."""
+        got = self._coerce(other, func)
+        if got is NotImplemented:
+            raise fail(func, "other", f"expected a Multivector or a real number, got {type(other).__name__}")
+        return got
+
+    def _mismatch(self, func: str, other, exc: Exception):
+        """The error for a NumPy failure inside an operation: batches of shapes that do not combine."""
+        if isinstance(exc, GeometryError):
+            return exc
+        shape = getattr(other, "shape", ())
+        return fail(func, "other", f"cannot combine a batch of shape {self.shape} with shape {shape} ({exc})")
+
+    def _plus(self, other):
+        """``self + other`` (a multivector of the same algebra), unchecked."""
         out = dict(self._c)
         for b, v in other._c.items():
             out[b] = out[b] + v if b in out else v
         return Multivector(self.algebra, out, _prune=True)
+
+    def _binary(self, other, kind: str, func: str, reflected: bool = False):
+        """The product ``kind`` of self and other (other first if ``reflected``), checked."""
+        other = self._coerce(other, func)
+        if other is NotImplemented:
+            return NotImplemented
+        try:
+            out = self.algebra._product(other, self, kind) if reflected else self.algebra._product(self, other, kind)
+        except ValueError as exc:
+            raise self._mismatch(func, other, exc) from None
+        return finite_out(out, func)
+
+    def __add__(self, other):
+        other = self._coerce(other, "Multivector +")
+        if other is NotImplemented:
+            return NotImplemented
+        try:
+            return finite_out(self._plus(other), "Multivector +")
+        except ValueError as exc:
+            raise self._mismatch("Multivector +", other, exc) from None
 
     __radd__ = __add__
 
@@ -164,79 +144,102 @@ class Multivector(NormsAndInverseMixin, DisplayMixin):
         return self
 
     def __sub__(self, other):
-        other = self._coerce(other)
+        other = self._coerce(other, "Multivector -")
         if other is NotImplemented:
             return NotImplemented
-        return self + (-other)
+        try:
+            return finite_out(self._plus(-other), "Multivector -")
+        except ValueError as exc:
+            raise self._mismatch("Multivector -", other, exc) from None
 
     def __rsub__(self, other):
-        other = self._coerce(other)
+        other = self._coerce(other, "Multivector -")
         if other is NotImplemented:
             return NotImplemented
-        return other + (-self)
+        try:
+            return finite_out(other._plus(-self), "Multivector -")
+        except ValueError as exc:
+            raise self._mismatch("Multivector -", other, exc) from None
 
     def _scale(self, k):
         return Multivector(self.algebra, {b: v * k for b, v in self._c.items()}, _prune=True)
 
     def __mul__(self, other):
         """Geometric product (2.11)."""
-        if isinstance(other, Multivector):
-            return self.algebra._product(self, self._coerce(other), "gp")
-        if isinstance(other, (numbers.Number, np.ndarray)) or is_sympy(other):
-            return self._scale(other)
-        return NotImplemented
+        if isinstance(other, Multivector):  # the hot path, written out
+            if other.algebra is not self.algebra:
+                self._coerce(other, "Multivector *")  # raises: another algebra
+            try:
+                out = self.algebra._product(self, other, "gp")
+            except ValueError as exc:
+                raise self._mismatch("Multivector *", other, exc) from None
+            return finite_out(out, "Multivector *")
+        k = scalar_operand(other, "Multivector *")
+        if k is NotImplemented:
+            return NotImplemented
+        try:
+            return finite_out(self._scale(k), "Multivector *")
+        except ValueError as exc:
+            raise self._mismatch("Multivector *", other, exc) from None
 
     def __rmul__(self, other):
-        if isinstance(other, (numbers.Number, np.ndarray)) or is_sympy(other):
-            return Multivector(self.algebra, {b: other * v for b, v in self._c.items()}, _prune=True)
-        return NotImplemented
+        k = scalar_operand(other, "Multivector *")
+        if k is NotImplemented:
+            return NotImplemented
+        try:
+            out = Multivector(self.algebra, {b: k * v for b, v in self._c.items()}, _prune=True)
+        except ValueError as exc:
+            raise self._mismatch("Multivector *", other, exc) from None
+        return finite_out(out, "Multivector *")
 
     def __truediv__(self, other):
         """Division: by a scalar, or right multiplication by the inverse (2.19)."""
+        func = "Multivector /"
         if isinstance(other, Multivector):
-            return self * other.inv()
-        if isinstance(other, (numbers.Number, np.ndarray)) or is_sympy(other):
-            return Multivector(self.algebra, {b: v / other for b, v in self._c.items()})
-        return NotImplemented
+            other = self._coerce(other, func)
+            return self._binary(self._inverse_of(other, func, "other"), "gp", func)
+        k = scalar_operand(other, func, divisor=True)
+        if k is NotImplemented:
+            return NotImplemented
+        try:
+            return finite_out(Multivector(self.algebra, {b: v / k for b, v in self._c.items()}), func)
+        except ValueError as exc:
+            raise self._mismatch(func, other, exc) from None
 
     def __rtruediv__(self, other):
-        other = self._coerce(other)
+        func = "Multivector /"
+        other = self._coerce(other, func)
         if other is NotImplemented:
             return NotImplemented
-        return other * self.inv()
+        return other._binary(self._inverse_of(self, func, "self"), "gp", func)
+
+    def _inverse_of(self, X, func: str, name: str):
+        """``X.inv()`` for an operator: NaN or inf coefficients and a missing inverse named as its operand."""
+        bad = not_finite(X)
+        if bad is not None:
+            raise fail(func, name, f"coefficient of {bad} is NaN or inf")
+        try:
+            return X.inv()
+        except DegenerateGeometryError as exc:
+            raise no_inverse(func, name, exc) from None
 
     def __xor__(self, other):
         """Outer product (2.14, 2.30); a scalar factor just scales (2.20)."""
-        other = self._coerce(other)
-        if other is NotImplemented:
-            return NotImplemented
-        return self.algebra._product(self, other, "op")
+        return self._binary(other, "op", "Multivector ^")
 
     def __rxor__(self, other):
-        other = self._coerce(other)
-        if other is NotImplemented:
-            return NotImplemented
-        return self.algebra._product(other, self, "op")
+        return self._binary(other, "op", "Multivector ^", reflected=True)
 
     def __or__(self, other):
         """The thesis's inner product (2.21-2.29): <A_r B_s>_|r-s|, zero with a scalar (2.28)."""
-        other = self._coerce(other)
-        if other is NotImplemented:
-            return NotImplemented
-        return self.algebra._product(self, other, "ip")
+        return self._binary(other, "ip", "Multivector |")
 
     def __ror__(self, other):
-        other = self._coerce(other)
-        if other is NotImplemented:
-            return NotImplemented
-        return self.algebra._product(other, self, "ip")
+        return self._binary(other, "ip", "Multivector |", reflected=True)
 
     def __lshift__(self, other):
         """Left contraction A _| B: <A_r B_s>_{s-r} (zero when r > s)."""
-        other = self._coerce(other)
-        if other is NotImplemented:
-            return NotImplemented
-        return self.algebra._product(self, other, "lc")
+        return self._binary(other, "lc", "Multivector <<")
 
     def __rshift__(self, other):
         """Sandwich ``V >> X = V X ~V`` (2.98, 2.101, 2.103).
@@ -249,40 +252,53 @@ class Multivector(NormsAndInverseMixin, DisplayMixin):
         has X's grades only, where the plain product adds round-off in the
         others.  Anything else is the plain product ``V * X * ~V``.
         """
-        other = self._coerce(other)
+        func = "Multivector >>"
+        other = self._coerce(other, func)
         if other is NotImplemented:
             return NotImplemented
-        if other.algebra is self.algebra and other._c and (is_real_single(other) or is_real_batch(other)):
-            info = self.algebra._versor_info(self, tuple(other.grades_present()))
+        alg = self.algebra
+        if other._c and (is_real_single(other) or is_real_batch(other)):
+            info = alg._versor_info(self, tuple(other.grades_present()))
             if info is not None:
-                return self.algebra.apply_matrices(info[2], other)
-        return self * other * ~self
+                return finite_out(alg._apply_matrices(info[2], other), func)
+        try:
+            return finite_out(alg._product(alg._product(self, other, "gp"), ~self, "gp"), func)
+        except ValueError as exc:
+            raise self._mismatch(func, other, exc) from None
 
     def inner(self, other):
         """The thesis's inner product (2.21-2.29), same as ``self | other``."""
-        return self | other
+        return self._binary(self._operand(other, "Multivector.inner"), "ip", "Multivector.inner")
 
     def left_contraction(self, other):
         """Left contraction, same as ``self << other``."""
-        return self << other
+        return self._binary(self._operand(other, "Multivector.left_contraction"), "lc", "Multivector.left_contraction")
 
     def scalar_product(self, other):
         """<A B>_0 as a coefficient (float, array or SymPy)."""
-        return self.algebra._product(self, self._coerce(other), "sp")._c.get(0, 0.0)
+        func = "Multivector.scalar_product"
+        return self._binary(self._operand(other, func), "sp", func)._c.get(0, 0.0)
 
     def __pow__(self, k):
-        if not isinstance(k, numbers.Integral):
-            raise InvalidInputError(f"power: exponent must be an integer, got {k!r}")
-        if k < 0:
-            return self.inv() ** (-k)
-        out = Multivector(self.algebra, {0: 1.0})
+        func = "Multivector **"
+        k = integer(k, func, "k")
+        bad = not_finite(self)
+        if bad is not None:
+            raise fail(func, "self", f"coefficient of {bad} is NaN or inf")
         base = self
+        if k < 0:
+            base, k = self._inverse_of(self, func, "self"), -k
+        alg = self.algebra
+        out = Multivector(alg, {0: 1.0})
         while k:
             if k & 1:
-                out = out * base
-            base = base * base
+                out = alg._product(out, base, "gp")
             k >>= 1
-        return out
+            if k:
+                base = alg._product(base, base, "gp")
+                if not_finite(base) is not None:
+                    break  # overflowed: the check below names it
+        return finite_out(out if not k else base, func, "k")
 
     # ----------------------------------------------------------- involutions
     def __invert__(self):
@@ -303,9 +319,13 @@ class Multivector(NormsAndInverseMixin, DisplayMixin):
         return (~self).involute()
 
     def grade(self, *ks):
-        """Grade projection <M>_k (2.18); several grades give their sum."""
-        g = self.algebra.grades
-        return Multivector(self.algebra, {b: v for b, v in self._c.items() if g[b] in ks})
+        """Grade projection <M>_k (2.18); several grades give their sum (zero above the dimension)."""
+        alg = self.algebra
+        for k in ks:
+            if type(k) is not int or k < 0:  # a grade above the dimension is allowed: its part is zero
+                integer(k, "Multivector.grade", "k", low=0)
+        g = alg.grades
+        return Multivector(alg, {b: v for b, v in self._c.items() if g[b] in ks})
 
     def even(self):
         """Even part (2.16)."""
@@ -320,70 +340,12 @@ class Multivector(NormsAndInverseMixin, DisplayMixin):
     def dual(self):
         """Dual M* = M I^-1 (2.31)."""
         alg = self.algebra
-        I = alg.pseudoscalar()
-        return self * I.inv()
+        return finite_out(alg._product(self, alg.pseudoscalar().inv(), "gp"), "Multivector.dual", "self")
 
     def undual(self):
         """Inverse of :meth:`dual`: M I."""
-        return self * self.algebra.pseudoscalar()
-
-    def scalar(self):
-        """The scalar part <M>_0 as a coefficient (an array of zeros for a batch without one)."""
-        if 0 in self._c:
-            return self._c[0]
-        shape = self.shape
-        return np.zeros(shape) if shape else 0.0
-
-    def __float__(self):
-        scale = max((absmax(v) for v in self._c.values() if not is_sympy(v)), default=0.0)
-        extra = [
-            self.algebra.blade_names[b]
-            for b, v in self._c.items()
-            if b != 0 and (is_sympy(v) or absmax(v) > 1e-10 * max(scale, 1e-300))
-        ]
-        if extra:
-            raise InvalidInputError(f"float(): multivector is not a scalar (has blades {extra})")
-        v = self._c.get(0, 0.0)
-        if isinstance(v, np.ndarray):
-            if v.size != 1:
-                raise InvalidInputError(f"float(): a batch of {v.size} scalars is not one float")
-            return float(v.reshape(-1)[0])
-        return float(v)
-
-    # -------------------------------------------------------- comparisons
-    def isclose(self, other, rtol: float = 1e-9, atol: float = 1e-12) -> bool:
-        """True when every coefficient agrees within ``atol + rtol*|other|`` (numeric)."""
-        other = self._coerce(other)
-        for b in set(self._c) | set(other._c):
-            a = np.asarray(self._c.get(b, 0.0), dtype=float)
-            c = np.asarray(other._c.get(b, 0.0), dtype=float)
-            if not np.allclose(a, c, rtol=rtol, atol=atol):
-                return False
-        return True
-
-    def __eq__(self, other):
-        other = self._coerce(other)
-        if other is NotImplemented:
-            return NotImplemented
-        diff = self - other
-        for v in diff._c.values():
-            if is_sympy(v):
-                import sympy
-
-                if sympy.simplify(v) != 0:
-                    return False
-            elif np.any(np.asarray(v) != 0):
-                return False
-        return True
-
-    def __ne__(self, other):
-        eq = self.__eq__(other)
-        return eq if eq is NotImplemented else not eq
-
-    __hash__ = None
-
-    def iszero(self, atol: float = 1e-12) -> bool:
-        return self.isclose(0.0, rtol=0.0, atol=atol)
+        alg = self.algebra
+        return finite_out(alg._product(self, alg.pseudoscalar(), "gp"), "Multivector.undual", "self")
 
 
 def mv_from_dict(algebra, coeffs: dict):
@@ -412,4 +374,13 @@ def mv_from_pairs(algebra, keys, values):
 
 def commutator(A: Multivector, B: Multivector) -> Multivector:
     """Commutator product A x B = (AB - BA)/2 (2.36)."""
-    return (A * B - B * A) / 2
+    for name, X in (("A", A), ("B", B)):
+        finite_multivector(instance(X, "commutator", name, Multivector, "a Multivector"), "commutator", name)
+    if B.algebra is not A.algebra:
+        raise fail("commutator", "B", f"is a multivector of {B.algebra}, not of A's {A.algebra}")
+    alg = A.algebra
+    try:
+        diff = alg._product(A, B, "gp")._plus(-alg._product(B, A, "gp"))
+    except ValueError as exc:
+        raise fail("commutator", "A, B", f"batches of shapes {A.shape} and {B.shape} do not combine ({exc})") from None
+    return finite_out(Multivector(alg, {b: v / 2 for b, v in diff._c.items()}), "commutator", "A, B")

@@ -23,15 +23,13 @@ which owns the sign table and the cache it reads; it is not used alone.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 
-from .coefficients import is_float_single
-from .multivector import mv_from_pairs
+from cga_lessons.checks import fail, finite_result
 
-if TYPE_CHECKING:
-    from .multivector import Multivector
+from .coefficients import is_float_single, is_real_single
+from .multivector import Multivector, mv_from_pairs
+from .operands import blade_bitmaps, finite_multivector, same_algebra
 
 PRODUCT_CHUNK = 48  # terms per Python expression in a compiled product (keeps the parser's nesting shallow)
 
@@ -181,9 +179,14 @@ class ProductTermsMixin:
 
     # ------------------------------------------------ linear maps as matrices
     def left_matrix(self, A: Multivector, blades_in=None, blades_out=None) -> np.ndarray:
-        """Matrix of ``X -> A X`` restricted to the given input/output blades (numeric A)."""
-        blades_in = self.blade_order if blades_in is None else blades_in
-        blades_out = self.blade_order if blades_out is None else blades_out
+        """Matrix of ``X -> A X`` restricted to the given input/output blades (A one numeric multivector)."""
+        func = "Algebra.left_matrix"
+        same_algebra(A, self, func, "A", Multivector)
+        if not is_real_single(A):
+            raise fail(func, "A", "expected one multivector with real number coefficients (not a batch, not SymPy)")
+        finite_multivector(A, func, "A")
+        blades_in = self.blade_order if blades_in is None else blade_bitmaps(blades_in, func, "blades_in", self.dim)
+        blades_out = self.blade_order if blades_out is None else blade_bitmaps(blades_out, func, "blades_out", self.dim)
         pos = {b: i for i, b in enumerate(blades_out)}
         mat = np.zeros((len(blades_out), len(blades_in)))
         for j, b in enumerate(blades_in):
@@ -192,4 +195,4 @@ class ProductTermsMixin:
                 r = a ^ b
                 if s and r in pos:
                     mat[pos[r], j] += s * float(c)
-        return mat
+        return finite_result(mat, func, "the matrix")

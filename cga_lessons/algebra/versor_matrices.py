@@ -30,15 +30,14 @@ from __future__ import annotations
 import math
 import sys
 import threading
-from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .coefficients import is_real_single
-from .multivector import mv_from_dict, mv_from_pairs
+from cga_lessons.checks import fail, integer
 
-if TYPE_CHECKING:
-    from .multivector import Multivector
+from .coefficients import is_real_single
+from .multivector import Multivector, mv_from_dict, mv_from_pairs
+from .operands import finite_out, matrices_per_grade, nonnegative, not_finite, same_algebra
 
 
 def stack_rows(vals, shape: tuple) -> np.ndarray:
@@ -96,10 +95,17 @@ def motor_tolerance(vmax, n_norm, r_norm):
     ``MOTOR_TOLERANCE_CAP``.  Beyond the cap (products of motors translating
     by more than ~1e3) the multivector is no longer taken for a motor.
     """
-    with np.errstate(over="ignore", invalid="ignore"):
-        ratio = n_norm / r_norm
-        rel = np.minimum(VERSOR_TOLERANCE + 16 * _EPS * ratio * ratio, MOTOR_TOLERANCE_CAP)
-    return rel * vmax
+    for name, v in (("vmax", vmax), ("n_norm", n_norm), ("r_norm", r_norm)):
+        nonnegative(v, "motor_tolerance", name, positive=name == "r_norm")
+    try:
+        with np.errstate(over="ignore", invalid="ignore"):
+            ratio = n_norm / r_norm
+            rel = np.minimum(VERSOR_TOLERANCE + 16 * _EPS * ratio * ratio, MOTOR_TOLERANCE_CAP)
+            return rel * vmax
+    except ValueError as exc:
+        raise fail(
+            "motor_tolerance", "vmax, n_norm, r_norm", f"arrays of shapes that do not broadcast ({exc})"
+        ) from None
 
 
 #: The rotor blades 1 e12 e13 e23 of a motor M = R + e n of G(4,1) (bitmaps e1=1 e2=2 e3=4 e+=8 e-=16): R = (M ^ E) E
@@ -221,7 +227,7 @@ class VersorMatricesMixin:
         hit = self._versor_cache.get(ck)
         if hit is not None:
             return hit
-        rigid = self.rigid_motion(V)
+        rigid = self._rigid_motion(V)
         if rigid is not None:
             hit = self._motor_info(rigid, sum(float(c.get(b, 0.0)) ** 2 for b in _ROTOR_BLADES), grades)
         else:
@@ -281,6 +287,15 @@ class VersorMatricesMixin:
         to machine precision at any distance, where the e+/e- form of a point
         at x holds ``x^2/2``.  Cached by value; the arrays are read-only.
         """
+        if type(V) is not Multivector or V.algebra is not self:
+            same_algebra(V, self, "Algebra.rigid_motion", "V", Multivector)
+        hit = self._rigid_motion(V)
+        if hit is None and not_finite(V) is not None:
+            raise fail("Algebra.rigid_motion", "V", f"coefficient of {not_finite(V)} is NaN or inf")
+        return hit
+
+    def _rigid_motion(self, V: Multivector):
+        """:meth:`rigid_motion` of a multivector of this algebra (unchecked: the fast paths' call)."""
         c = V._c
         if not c or not is_real_single(V):
             return None
@@ -288,7 +303,7 @@ class VersorMatricesMixin:
         hit = self._versor_cache.get(key, False)
         if hit is not False:
             return hit
-        hit = self._motor_parts(c) if self.signature == (4, 1, 0) else None
+        hit = self._motor_parts(c) if self.signature == (4, 1, 0) and not_finite(V) is None else None
         if len(self._versor_cache) >= 256:
             self._versor_cache.clear()
         self._versor_cache[key] = hit
@@ -495,11 +510,42 @@ class VersorMatricesMixin:
         anything else (SymPy or batched coefficients, mixed parity, not a
         versor); the caller then uses the plain sandwich.
         """
-        info = self._versor_info(V, tuple(grades))
+        func = "Algebra.versor_matrices"
+        if type(V) is not Multivector or V.algebra is not self:
+            same_algebra(V, self, func, "V", Multivector)
+        if type(grades) is not tuple:
+            if isinstance(grades, (str, bytes)) or not hasattr(grades, "__iter__"):
+                raise fail(func, "grades", f"expected a sequence of grades 0..{self.n}, got {grades!r:.40}")
+            grades = tuple(grades)
+        n = self.n
+        for g in grades:
+            if type(g) is not int or g < 0 or g > n:
+                grades = tuple(integer(g, func, "grades", low=0, high=n) for g in grades)
+                break
+        info = self._versor_info(V, grades)
+        if info is None and not_finite(V) is not None:
+            raise fail(func, "V", f"coefficient of {not_finite(V)} is NaN or inf")
         return None if info is None else info[3]
 
     def apply_matrices(self, mats: dict, X: Multivector) -> Multivector:
         """Apply per-grade matrices (from :meth:`versor_matrices`) to X, single or batched.
+
+        ``mats`` is ``{grade: k x k matrix}`` over the blades of each grade in the order of (2.9); see
+        :meth:`_apply_matrices` for how a batch is applied.
+        """
+        func = "Algebra.apply_matrices"
+        if type(X) is not Multivector or X.algebra is not self:
+            same_algebra(X, self, func, "X", Multivector)
+        if type(mats) is not VersorMatrices:  # those of versor_matrices are finite and of the right shapes
+            matrices_per_grade(mats, self.grade_blades, func)
+        try:
+            out = self._apply_matrices(mats, X)
+        except (TypeError, ValueError) as exc:
+            raise fail(func, "X", f"expected real number or array coefficients ({exc})") from None
+        return finite_out(out, func, "X")
+
+    def _apply_matrices(self, mats: dict, X: Multivector) -> Multivector:
+        """:meth:`apply_matrices` unchecked (the fast path of ``V >> X``).
 
         A batch costs, per grade, one ``(k, k) x (k, N)`` matrix product; when
         X's coefficient arrays of that grade are consecutive rows of one

@@ -35,6 +35,7 @@ import time
 from pathlib import Path
 from types import SimpleNamespace
 
+from cga_lessons.errors import InvalidInputError
 from cga_lessons.paths import PROJECT_ROOT
 
 from .io import CLIError, StagedOutputs, check_output_dir, check_output_files  # CLIError lives beside the checks
@@ -124,15 +125,19 @@ def _log_stem(path: Path) -> str:
 
 
 def _read_log(path):
-    from cga_lessons.algebra import InvalidInputError
     from cga_lessons.mapping2d import read_carmen_log
 
     try:
         return read_carmen_log(path)
-    except InvalidInputError as exc:
-        raise CLIError(str(exc).removeprefix("read_carmen_log: ")) from None
-    except (OSError, EOFError, UnicodeDecodeError) as exc:  # a corrupt gzip stream, a binary file
-        raise CLIError(f"cannot read the log {str(path)!r}: {exc}") from None
+    except InvalidInputError as exc:  # a missing, unreadable or malformed log: the message names the file
+        raise CLIError(str(exc).removeprefix("read_carmen_log: path: ")) from None
+
+
+def _read_map(path):
+    try:
+        return read_segments_csv(path)
+    except InvalidInputError as exc:  # a missing or malformed map file: the message names the file
+        raise CLIError(str(exc).removeprefix("read_segments_csv: path: ")) from None
 
 
 # --------------------------------------------------------------------------- subcommands
@@ -169,7 +174,6 @@ def _cmd_lab(args) -> int:
 def _cmd_map2d(args) -> int:
     import numpy as np
 
-    from cga_lessons.algebra import InvalidInputError
     from cga_lessons.mapping2d import odometry_repeats_poses, simulate_odometry, write_tum
 
     log_path = Path(args.log)
@@ -296,7 +300,7 @@ def _cmd_relocalize(args) -> int:
         raise CLIError(
             "relocalization (chapter 5) is not in this checkout yet: cga_lessons/relocalization/relocalizer.py"
         ) from None
-    segments = read_segments_csv(args.map_csv)
+    segments = _read_map(args.map_csv)
     log = _read_log(Path(args.log))
     indices = list(args.scan_index)
     for k in indices:
@@ -458,9 +462,20 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv=None) -> int:
-    """Run the command line; returns the exit status."""
+    """Run the command line with the arguments ``argv`` (a list of strings; None: the process's own, ``sys.argv``);
+    returns the exit status: 0 done, 1 an error the user can fix (printed on one line), 2 a wrong command line
+    (argparse's usage message), 130 interrupted.
+
+    Raises
+    ------
+    InvalidInputError
+        ``argv`` is not a list (or tuple) of strings (or paths).
+    """
     parser = build_parser()
-    args = parser.parse_args(argv)
+    try:
+        args = parser.parse_args(_argv(argv))
+    except SystemExit as exc:  # argparse has printed the usage and the error (status 2), or the help (status 0)
+        return exc.code if isinstance(exc.code, int) else int(exc.code is not None)
     if not getattr(args, "command", None):
         parser.print_help()
         return 2
@@ -473,6 +488,18 @@ def main(argv=None) -> int:
     except KeyboardInterrupt:
         print(f"cga-lessons {args.command}: interrupted", file=sys.stderr)
         return 130
+
+
+def _argv(argv):
+    """The command-line arguments as a list of strings (None: the process's own)."""
+    if argv is None:
+        return None
+    if not isinstance(argv, (list, tuple)):
+        raise InvalidInputError(f"main: argv: expected a list of strings, got {type(argv).__name__} {argv!r:.40}")
+    bad = [a for a in argv if not isinstance(a, (str, os.PathLike))]
+    if bad:
+        raise InvalidInputError(f"main: argv: expected strings, got {bad[0]!r:.40} ({type(bad[0]).__name__})")
+    return [os.fspath(a) for a in argv]
 
 
 if __name__ == "__main__":

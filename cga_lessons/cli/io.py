@@ -20,11 +20,10 @@ missing, binary or UTF-16 file, an over-long line or field into one
 ``map2d`` and ``relocalize`` are read and written by
 :mod:`cga_lessons.cli.segments_csv`.
 
-The errors are :class:`~cga_lessons.algebra.InvalidInputError` subclasses
-(``ValueError``), as everywhere in the package, and
-:class:`~cga_lessons.cli.CLIError` subclasses, so the command line prints
-them as one-line errors.  ``CLIError`` is defined here (so that these
-checks can raise it) and imported from :mod:`cga_lessons.cli`, its public home.
+The errors are :class:`~cga_lessons.cli.CLIError` subclasses, so the command line prints them as one-line
+errors, and so :class:`~cga_lessons.algebra.InvalidInputError` subclasses (``ValueError``), as everywhere in the
+package.  ``CLIError`` is defined here (so that these checks can raise it) and imported from
+:mod:`cga_lessons.cli`, its public home.
 """
 
 from __future__ import annotations
@@ -58,21 +57,22 @@ __all__ = [
 MAX_LINE_BYTES = 1 << 20  # a line of a CSV input longer than this (1 MiB) is refused
 
 
-class CLIError(ValueError):
+class CLIError(InvalidInputError):
     """A problem the user can fix (a missing file, an output that exists); printed without a traceback.
 
-    A ``ValueError``, as every error the package raises for bad input.
+    An :class:`~cga_lessons.algebra.InvalidInputError` (so a ``ValueError``), as every error the package raises
+    for bad input.
     """
 
 
 CLIError.__module__ = "cga_lessons.cli"  # its public home (defined here so that the file checks can raise it)
 
 
-class OutputPathError(InvalidInputError, CLIError):
+class OutputPathError(CLIError):
     """An output path that cannot be written as asked: a folder or a symbolic link where a file goes, a file
     where a folder goes, a folder without write permission.
 
-    An :class:`~cga_lessons.algebra.InvalidInputError` and a :class:`~cga_lessons.cli.CLIError`.
+    A :class:`~cga_lessons.cli.CLIError`, so an :class:`~cga_lessons.algebra.InvalidInputError`.
     """
 
 
@@ -83,10 +83,10 @@ class OutputExistsError(OutputPathError, FileExistsError):
     """
 
 
-class InputFileError(InvalidInputError, CLIError):
+class InputFileError(CLIError):
     """An input file that cannot be read: missing, a folder, binary, UTF-16, unreadable, or malformed.
 
-    An :class:`~cga_lessons.algebra.InvalidInputError` and a :class:`~cga_lessons.cli.CLIError`.
+    A :class:`~cga_lessons.cli.CLIError`, so an :class:`~cga_lessons.algebra.InvalidInputError`.
     """
 
 

@@ -9,11 +9,12 @@ from __future__ import annotations
 
 import csv
 import math
+import os
 from pathlib import Path
 
-from cga_lessons.errors import InvalidInputError
+from cga_lessons.errors import GeometryError, InvalidInputError
 
-from .io import InputFileError, OutputExistsError, atomic_write, read_csv_rows  # noqa: F401
+from .io import InputFileError, OutputExistsError, OutputPathError, atomic_write, read_csv_rows  # noqa: F401
 
 __all__ = ["SEGMENT_COLUMNS", "MAX_SEGMENT_POINTS", "read_segments_csv", "write_segments_csv"]
 
@@ -42,11 +43,17 @@ def write_segments_csv(path, segments, *, overwrite: bool = False) -> Path:
         ``path`` is a folder, or a symbolic link and ``overwrite`` is false (with it, the link itself is
         replaced, never its target), or its folder does not exist.
     """
+    f = "write_segments_csv"
+    path = _path(path, f)
+    if not isinstance(overwrite, bool):
+        raise InvalidInputError(f"{f}: overwrite: must be True or False, got {overwrite!r}")
+    if isinstance(segments, (str, bytes)):
+        raise InvalidInputError(f"{f}: segments: must be an iterable of segments, got {type(segments).__name__}")
     try:
         segments = list(segments)
     except TypeError:
         kind = type(segments).__name__
-        raise InvalidInputError(f"write_segments_csv: segments must be iterable, got {kind}") from None
+        raise InvalidInputError(f"{f}: segments: must be an iterable of segments, got {kind}") from None
     rows = []
     for i, s in enumerate(segments):
         try:
@@ -61,12 +68,22 @@ def write_segments_csv(path, segments, *, overwrite: bool = False) -> Path:
                 raise ValueError(f"n_points {s.n_points!r} is not an integer from 0 to {MAX_SEGMENT_POINTS}")
             rows.append([f"{v:.6f}" for v in values] + [n, int(bool(s.start_is_edge)), int(bool(s.end_is_edge))])
         except (AttributeError, TypeError, ValueError, OverflowError) as exc:
-            raise InvalidInputError(f"write_segments_csv: segment {i} ({type(s).__name__}): {exc}") from None
-    with atomic_write(path, "w", overwrite=overwrite, encoding="utf-8", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(SEGMENT_COLUMNS)
-        w.writerows(rows)
-    return Path(path)
+            raise InvalidInputError(f"{f}: segments: segment {i} ({type(s).__name__}): {exc}") from None
+    try:
+        with atomic_write(path, "w", overwrite=overwrite, encoding="utf-8", newline="") as out:
+            w = csv.writer(out)
+            w.writerow(SEGMENT_COLUMNS)
+            w.writerows(rows)
+    except OutputPathError as exc:  # the same error, naming the function and its argument
+        raise type(exc)(f"{f}: path: {exc}") from None
+    return path
+
+
+def _path(path, func: str) -> Path:
+    """``path`` (a str or an os.PathLike, not empty) as a :class:`Path`."""
+    if isinstance(path, (str, os.PathLike)) and str(path):
+        return Path(path)
+    raise InvalidInputError(f"{func}: path: expected a path (a str or a Path), got {path!r:.60}")
 
 
 def _point_count(text: str) -> int:
@@ -98,9 +115,17 @@ def read_segments_csv(path) -> list:
     missing, not UTF-8 text (binary, UTF-16) or malformed (a field beyond the csv module's limit, a point count
     that is not an integer from 0 to :data:`MAX_SEGMENT_POINTS`, a segment of length zero).
     """
+    f = "read_segments_csv"
+    path = _path(path, f)
+    try:
+        return _read_segments(path)
+    except InputFileError as exc:  # the same error, naming the function and its argument
+        raise InputFileError(f"{f}: path: {exc}") from None
+
+
+def _read_segments(path: Path) -> list:
     from cga_lessons.mapping2d import Segment
 
-    path = Path(path)
     out = []
     rows = read_csv_rows(path, what="map file")
     _, header = next(rows, (1, None))
@@ -119,7 +144,8 @@ def read_segments_csv(path) -> list:
             # the sums of n evenly spread points, as Segment would compute them, without making the n points
             out.append(Segment([x0, y0], [x1, y1], n, _even_sums(x0, y0, x1, y1, n), e0, e1))
         except (ValueError, IndexError) as exc:
-            raise InputFileError(f"{path}, line {lineno}: malformed segment row ({exc})") from None
+            problem = str(exc).split(": ", 2)[-1] if isinstance(exc, GeometryError) else str(exc)
+            raise InputFileError(f"{path}, line {lineno}: malformed segment row ({problem})") from None
     if not out:
         raise InputFileError(f"{path}: the map holds no segment")
     return out

@@ -27,9 +27,11 @@ import numbers
 
 import numpy as np
 
+from cga_lessons import checks
 from cga_lessons.algebra import Algebra, DegenerateGeometryError, InvalidInputError, Multivector
 
 from .model import G41, Ic
+from .multivector_checks import finite_multivector, multivector
 
 __all__ = [
     "require_blade",
@@ -54,30 +56,21 @@ _E5 = Algebra(5)  # the Euclidean metric on the same coefficients: join and meet
 
 def _norm(X: Multivector) -> float:
     """Euclidean norm of the coefficient vector (a size, not a metric quantity)."""
-    return math.sqrt(sum(v * v for v in X.coeffs.values()))
+    return math.hypot(*X.coeffs.values())  # no overflow for coefficients beyond 1e154
 
 
 def _check(X, func: str, name: str) -> Multivector:
-    """A float copy of a single numeric multivector of G(4,1); raises on anything else."""
-    if not isinstance(X, Multivector):
-        if isinstance(X, numbers.Real) and not isinstance(X, bool):
-            X = Multivector(G41, {0: X})
-        else:
-            raise InvalidInputError(f"{func}: {name}: expected a Multivector of G(4,1), got {type(X).__name__}")
-    if X.algebra is not G41:
-        raise InvalidInputError(f"{func}: {name}: a multivector of {X.algebra}, not of the conformal G(4,1)")
-    out = {}
-    for b, v in X.coeffs.items():
-        if isinstance(v, np.ndarray) and v.ndim > 0:
-            raise InvalidInputError(f"{func}: {name}: a batch of shape {v.shape}; pass one multivector at a time")
-        if not isinstance(v, (numbers.Real, np.ndarray)):
-            raise InvalidInputError(f"{func}: {name}: coefficients must be real numbers, got {type(v).__name__}")
-        v = float(v)
-        if not math.isfinite(v):
-            raise InvalidInputError(f"{func}: {name}: contains NaN or inf")
-        if v != 0.0:
-            out[b] = v
-    return Multivector(G41, out)
+    """A float copy of a single numeric multivector of G(4,1) (a real number is a scalar); raises on anything else
+    (:func:`~cga_lessons.conformal.versors_rigid.multivector`, the package's check of a multivector)."""
+    if isinstance(X, numbers.Real) and not isinstance(X, (bool, np.bool_)):
+        X = Multivector(G41, {0: checks.real(X, func, name)})
+    X = multivector(X, func, name, what="a Multivector of G(4,1)", single=True, numeric=True, nonzero=False)
+    return Multivector(G41, {b: float(v) for b, v in X.coeffs.items() if v != 0})
+
+
+def _tol(tol, func: str, name: str = "tol") -> float:
+    """A relative tolerance: a real number in [0, 1)."""
+    return checks.real(tol, func, name, low=0.0, high=1.0, strict_high=True)
 
 
 def _homogeneous_grade(X: Multivector, func: str, name: str, tol: float) -> tuple[Multivector, int]:
@@ -134,6 +127,9 @@ def require_blade(A, func: str = "require_blade", name: str = "A", tol: float = 
     ...
     cga_lessons.algebra.InvalidInputError: meet: A: not a blade (x ^ A = 0 has fewer than 2 independent solutions)
     """
+    checks.text(func, "require_blade", "func")
+    checks.text(name, "require_blade", "name")
+    tol = _tol(tol, func)
     A, k = _homogeneous_grade(_check(A, func, name), func, name, tol)
     if k in (2, 3):
         res = _span(A, k)[2]
@@ -153,6 +149,10 @@ def left_contraction(A, B) -> Multivector:
     (1 e2, 0)
     """
     A, B = _check(A, "left_contraction", "A"), _check(B, "left_contraction", "B")
+    return finite_multivector(_left_contraction(A, B), "left_contraction", A=A, B=B)
+
+
+def _left_contraction(A: Multivector, B: Multivector) -> Multivector:
     out = Multivector(G41, {})
     for r in A.grades_present():
         for s in B.grades_present():
@@ -171,7 +171,7 @@ def right_contraction(A, B) -> Multivector:
     (1 e1, 0)
     """
     A, B = _check(A, "right_contraction", "A"), _check(B, "right_contraction", "B")
-    return ~left_contraction(~B, ~A)
+    return finite_multivector(~_left_contraction(~B, ~A), "right_contraction", A=A, B=B)
 
 
 def scalar_product(A, B) -> float:
@@ -182,7 +182,12 @@ def scalar_product(A, B) -> float:
     -12.5
     """
     A, B = _check(A, "scalar_product", "A"), _check(B, "scalar_product", "B")
-    return float((A * B).scalar())
+    out = float((A * B).scalar())
+    if not math.isfinite(out):
+        raise checks.fail(
+            "scalar_product", "A, B", "the result overflows a float (the inputs' magnitudes are too large)"
+        )
+    return out
 
 
 def dual(A) -> Multivector:
@@ -195,7 +200,7 @@ def dual(A) -> Multivector:
     >>> dual(cga.e1)
     -1 e23+-
     """
-    return _check(A, "dual", "A") * _IC_INV
+    return _check(A, "dual", "A") * _IC_INV  # a signed permutation of the coefficients: finite
 
 
 def undual(A) -> Multivector:
@@ -221,7 +226,7 @@ def regressive_product(A, B) -> Multivector:
     -1 e2+-
     """
     A, B = _check(A, "regressive_product", "A"), _check(B, "regressive_product", "B")
-    return ((A * _IC_INV) ^ (B * _IC_INV)) * Ic
+    return finite_multivector(((A * _IC_INV) ^ (B * _IC_INV)) * Ic, "regressive_product", A=A, B=B)
 
 
 def is_blade(A, tol: float = 1e-6) -> bool:
@@ -235,6 +240,7 @@ def is_blade(A, tol: float = 1e-6) -> bool:
     >>> is_blade(cga.up([1, 2, 3]) ^ cga.up([0, 1, 0])), is_blade(cga.e1 * cga.e2 + cga.e3 * cga.ep)
     (True, False)
     """
+    tol = _tol(tol, "is_blade")
     try:
         require_blade(A, "is_blade", "A", tol)
     except DegenerateGeometryError:
@@ -294,9 +300,10 @@ def join(A, B, tol: float = 1e-10) -> Multivector:
     >>> J.grades_present(), (cga.up([5, -3, 0]) ^ J).iszero(1e-9)
     ([4], True)
     """
+    tol = _tol(tol, "join")
     A, ka = require_blade(A, "join", "A")
     B, kb = require_blade(B, "join", "B")
-    return _join(A, ka, B, kb, tol)
+    return finite_multivector(_join(A, ka, B, kb, tol), "join", A=A, B=B)
 
 
 def meet(A, B, tol: float = 1e-10) -> Multivector:
@@ -321,18 +328,19 @@ def meet(A, B, tol: float = 1e-10) -> Multivector:
     >>> (cga.up([0, 0, 2]) ^ F).iszero(1e-12), F.grades_present()
     (True, [2])
     """
+    tol = _tol(tol, "meet")
     A, ka = require_blade(A, "meet", "A")
     B, kb = require_blade(B, "meet", "B")
     J = _join(A, ka, B, kb, tol)
     if J.grades_present() == [5]:
-        return ((B * _IC_INV) ^ (A * _IC_INV)) * Ic
+        return finite_multivector(((B * _IC_INV) ^ (A * _IC_INV)) * Ic, "meet", A=A, B=B)
     JJ = float((J * ~J).scalar())
     if abs(JJ) > tol * _norm(J) ** 2:
-        M = left_contraction(left_contraction(B, ~J * (1.0 / JJ)), A)
+        M = _left_contraction(_left_contraction(B, ~J * (1.0 / JJ)), A)
     else:  # a null join: the subspace is metric-free, take it in the Euclidean metric
         AE, BE, JE = (Multivector(_E5, dict(X.coeffs)) for X in (A, B, J))
         M = Multivector(G41, dict(((BE << JE.inv()) << AE).coeffs))
-    return _check(M, "meet", "result")
+    return _check(finite_multivector(M, "meet", A=A, B=B), "meet", "A, B")
 
 
 def _invertible(B, func: str):
@@ -355,7 +363,7 @@ def project(A, B) -> Multivector:
     """
     A, _ = require_blade(A, "project", "A")
     B, Binv = _invertible(B, "project")
-    return left_contraction(A, B) * Binv
+    return finite_multivector(_left_contraction(A, B) * Binv, "project", A=A, B=B)
 
 
 def reject(A, B) -> Multivector:
@@ -370,7 +378,7 @@ def reject(A, B) -> Multivector:
     """
     A, _ = require_blade(A, "reject", "A")
     B, Binv = _invertible(B, "reject")
-    return (A ^ B) * Binv
+    return finite_multivector((A ^ B) * Binv, "reject", A=A, B=B)
 
 
 def is_versor(V, tol: float = 1e-9) -> bool:
@@ -385,6 +393,7 @@ def is_versor(V, tol: float = 1e-9) -> bool:
     >>> is_versor(T), is_versor(cga.up([1, 0, 0])), is_versor(1 + cga.e1)
     (True, False, False)
     """
+    tol = _tol(tol, "is_versor")
     V = _check(V, "is_versor", "V")
     scale2 = _norm(V) ** 2
     if scale2 == 0.0 or min(_norm(V.even()), _norm(V.odd())) > tol * math.sqrt(scale2):

@@ -17,8 +17,13 @@ standard-form results of :func:`intersect`.
 
 from __future__ import annotations
 
+import math
+import numbers
 from dataclasses import dataclass
 
+import numpy as np
+
+from cga_lessons import checks
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
 
 from .blades import dual, left_contraction, meet, require_blade, undual
@@ -27,6 +32,7 @@ from .model import einf
 __all__ = ["BladeKind", "classify", "intersect"]
 
 _FORMS = {"auto": "auto", "dual": "dual", "opns": "dual", "standard": "standard", "ipns": "standard"}
+_KINDS = ("scalar", "point", "round", "tangent", "flat", "direction", "dual flat", "pseudoscalar")
 _NAMES = {
     "round": {-1: "round of dimension -1 (no points)", 0: "point pair", 1: "circle", 2: "sphere"},
     "flat": {0: "flat point", 1: "line", 2: "plane"},
@@ -55,6 +61,21 @@ class BladeKind:
     form: str
     radius2: float | None = None
 
+    def __post_init__(self):
+        func = "BladeKind"
+        checks.choice(self.kind, func, "kind", _KINDS)
+        for f, low, high in (("dimension", -1, 3), ("grade", 0, 5)):
+            v = getattr(self, f)
+            if v is None and f == "dimension":
+                continue
+            if not isinstance(v, numbers.Integral) or isinstance(v, (bool, np.bool_)):
+                raise checks.fail(func, f, f"must be a whole number (an int), got {v!r}")
+            checks.integer(v, func, f, low=low, high=high)
+        checks.flag(self.imaginary, func, "imaginary")
+        checks.choice(self.form, func, "form", ("dual", "standard"))
+        if self.radius2 is not None:
+            checks.real(self.radius2, func, "radius2")
+
     @property
     def name(self) -> str:
         """A readable name: "point pair", "imaginary circle", "line", "free bivector", ..."""
@@ -72,7 +93,7 @@ def _form(form, k: int, func: str, name: str) -> str:
 
 
 def _size(X) -> float:
-    return sum(v * v for v in X.coeffs.values()) ** 0.5
+    return math.hypot(*X.coeffs.values())
 
 
 def classify(X, form: str = "auto", tol: float = 1e-10, tangent_tol: float = 1e-12) -> BladeKind:
@@ -110,6 +131,8 @@ def classify(X, form: str = "auto", tol: float = 1e-10, tangent_tol: float = 1e-
     >>> classify(cga.line_from_points([0, 0, 0], [1, 2, 3])).name, classify(cga.up([1, 2, 3])).name
     ('line', 'point')
     """
+    tol = checks.real(tol, "classify", "tol", low=0.0, high=1.0, strict_high=True)
+    tangent_tol = checks.real(tangent_tol, "classify", "tangent_tol", low=0.0, high=1.0, strict_high=True)
     X, k = require_blade(X, "classify", "X")
     f = _form(form, k, "classify", "form")
     if k == 1 and abs(float((X * X).scalar())) <= tangent_tol * _size(X) ** 2:  # null: a point in both readings
@@ -162,6 +185,7 @@ def intersect(X, Y, forms=("auto", "auto"), out: str = "auto", tol: float = 1e-1
     """
     if not isinstance(forms, (tuple, list)) or len(forms) != 2:
         raise InvalidInputError(f"intersect: forms: expected a pair of forms, got {forms!r}")
+    tol = checks.real(tol, "intersect", "tol", low=0.0, high=1.0, strict_high=True)
     X, kx = require_blade(X, "intersect", "X")
     Y, ky = require_blade(Y, "intersect", "Y")
     fx, fy = _form(forms[0], kx, "intersect", "forms[0]"), _form(forms[1], ky, "intersect", "forms[1]")

@@ -25,21 +25,25 @@ from __future__ import annotations
 
 import numpy as np
 
-from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector, any_sympy, is_sympy
+from cga_lessons import checks
+from cga_lessons.algebra import Multivector, any_sympy, is_sympy
 
 from . import entities_frame as _F
 from .model import (
+    COORD_LIMIT,
     G41,
     IE,
     E,
     Ic,
+    check_multivector,
     check_points,
-    down,
+    checked,
     einf,
     ep,
     euclidean,
     exact_constants,
     normalize_point,
+    read_point,
     up,
     vector,
 )
@@ -76,40 +80,57 @@ def _c(X: Multivector):
     return {"einf": einf, "E": E, "IE": IE, "Ic": Ic, "ep": ep}
 
 
-def _require_nonzero(X: Multivector, func: str, what: str) -> Multivector:
+def _require_nonzero(X: Multivector, func: str, args: str, what: str) -> Multivector:
     """X, unless it simplifies to zero (symbolic input)."""
     if not X.simplify()._c:
-        raise DegenerateGeometryError(f"{func}: {what}")
+        raise checks.degenerate(func, args, what)
     return X
 
 
 def grade_of(X: Multivector, func: str, allowed: tuple[int, ...], arg: str | None = None) -> int:
-    at = f"{func}: {arg}" if arg else func
-    if not isinstance(X, Multivector):
-        raise InvalidInputError(f"{at}: expected a Multivector, got {type(X).__name__}")
+    """The grade of ``X``, a finite multivector of G(4,1) with one grade among ``allowed``; else a clear error.
+
+    ``arg`` names the argument in the message (give it: without it the message says "the entity").
+    """
+    name = arg or "the entity"
+    check_multivector(X, func, name)
     gs = X.grades_present()
     if len(gs) != 1 or gs[0] not in allowed:
-        raise InvalidInputError(f"{at}: expected a blade of grade {' or '.join(map(str, allowed))}, got grades {gs}")
+        raise checks.fail(func, name, f"expected a blade of grade {' or '.join(map(str, allowed))}, got grades {gs}")
     return gs[0]
 
 
 def standard_form(X: Multivector) -> Multivector:
     """The standard form X = X* Ic of a dual-form entity (inverse of 2.31)."""
+    check_multivector(X, "standard_form", "X")
     return X * _c(X)["Ic"]
 
 
 def dual_form(X: Multivector) -> Multivector:
     """The dual X* = X Ic^-1 (2.31)."""
+    check_multivector(X, "dual_form", "X")
     return X * (-_c(X)["Ic"])  # Ic^2 = -1, so Ic^-1 = -Ic
+
+
+def _per_item(value, func: str, name: str, batch: tuple, *, low: float | None = None):
+    """A number (float, or SymPy) or one per item: an (N,) array, N the length of ``batch`` = (its name, the
+    validated array) when that is a batch (N, 3)."""
+    if is_sympy(value):
+        return value
+    if isinstance(value, (list, tuple)) or (isinstance(value, np.ndarray) and value.ndim > 0):
+        a = checked(checks.array, value, func, name, (None,))
+        if batch[1] is not None and np.ndim(batch[1]) == 2:
+            checks.same_length(func, **{batch[0]: batch[1], name: a})
+        if low is not None and np.any(a < low):
+            raise checks.fail(func, name, f"must be >= {low}, got {float(np.min(a)):.3g}")
+        return a
+    return checks.real(value, func, name, low=low)
 
 
 def _euclid_point(x, func: str):
     """Float coordinates of x (Euclidean, or a conformal point); None when symbolic."""
     if isinstance(x, Multivector):
-        if any_sympy(x):
-            return None
-        _F.split(x, func, "x")  # NaN/inf check, named
-        return down(x)
+        return None if any_sympy(x) else read_point(x, func, "x")
     pts = _F.points(func, "x", x)
     return None if pts is None else pts[0]
 
@@ -136,7 +157,7 @@ def point_pair(a, b) -> Multivector:
     """
     pts = _F.points("point_pair", "a, b", a, b)
     if pts is None:
-        return _require_nonzero(_exact_up(a) ^ _exact_up(b), "point_pair", "the two points coincide")
+        return _require_nonzero(_exact_up(a) ^ _exact_up(b), "point_pair", "a, b", "the two points coincide")
     return _F.point_pair(*pts, "point_pair")
 
 
@@ -181,6 +202,8 @@ def point_pair_endpoints(PP: Multivector, min_separation: float | None = None):
         points closer than the guard (the message gives both numbers).
     """
     g = grade_of(PP, "point_pair_endpoints", (2, 3), "PP")
+    if min_separation is not None:
+        min_separation = checks.real(min_separation, "point_pair_endpoints", "min_separation", low=0)
     B = PP if g == 2 else dual_form(PP)
     if any_sympy(B):
         import sympy
@@ -193,11 +216,12 @@ def point_pair_endpoints(PP: Multivector, min_separation: float | None = None):
             X = X.simplify()
             rest = [b for b, v in X.coeffs.items() if G41.grades[b] != 1 and sympy.simplify(v) != 0]
             if rest:
-                raise DegenerateGeometryError(
-                    f"point_pair_endpoints: PP: (2.131) did not simplify to a vector (blades {rest}); "
-                    "is the pair real (PP^2 > 0)?"
+                raise checks.degenerate(
+                    "point_pair_endpoints",
+                    "PP",
+                    f"(2.131) did not simplify to a vector (blades {rest}); is the pair real (PP^2 > 0)?",
                 )
-            p = down(X.grade(1))
+            p = read_point(X.grade(1), "point_pair_endpoints", "PP")
             return p if isinstance(p, sympy.MatrixBase) else sympy.Matrix([sympy.nsimplify(float(v)) for v in p])
 
         return endpoint((B - root) * inv), endpoint((B + root) * inv)
@@ -209,14 +233,18 @@ def point_pair_sphere(PP: Multivector) -> Multivector:
 
     Returns the normalised standard form (grade 1, ``S . e = -1``): centre
     the pair's midpoint, radius half their distance.  Floats read the
-    midpoint and h^2 as :func:`point_pair_endpoints` does (no guard).
+    midpoint and h^2 as :func:`point_pair_endpoints` does (no guard), and
+    refuse an imaginary pair (``B B < 0``, no real points; a circle's
+    blade read as a pair is one).
     """
     g = grade_of(PP, "point_pair_sphere", (2, 3), "PP")
     B = PP if g == 2 else dual_form(PP)
     if any_sympy(B):
         S = (B * (B ^ _c(B)["einf"]).inv()).grade(1)
         return normalize_point(S, "point_pair_sphere")
-    m, h2, _, _ = _F.read_pair(B, "point_pair_sphere", "PP")
+    m, h2, _, tol = _F.read_pair(B, "point_pair_sphere", "PP")
+    if np.any(h2 < -(tol + 1e-12)):
+        raise checks.degenerate("point_pair_sphere", "PP", "B B < 0, the point pair is imaginary (no real points)")
     return _F.sphere_std(m, _F.dot(m, m) - h2, 1.0, "point_pair_sphere", "PP")
 
 
@@ -230,13 +258,12 @@ def sphere(center, radius) -> Multivector:
     of two that is.
     """
     pts = _F.points("sphere", "center", center)
+    radius = _per_item(radius, "sphere", "radius", ("center", None if pts is None else pts[0]), low=0)
     if pts is None or is_sympy(radius):
         return up(center) - exact_constants()["einf"] * (radius**2 / 2)
     r = np.asarray(radius, dtype=float)
-    if not np.all(np.isfinite(r)) or np.any(r < 0):
-        raise InvalidInputError(f"sphere: radius: must be finite and >= 0, got {radius!r}")
-    if np.any(r > _F.COORD_LIMIT):
-        raise InvalidInputError(f"sphere: radius: too large ({float(np.max(r)):.3g}): its square overflows")
+    if np.any(r > COORD_LIMIT):
+        raise checks.fail("sphere", "radius", f"too large ({float(np.max(r)):.3g}): its square overflows")
     p = pts[0]
     return _F.sphere_std(p, _F.dot(p, p) - r * r, 1.0, "sphere", "center, radius")
 
@@ -254,7 +281,9 @@ def sphere_from_points(a, b, c, d) -> Multivector:
     pts = _F.points("sphere_from_points", "a, b, c, d", a, b, c, d)
     if pts is None:
         S = _exact_up(a) ^ _exact_up(b) ^ _exact_up(c) ^ _exact_up(d)
-        return _require_nonzero(S, "sphere_from_points", "the 4 points are coplanar, concyclic or coincident")
+        return _require_nonzero(
+            S, "sphere_from_points", "a, b, c, d", "the 4 points are coplanar, concyclic or coincident"
+        )
     return dual_form(_F.sphere_from_points(*pts, "sphere_from_points"))
 
 
@@ -288,7 +317,7 @@ def sphere_center_radius(S: Multivector):
         return euclidean((s ^ c["E"]) * c["E"]), sympy.sqrt(sympy.simplify((s * s).scalar()))
     p, r2, _, tol = _F.read_sphere(s, "sphere_center_radius", "S")
     if np.any(r2 < -(tol + 1e-12)):
-        raise DegenerateGeometryError("sphere_center_radius: S: s^2 < 0, the sphere is imaginary")
+        raise checks.degenerate("sphere_center_radius", "S", "s^2 < 0, the sphere is imaginary")
     return p, _F.out(np.sqrt(np.maximum(r2, 0.0)))
 
 
@@ -303,6 +332,7 @@ def point_sphere_side(x, S: Multivector, atol: float = 1e-9):
     that, in length^2, get an arbitrary sign.
     """
     g = grade_of(S, "point_sphere_side", (1, 4), "S")
+    atol = checks.real(atol, "point_sphere_side", "atol", low=0)
     s = S if g == 1 else standard_form(S)
     xe = _euclid_point(x, "point_sphere_side")
     if xe is None or any_sympy(s):
@@ -323,15 +353,20 @@ def plane(normal, distance) -> Multivector:
     distance delta from the origin along it.
     """
     nv, sym = check_points(normal, "plane", "normal")
+    distance = _per_item(distance, "plane", "distance", ("normal", None if sym else nv))
     if sym:
         return vector(nv) + exact_constants()["einf"] * distance
-    norm = np.linalg.norm(nv, axis=-1)
+    with np.errstate(over="ignore"):
+        norm = np.linalg.norm(nv, axis=-1)
+    if not np.all(np.isfinite(norm)):  # |normal|^2 overflows: scale it first
+        nv = nv / np.max(np.abs(nv), axis=-1, keepdims=True)
+        norm = np.linalg.norm(nv, axis=-1)
     if np.any(norm == 0):
-        raise DegenerateGeometryError("plane: normal: the normal is the zero vector")
-    d = np.asarray(distance, dtype=float)
-    if not np.all(np.isfinite(d)):
-        raise InvalidInputError("plane: distance: contains NaN or inf")
+        raise checks.degenerate("plane", "normal", "the normal is the zero vector")
     n = nv / (norm[..., None] if nv.ndim == 2 else norm)
+    if is_sympy(distance):
+        return vector(n) + exact_constants()["einf"] * distance
+    d = np.asarray(distance, dtype=float)
     return vector(n) + einf * (float(d) if d.ndim == 0 else d)
 
 
@@ -345,7 +380,7 @@ def plane_from_points(a, b, c) -> Multivector:
     pts = _F.points("plane_from_points", "a, b, c", a, b, c)
     if pts is None:
         P = exact_constants()["einf"] ^ _exact_up(a) ^ _exact_up(b) ^ _exact_up(c)
-        return _require_nonzero(P, "plane_from_points", "the 3 points are collinear")
+        return _require_nonzero(P, "plane_from_points", "a, b, c", "the 3 points are collinear")
     return _F.plane(*pts, "plane_from_points")
 
 
@@ -370,7 +405,7 @@ def plane_normal_distance(P: Multivector):
     n, delta = _F.read_plane(p, "plane_normal_distance", "P")
     norm = _F.norm(n)
     if np.any(norm <= 1e-300):
-        raise DegenerateGeometryError("plane_normal_distance: P: the input has no normal (not a plane)")
+        raise checks.degenerate("plane_normal_distance", "P", "the input has no normal (not a plane)")
     return n / norm[..., None], _F.out(delta / norm)
 
 
@@ -385,18 +420,13 @@ def line_from_points(a, b) -> Multivector:
     pts = _F.points("line_from_points", "a, b", a, b)
     if pts is None:
         L = exact_constants()["einf"] ^ _exact_up(a) ^ _exact_up(b)
-        return _require_nonzero(L, "line_from_points", "the two points coincide")
+        return _require_nonzero(L, "line_from_points", "a, b", "the two points coincide")
     return _F.line(*pts, "line_from_points")
 
 
 def as_dual_line(L: Multivector, func: str) -> Multivector:
     g = grade_of(L, func, (2, 3), "L")
     return L if g == 3 else dual_form(L)
-
-
-def _line_dm(L: Multivector, func: str):
-    """Direction d (length |a - b|) and moment a x d of a float line, checked to be a line."""
-    return _F.read_line(as_dual_line(L, func), func, "L")
 
 
 def normalize_line(L: Multivector) -> Multivector:
@@ -421,10 +451,11 @@ def line_direction(L: Multivector):
     For ``line_from_points(a, b)`` this is ``(b - a)/|b - a|``.  Raises
     :class:`InvalidInputError` for a circle (or any round).
     """
-    if any_sympy(L):
+    Ld = as_dual_line(L, "line_direction")
+    if any_sympy(Ld):
         Ln = normalize_line(L)
         return euclidean(as_dual_line(Ln, "line_direction") | _c(Ln)["E"])
-    d, _ = _line_dm(L, "line_direction")
+    d, _ = _F.read_line(Ld, "line_direction", "L")
     return d / _F.norm(d)[..., None]
 
 
@@ -437,17 +468,19 @@ def line_moment(L: Multivector):
     adds other grades; see the erratum in the registry.  In floats: the e
     part of L* (``a x d``) over |d|.
     """
-    if any_sympy(L):
-        Ln = normalize_line(as_dual_line(L, "line_moment"))
+    Ld = as_dual_line(L, "line_moment")
+    if any_sympy(Ld):
+        Ln = normalize_line(Ld)
         return -euclidean(_c(Ln)["ep"] | standard_form(Ln))
-    d, mu = _line_dm(L, "line_moment")
+    d, mu = _F.read_line(Ld, "line_moment", "L")
     return mu / _F.norm(d)[..., None]
 
 
 def line_closest_point(L: Multivector):
     """Point of the line closest to the origin, p = -r . M with M = m I_E, Eq. (2.129) (= r x m)."""
-    if not any_sympy(L):
-        d, mu = _line_dm(L, "line_closest_point")
+    Ld = as_dual_line(L, "line_closest_point")
+    if not any_sympy(Ld):
+        d, mu = _F.read_line(Ld, "line_closest_point", "L")
         return np.cross(d, mu) / _F.dot(d, d)[..., None]
     r, m = line_direction(L), line_moment(L)
     c = exact_constants()
@@ -495,19 +528,37 @@ def circle_from_points(a, b, c) -> Multivector:
     pts = _F.points("circle_from_points", "a, b, c", a, b, c)
     if pts is None:
         Z = _require_nonzero(
-            _exact_up(a) ^ _exact_up(b) ^ _exact_up(c), "circle_from_points", "the 3 points are collinear or coincide"
+            _exact_up(a) ^ _exact_up(b) ^ _exact_up(c),
+            "circle_from_points",
+            "a, b, c",
+            "the 3 points are collinear or coincide",
         )
         if not (Z ^ exact_constants()["einf"]).simplify().coeffs:  # z* ^ e = 0: a flat, the points are collinear
-            raise DegenerateGeometryError("circle_from_points: a, b, c: the 3 points are collinear (a line, no circle)")
+            raise checks.degenerate("circle_from_points", "a, b, c", "the 3 points are collinear (a line, no circle)")
         return Z
     return _F.circle(*pts, "circle_from_points")
 
 
 def circle_plane(Z: Multivector) -> Multivector:
-    """Plane of a circle, P_z* = z* ^ e (dual form), Eq. (2.119)."""
-    g = grade_of(Z, "circle_plane", (2, 3), "Z")
-    Zd = Z if g == 3 else dual_form(Z)
+    """Plane of a circle, P_z* = z* ^ e (dual form), Eq. (2.119).
+
+    Accepts the dual form (grade 3) or the standard form (grade 2) of a real circle; refuses a line (no e0 part,
+    ``z* ^ e = 0``) and an imaginary circle (such as a point pair read as a circle), as
+    :func:`circle_center_radius` does.
+    """
+    Zd = _circle_dual(Z, "circle_plane")
     return Zd ^ _c(Zd)["einf"]
+
+
+def _circle_dual(Z: Multivector, func: str) -> Multivector:
+    """The dual form of a circle, checked to be one (in floats: a round with rho^2 >= 0)."""
+    g = grade_of(Z, func, (2, 3), "Z")
+    Zd = Z if g == 3 else dual_form(Z)
+    if not any_sympy(Zd):
+        _, r2, _, tol = _F.read_circle(Zd, func, "Z")
+        if np.any(r2 < -(tol + 1e-12)):
+            raise checks.degenerate(func, "Z", "rho^2 < 0, the circle is imaginary")
+    return Zd
 
 
 def circle_center_radius(Z: Multivector):
@@ -544,5 +595,5 @@ def circle_center_radius(Z: Multivector):
         return center, radius, n
     p, r2, n, tol = _F.read_circle(Zd, "circle_center_radius", "Z")
     if np.any(r2 < -(tol + 1e-12)):
-        raise DegenerateGeometryError("circle_center_radius: Z: rho^2 < 0, the circle is imaginary")
+        raise checks.degenerate("circle_center_radius", "Z", "rho^2 < 0, the circle is imaginary")
     return p, _F.out(np.sqrt(np.maximum(r2, 0.0))), n

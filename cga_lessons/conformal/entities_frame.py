@@ -31,9 +31,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector
+from cga_lessons.algebra import DegenerateGeometryError, Multivector
+from cga_lessons.checks import degenerate, fail
 
-from .model import COORD_LIMIT, G41, check_points
+from .model import G41, check_points
 
 EPS = float(np.finfo(float).eps)
 _VEC = [1, 2, 4]
@@ -97,7 +98,7 @@ def split(X: Multivector, func: str, arg: str, finite: bool = True):
     """``(E, Xe, Y, D, P, M)`` of a numeric multivector; raises for NaN or inf coefficients (if ``finite``)."""
     a = X.to_array(list(range(32)))
     if finite and not np.all(np.isfinite(a)):
-        raise InvalidInputError(f"{func}: {arg}: the coefficients contain NaN or inf")
+        raise fail(func, arg, "the coefficients contain NaN or inf")
     E, P, M, D = a[..., 0:8], a[..., 8:16], a[..., 16:24], a[..., 24:32]
     return E, 0.5 * (P + M), M - P, D, P, M
 
@@ -120,7 +121,7 @@ def settle(y, xe_of, func: str, args: str):
     """
     xe = xe_of(y)
     if not (np.all(np.isfinite(xe)) and np.all(np.isfinite(y))):
-        raise InvalidInputError(f"{func}: {args}: the coordinates are too large: the blade's coefficients overflow")
+        raise fail(func, args, "the coordinates are too large: the blade's coefficients overflow")
     g = grid(xe, y)
     for _ in range(8):
         Y = snap(y, g)
@@ -143,7 +144,7 @@ def join(E, xe, y, D, g, func: str, args: str) -> Multivector:
     if E.ndim == 1:
         a = np.concatenate([E, P, M, D])
         if not np.all(np.isfinite(a)):
-            raise InvalidInputError(f"{func}: {args}: the coordinates are too large: the blade's coefficients overflow")
+            raise fail(func, args, "the coordinates are too large: the blade's coefficients overflow")
         return Multivector(G41, {k: float(a[k]) for k in range(32) if a[k] != 0})
     keys, cols = [], []
     for base, A in ((0, E), (8, P), (16, M), (24, D)):
@@ -152,7 +153,7 @@ def join(E, xe, y, D, g, func: str, args: str) -> Multivector:
             cols.append(A[:, k])
     rows = np.stack(cols) if cols else np.zeros((0, E.shape[0]))  # one block: each blade contiguous
     if not np.all(np.isfinite(rows)):
-        raise InvalidInputError(f"{func}: {args}: the coordinates are too large: the blade's coefficients overflow")
+        raise fail(func, args, "the coordinates are too large: the blade's coefficients overflow")
     return Multivector(G41, dict(zip(keys, rows)))
 
 
@@ -173,7 +174,7 @@ def check_flat(y, P, M, carrier, func: str, arg: str, what: str, extra=None):
     if extra is not None:
         bad |= np.max(np.abs(extra), axis=-1) > 64 * EPS * ref
     if np.any(bad):
-        raise InvalidInputError(f"{func}: {arg}: {what}")
+        raise fail(func, arg, what)
 
 
 # ------------------------------------------------------------ point input
@@ -181,15 +182,13 @@ def points(func: str, names: str, *pts):
     """Validated float points (broadcast to one shape), or None when any is symbolic."""
     arrs = []
     for name, p in zip(names.split(", "), pts):
-        arr, sym = check_points(p, func, name)
+        arr, sym = check_points(p, func, name, limit=True)
         if sym:
             return None
-        if np.any(np.abs(arr) > COORD_LIMIT):
-            raise InvalidInputError(
-                f"{func}: {name}: coordinates too large ({float(np.max(np.abs(arr))):.3g} > {COORD_LIMIT:.0e}): "
-                "their squares overflow"
-            )
         arrs.append(arr)
+    shapes = {a.shape for a in arrs}
+    if len(shapes) > 1 and len({s for s in shapes if len(s) == 2}) > 1:
+        raise fail(func, names, f"batches of different lengths: {' and '.join(str(a.shape) for a in arrs)}")
     return np.broadcast_arrays(*arrs)
 
 
@@ -200,13 +199,13 @@ def _edge(*ds):
 def _coincide(a, b, func: str):
     d = norm(a - b)
     if np.any(d <= 1e-12 * np.maximum(1.0, np.maximum(np.abs(a).max(axis=-1), np.abs(b).max(axis=-1)))):
-        raise DegenerateGeometryError(f"{func}: a, b: the two points coincide")
+        raise degenerate(func, "a, b", "the two points coincide")
 
 
 def _collinear(a, b, c, func: str):
     area = norm(np.cross(b - a, c - a))
     if np.any(area <= 1e-12 * max(np.max(np.abs(b - a)), np.max(np.abs(c - a)), 1e-300) ** 2):
-        raise DegenerateGeometryError(f"{func}: a, b, c: the 3 points are collinear (or coincide)")
+        raise degenerate(func, "a, b, c", "the 3 points are collinear (or coincide)")
 
 
 # ---------------------------------------------------------- constructors
@@ -235,7 +234,7 @@ def sphere_from_points(a, b, c, d, func: str):
     ab, ac, ad = b - a, c - a, d - a
     w = dot(ab, np.cross(ac, ad))
     if np.any(np.abs(w) <= 1e-10 * _edge(ab, ac, ad, c - b, d - b, d - c) ** 3):
-        raise DegenerateGeometryError(f"{func}: a, b, c, d: the 4 points are coplanar (or two coincide)")
+        raise degenerate(func, "a, b, c, d", "the 4 points are coplanar (or two coincide)")
     off = (
         dot(ab, ab)[..., None] * np.cross(ac, ad)
         + dot(ac, ac)[..., None] * np.cross(ad, ab)
@@ -349,7 +348,7 @@ def read_sphere(s: Multivector, func: str, arg: str):
     pp = dot(p, p)
     r2 = pp - q
     if not (np.all(np.isfinite(p)) and np.all(np.isfinite(r2))):
-        raise InvalidInputError(f"{func}: {arg}: the coefficients are too large: reading them overflows")
+        raise fail(func, arg, "the coefficients are too large: reading them overflows")
     return p, r2, w, 16 * EPS * (pp + np.abs(q))
 
 
@@ -367,7 +366,7 @@ def read_pair(B: Multivector, func: str, arg: str):
     m = m_par + m_perp + 0.0
     mm = dot(m, m)
     if not (np.all(np.isfinite(m)) and np.all(np.isfinite(h2))):
-        raise InvalidInputError(f"{func}: {arg}: the coefficients are too large: reading them overflows")
+        raise fail(func, arg, "the coefficients are too large: reading them overflows")
     return m, h2, u, 8 * EPS * (mm + np.abs(h2))
 
 
@@ -385,7 +384,7 @@ def read_circle(Zd: Multivector, func: str, arg: str):
     p = p_par + p_perp + 0.0
     pp = dot(p, p)
     if not (np.all(np.isfinite(p)) and np.all(np.isfinite(r2))):
-        raise InvalidInputError(f"{func}: {arg}: the coefficients are too large: reading them overflows")
+        raise fail(func, arg, "the coefficients are too large: reading them overflows")
     return p, r2, u, 16 * EPS * (pp + np.abs(r2))
 
 
@@ -399,7 +398,7 @@ def read_line(Ld: Multivector, func: str, arg: str):
     check_flat(Y, P, M, D, func, arg, "a circle or other round, not a line", extra=E)
     d = vec(D)
     if np.any(norm(d) <= 1e-300):
-        raise DegenerateGeometryError(f"{func}: {arg}: the line has no direction (L* L* = 0: zero or a flat point)")
+        raise degenerate(func, arg, "the line has no direction (L* L* = 0: zero or a flat point)")
     return d, biv(Xe)
 
 
@@ -418,7 +417,12 @@ def pair_points(B: Multivector, min_separation, func: str, arg: str):
     resolvable = 2.0 * np.sqrt(tol / (2.0 * PAIR_RTOL))  # where tol / (2 h^2) = PAIR_RTOL
     guard = resolvable if min_separation is None else np.full_like(sep, float(min_separation))
     if np.any((h2 < 0) & (sep > guard)):
-        raise DegenerateGeometryError(f"{func}: {arg}: B B < 0, the point pair is imaginary (no real points)")
+        raise degenerate(func, arg, "B B < 0, the point pair is imaginary (no real points)")
+    if np.any(sep <= guard) and min_separation is not None:
+        i = np.unravel_index(np.argmin(sep - guard), np.shape(sep))
+        raise degenerate(
+            func, arg, f"the points are {float(sep[i]):.3g} apart, below min_separation = {float(guard[i]):.3g}"
+        )
     if np.any(sep <= guard):
         i = np.unravel_index(np.argmin(sep - guard), np.shape(sep))
         raise DegenerateGeometryError(

@@ -29,9 +29,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from cga_lessons import checks
 from cga_lessons import conformal as cga
-from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
-from cga_lessons.checks import rows
+
+from .model import COORD_LIMIT, checked
 
 __all__ = [
     "fit_sphere",
@@ -50,18 +51,21 @@ _BLADES = [1, 2, 4, 8, 16]  # e1 e2 e3 e+ e-
 
 
 def _points(X, func: str, at_least: int) -> np.ndarray:
-    X = rows(X, func, "points", 3)  # the shared check: numbers, shape (N, 3), finite
+    """The points (N, 3) through the checks layer: numbers, finite, not so large that their squares overflow."""
+    X = checked(checks.rows, X, func, "X", 3)
+    if X.size and np.max(np.abs(X)) > COORD_LIMIT:
+        raise checks.fail(func, "X", f"coordinates too large (> {COORD_LIMIT:.0e}): their squares overflow")
     if len(X) < at_least:
-        raise DegenerateGeometryError(f"{func}: need at least {at_least} points, got {len(X)}")
+        raise checks.degenerate(func, "X", f"need at least {at_least} points, got {len(X)}")
     return X
 
 
-def _normalise(X):
+def _normalise(X, func: str):
     """Centroid and RMS radius of X, and the normalised points (a similarity)."""
     c = X.mean(axis=0)
     k = np.sqrt(np.mean(np.sum((X - c) ** 2, axis=1)))
     if k == 0:
-        raise DegenerateGeometryError("fit: all points coincide")
+        raise checks.degenerate(func, "X", "all points coincide")
     return c, k, (X - c) / k
 
 
@@ -70,7 +74,7 @@ def _conformal_eig(Y):
 
     Returns the eigenvectors with positive conformal square (real spheres and
     planes), scaled to ``s^T G s = 1``, sorted by their residual
-    ``lambda = s^T M s``, and the residuals.
+    ``lambda = s^T M s``, and the residuals relative to ``trace(M)``.
     """
     D = cga.up(Y).to_array(_BLADES)  # (N, 5), conformal points (2.62)
     A = D @ _G  # row i: coefficients of the linear form s -> x_i . s
@@ -84,7 +88,7 @@ def _conformal_eig(Y):
     mu, Y_ = np.linalg.eigh(Li @ _G @ Li.T)
     V = Li.T @ Y_[:, mu > 0][:, ::-1]
     V /= np.sqrt(np.einsum("ij,ik,kj->j", V, _G, V))
-    return V, np.einsum("ij,ik,kj->j", V, M, V)
+    return V, np.einsum("ij,ik,kj->j", V, M, V) / np.trace(M)
 
 
 def _sphere_rms(X, center, radius):
@@ -107,12 +111,14 @@ def fit_sphere(X) -> dict:
         distance of the points from the sphere, metres).
     """
     X = _points(X, "fit_sphere", 4)
-    c, k, Y = _normalise(X)
-    V, _ = _conformal_eig(Y)
+    c, k, Y = _normalise(X, "fit_sphere")
+    V, lam = _conformal_eig(Y)
+    if lam[1] <= 1e-12:  # two exact fits: the pencil of spheres through a circle (noise-free: ~1e-18)
+        raise checks.degenerate("fit_sphere", "X", "the points lie on a circle: every sphere through it fits them")
     s = cga.G41.from_array(V[:, 0], _BLADES)
     weight = -(s | cga.einf).scalar()
     if abs(weight) < 1e-9 * np.linalg.norm(V[:, 0]):
-        raise DegenerateGeometryError("fit_sphere: the points lie on a plane (the best 'sphere' has infinite radius)")
+        raise checks.degenerate("fit_sphere", "X", "the points lie on a plane (the best 'sphere' has infinite radius)")
     center_y, radius_y = cga.sphere_center_radius(s)  # (2.115), (2.116), (2.73)
     center, radius = c + k * center_y, k * radius_y
     rms = _sphere_rms(X, center, radius)
@@ -142,7 +148,7 @@ def fit_plane(X) -> dict:
         ``radius`` (the farthest projected point from it).
     """
     X = _points(X, "fit_plane", 3)
-    c, k, Y = _normalise(X)
+    c, k, Y = _normalise(X, "fit_plane")
     D = cga.up(Y).to_array(_BLADES)
     # x . (n + delta e) = x_E . n - delta  (x . e = -1): columns for (n1, n2, n3, delta)
     A = np.column_stack([(D @ _G)[:, :3], -np.ones(len(Y))])
@@ -151,7 +157,7 @@ def fit_plane(X) -> dict:
     reduced = Mnn - np.outer(b, b) / m  # Schur complement: delta = -b . n / m
     w, V = np.linalg.eigh(reduced)
     if w[1] <= 1e-12 * w[2]:
-        raise DegenerateGeometryError("fit_plane: the points lie on a line (the plane is not determined)")
+        raise checks.degenerate("fit_plane", "X", "the points lie on a line (the plane is not determined)")
     n = V[:, 0]
     delta_y = -b @ n / m
     delta = k * delta_y + c @ n
@@ -189,17 +195,17 @@ def fit_circle(X) -> dict:
         ``center``, ``radius``, ``normal``, ``rms``.
     """
     X = _points(X, "fit_circle", 3)
-    c, k, Y = _normalise(X)
+    c, k, Y = _normalise(X, "fit_circle")
     sv = np.linalg.svd(Y, compute_uv=False)
     if sv[1] <= 1e-9 * sv[0]:
-        raise DegenerateGeometryError("fit_circle: the points lie on a line (a circle through infinity)")
+        raise checks.degenerate("fit_circle", "X", "the points lie on a line (a circle through infinity)")
     V, _ = _conformal_eig(Y)
     s1, s2 = (cga.G41.from_array(V[:, i], _BLADES) for i in (0, 1))
     z = s1 ^ s2  # (2.79)
     try:
         center_y, radius_y, n = cga.circle_center_radius(z)
-    except DegenerateGeometryError as exc:
-        raise DegenerateGeometryError(f"fit_circle: no finite circle fits; points nearly on a line ({exc})") from None
+    except cga.DegenerateGeometryError as exc:
+        raise checks.degenerate("fit_circle", "X", f"no finite circle fits; points nearly on a line ({exc})") from None
     center, radius = c + k * center_y, k * radius_y
     u = np.cross(n, np.eye(3)[np.argmin(np.abs(n))])
     u /= np.linalg.norm(u)
@@ -219,11 +225,11 @@ def fit_sphere_kasa(X) -> dict:
     when only a cap of the sphere is seen.
     """
     X = _points(X, "fit_sphere_kasa", 4)
-    c, k, Y = _normalise(X)
+    c, k, Y = _normalise(X, "fit_sphere_kasa")
     A = np.column_stack([2 * Y, np.ones(len(Y))])
     sol, _, rank, _ = np.linalg.lstsq(A, np.sum(Y * Y, axis=1), rcond=None)
     if rank < 4:
-        raise DegenerateGeometryError("fit_sphere_kasa: the points lie on a plane")
+        raise checks.degenerate("fit_sphere_kasa", "X", "the points lie on a plane")
     p = sol[:3]
     center, radius = c + k * p, k * np.sqrt(sol[3] + p @ p)
     return {"center": center, "radius": float(radius), "rms": _sphere_rms(X, center, radius)}
@@ -232,20 +238,45 @@ def fit_sphere_kasa(X) -> dict:
 def fit_sphere_geometric(X, init: dict | None = None, iterations: int = 50) -> dict:
     """Geometric sphere fit: Gauss-Newton on the distances ``|x_i - p| - rho`` (started from Kasa's fit).
 
-    Returns ``{"center", "radius", "rms"}``.
+    ``init``: a start ``{"center": (3,), "radius": float}`` (default: :func:`fit_sphere_kasa`); ``iterations``:
+    at most this many Gauss-Newton steps.  Returns ``{"center", "radius", "rms"}``.
     """
-    X = _points(X, "fit_sphere_geometric", 4)
-    init = init or fit_sphere_kasa(X)
-    p, r = np.array(init["center"], float), float(init["radius"])
-    for _ in range(iterations):
-        diff = X - p
-        dist = np.linalg.norm(diff, axis=1)
-        J = np.column_stack([-diff / dist[:, None], -np.ones(len(X))])
-        step, *_ = np.linalg.lstsq(J, -(dist - r), rcond=None)
-        p, r = p + step[:3], r + step[3]
-        if np.linalg.norm(step) < 1e-14 * max(1.0, r):
-            break
+    func = "fit_sphere_geometric"
+    X = _points(X, func, 4)
+    iterations = checks.integer(iterations, func, "iterations", low=0)
+    if init is None or (isinstance(init, dict) and not init):
+        init = fit_sphere_kasa(X)
+    else:
+        checks.instance(init, func, "init", dict, "a dict with 'center' and 'radius' (or None)")
+        missing = [k for k in ("center", "radius") if k not in init]
+        if missing:
+            raise checks.fail(func, "init", f"has no {' and no '.join(map(repr, missing))}")
+        checks.array(init["center"], func, "init['center']", (3,))
+        checks.real(init["radius"], func, "init['radius']", low=0)
+    _, k, Y = _normalise(X, func)
+    if np.linalg.svd(Y, compute_uv=False)[2] <= 1e-12:
+        raise checks.degenerate(func, "X", "the points lie on a plane (the best 'sphere' has infinite radius)")
+    p, r = _gauss_newton(X, np.array(init["center"], float), float(init["radius"]), iterations, func)
     return {"center": p, "radius": float(r), "rms": _sphere_rms(X, p, r)}
+
+
+def _gauss_newton(P, q, r, iterations: int, func: str):
+    """Centre q and radius r of the circle/sphere through the points P (N, d) nearest in distance, from (q, r)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        try:
+            for _ in range(iterations):
+                diff = P - q
+                dist = np.linalg.norm(diff, axis=1)
+                J = np.column_stack([-diff / dist[:, None], -np.ones(len(P))])
+                step, *_ = np.linalg.lstsq(J, -(dist - r), rcond=None)
+                q, r = q + step[:-1], r + step[-1]
+                if np.linalg.norm(step) < 1e-14 * max(1.0, r):
+                    break
+        except np.linalg.LinAlgError:
+            q = np.full_like(q, np.nan)
+    if not (np.all(np.isfinite(q)) and np.isfinite(r)):
+        raise checks.degenerate(func, "X", "the Gauss-Newton iteration broke down (a point at the centre?)")
+    return q, r
 
 
 def fit_plane_euclidean(X) -> dict:
@@ -253,11 +284,14 @@ def fit_plane_euclidean(X) -> dict:
 
     Returns ``{"normal", "distance", "rms"}`` with ``n . x = distance`` on the plane.
     """
-    X = _points(X, "fit_plane_euclidean", 3)
+    return _tls_plane(_points(X, "fit_plane_euclidean", 3), "fit_plane_euclidean")
+
+
+def _tls_plane(X, func: str) -> dict:
     c = X.mean(axis=0)
     _, s, vt = np.linalg.svd(X - c, full_matrices=False)
     if s[1] <= 1e-12 * s[0]:
-        raise DegenerateGeometryError("fit_plane_euclidean: the points lie on a line")
+        raise checks.degenerate(func, "X", "the points lie on a line")
     n = vt[2]
     return {"normal": n, "distance": float(c @ n), "rms": float(s[2] / np.sqrt(len(X)))}
 
@@ -267,8 +301,10 @@ def fit_circle_euclidean(X, iterations: int = 50) -> dict:
 
     Returns ``{"center", "radius", "normal", "rms"}``.
     """
-    X = _points(X, "fit_circle_euclidean", 3)
-    pl = fit_plane_euclidean(X)
+    func = "fit_circle_euclidean"
+    X = _points(X, func, 3)
+    iterations = checks.integer(iterations, func, "iterations", low=0)
+    pl = _tls_plane(X, func)
     n = pl["normal"]
     c0 = X.mean(axis=0)
     u = np.cross(n, np.eye(3)[np.argmin(np.abs(n))])
@@ -277,15 +313,7 @@ def fit_circle_euclidean(X, iterations: int = 50) -> dict:
     Q = np.column_stack([(X - c0) @ u, (X - c0) @ v])
     A = np.column_stack([2 * Q, np.ones(len(Q))])
     sol, *_ = np.linalg.lstsq(A, np.sum(Q * Q, axis=1), rcond=None)
-    q, r = sol[:2], np.sqrt(sol[2] + sol[:2] @ sol[:2])
-    for _ in range(iterations):
-        diff = Q - q
-        dist = np.linalg.norm(diff, axis=1)
-        J = np.column_stack([-diff / dist[:, None], -np.ones(len(Q))])
-        step, *_ = np.linalg.lstsq(J, -(dist - r), rcond=None)
-        q, r = q + step[:2], r + step[2]
-        if np.linalg.norm(step) < 1e-14 * max(1.0, r):
-            break
+    q, r = _gauss_newton(Q, sol[:2], np.sqrt(sol[2] + sol[:2] @ sol[:2]), iterations, func)
     center = c0 + q[0] * u + q[1] * v
     d_plane = (X - center) @ n
     d_axis = np.linalg.norm((X - center) - np.outer(d_plane, n), axis=1)
@@ -302,9 +330,9 @@ def ransac_plane(X, rng: np.random.Generator, threshold: float, iterations: int 
     X : array_like, shape (N, 3)
     rng : numpy.random.Generator
     threshold : float
-        Inlier distance (metres).
+        Inlier distance (metres), > 0.
     iterations : int
-        Number of random triples.
+        Number of random triples, >= 1.
 
     Returns
     -------
@@ -312,16 +340,26 @@ def ransac_plane(X, rng: np.random.Generator, threshold: float, iterations: int 
         :func:`fit_plane` of the inliers, plus ``"inliers"`` (their count).
     inliers : ndarray of bool, shape (N,)
     """
-    X = _points(X, "ransac_plane", 3)
-    if not threshold > 0:
-        raise InvalidInputError(f"ransac_plane: threshold must be positive, got {threshold}")
+    func = "ransac_plane"
+    X = _points(X, func, 3)
+    rng, threshold, iterations = _ransac_settings(rng, threshold, iterations, func)
+    return _ransac(X, rng, threshold, iterations, func)
+
+
+def _ransac_settings(rng, threshold, iterations, func: str):
+    checks.instance(rng, func, "rng", np.random.Generator, "a numpy.random.Generator (np.random.default_rng(seed))")
+    threshold = checks.real(threshold, func, "threshold", low=0, strict_low=True)
+    return rng, threshold, checks.integer(iterations, func, "iterations", low=1)
+
+
+def _ransac(X, rng, threshold: float, iterations: int, func: str):
     idx = rng.integers(0, len(X), size=(iterations, 3))
     a, b, c = X[idx[:, 0]], X[idx[:, 1]], X[idx[:, 2]]
     area = np.linalg.norm(np.cross(b - a, c - a), axis=1)
     span = np.maximum(np.linalg.norm(b - a, axis=1), np.linalg.norm(c - a, axis=1))
     ok = area > 1e-6 * np.maximum(span, 1e-12) ** 2
     if not np.any(ok):
-        raise DegenerateGeometryError("ransac_plane: every sampled triple is collinear")
+        raise checks.degenerate(func, "X", "every sampled triple is collinear")
     P = cga.plane_from_points(a[ok], b[ok], c[ok])  # a batch of planes (2.77)
     n, d = cga.plane_normal_distance(P)
     counts = np.sum(np.abs(X @ n.T - d) < threshold, axis=0)
@@ -341,6 +379,9 @@ def ransac_plane(X, rng: np.random.Generator, threshold: float, iterations: int 
 def segment_planes(X, rng: np.random.Generator, n_planes=3, threshold=0.02, iterations=300, min_inliers=200):
     """Extract up to ``n_planes`` planes one after another (RANSAC, then remove the inliers).
 
+    ``rng`` a NumPy Generator, ``n_planes`` >= 0, ``threshold`` > 0 (metres), ``iterations`` >= 1 (random triples
+    per plane), ``min_inliers`` >= 0 (a plane with fewer is not kept, and the search stops).
+
     Returns
     -------
     fits : list of dict
@@ -348,14 +389,18 @@ def segment_planes(X, rng: np.random.Generator, n_planes=3, threshold=0.02, iter
     labels : ndarray of int, shape (N,)
         Index of the plane each point belongs to, -1 for none.
     """
-    X = _points(X, "segment_planes", 3)
+    func = "segment_planes"
+    X = _points(X, func, 3)
+    rng, threshold, iterations = _ransac_settings(rng, threshold, iterations, func)
+    n_planes = checks.integer(n_planes, func, "n_planes", low=0)
+    min_inliers = checks.integer(min_inliers, func, "min_inliers", low=0)
     labels = np.full(len(X), -1)
     fits = []
     for i in range(n_planes):
         free = np.flatnonzero(labels < 0)
         if len(free) < max(3, min_inliers):
             break
-        fit, inl = ransac_plane(X[free], rng, threshold, iterations)
+        fit, inl = _ransac(X[free], rng, threshold, iterations, func)
         if fit["inliers"] < min_inliers:
             break
         labels[free[inl]] = i

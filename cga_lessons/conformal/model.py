@@ -29,15 +29,14 @@ cga`` gives everything::
 from __future__ import annotations
 
 import math
-import numbers
 
 import numpy as np
 
+from cga_lessons import checks
 from cga_lessons.algebra import (
     REAL_TYPES,
     Algebra,
-    DegenerateGeometryError,
-    InvalidInputError,
+    GeometryError,
     Multivector,
     absmax,
     all_finite,
@@ -120,27 +119,39 @@ def exact_constants() -> dict:
 COORD_LIMIT = 1e153
 
 
-def check_points(x, func: str, name: str = "x"):
-    """Validate Euclidean point(s): returns (array or list, symbolic flag).
+def checked(check, value, func: str, name: str, *args, **kw):
+    """``check(value, func, name, ...)``, a check of :mod:`cga_lessons.checks`, with ragged lists refused by name
+    too (NumPy raises a bare ``ValueError`` for them before the checks layer can word it)."""
+    try:
+        return check(value, func, name, *args, **kw)
+    except GeometryError:
+        raise
+    except ValueError:
+        raise checks.fail(func, name, "must be an array of numbers, got rows of different lengths") from None
 
-    Accepts shape (3,) or (N, 3) numbers, or a length-3 sequence of SymPy
-    expressions.  Raises :class:`InvalidInputError` on wrong shape or NaN/inf.
+
+def check_points(x, func: str, name: str = "x", *, limit: bool = False):
+    """Euclidean point(s) through the checks layer: ``(array (3,) or (N, 3), False)``, or ``(list, True)`` for
+    three SymPy expressions (a list or a 3x1 matrix with at least one of them symbolic).
+
+    Refuses a Multivector (a conformal point wants :func:`down` first), wrong shapes, NaN/inf and complex
+    numbers; with ``limit`` also coordinates beyond :data:`COORD_LIMIT`, whose squares overflow.
     """
     if isinstance(x, Multivector):
-        raise InvalidInputError(f"{func}: {name} must be Euclidean coordinates, got a Multivector (use down() first)")
+        raise checks.fail(func, name, "expected Euclidean coordinates, got a Multivector (use down() first)")
     if isinstance(x, (list, tuple)) and len(x) == 3 and any(is_sympy(c) for c in x):
         return list(x), True
-    if hasattr(x, "shape") and not isinstance(x, np.ndarray) and _is_sympy_matrix(x):
+    if checks.is_symbolic(x) and _is_sympy_matrix(x):
         return [x[i] for i in range(3)], True
-    try:
-        arr = np.asarray(x, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise InvalidInputError(f"{func}: {name} must be numbers of shape (3,) or (N, 3), got {x!r}") from exc
-    if arr.ndim not in (1, 2) or arr.shape[-1] != 3:
-        raise InvalidInputError(f"{func}: {name} must have shape (3,) or (N, 3), got {arr.shape}")
-    if not all_finite(arr):
-        raise InvalidInputError(f"{func}: {name} contains NaN or inf")
-    return arr, False
+    arr, single = checked(checks.batch, x, func, name, (3,), finite=not limit)
+    if limit and arr.size:
+        big = max(float(arr.max()), -float(arr.min()))  # NaN, inf and overflow in one pass each way
+        if not big <= COORD_LIMIT:
+            if not math.isfinite(big):
+                raise checks.fail(func, name, "contains NaN or inf")
+            too_large = f"coordinates too large ({big:.3g} > {COORD_LIMIT:.0e}): their squares overflow"
+            raise checks.fail(func, name, too_large)
+    return (arr[0] if single else arr), False
 
 
 def _is_sympy_matrix(x) -> bool:
@@ -150,6 +161,48 @@ def _is_sympy_matrix(x) -> bool:
         return isinstance(x, sympy.MatrixBase) and len(x) == 3
     except ImportError:  # pragma: no cover
         return False
+
+
+def _bad_coefficient(v) -> bool:
+    """Whether one coefficient is NaN, inf or not a real number (SymPy expressions pass)."""
+    t = type(v)
+    if t is float or t is np.float64:
+        return not math.isfinite(v)
+    if t is np.ndarray:
+        kind = v.dtype.kind
+        return kind == "c" or (kind == "f" and not all_finite(v))  # object arrays (SymPy) pass
+    if t is int or is_sympy(v):
+        return False
+    try:
+        return not math.isfinite(float(v))
+    except (TypeError, ValueError, OverflowError):
+        return True
+
+
+def check_multivector(X, func: str, name: str) -> Multivector:
+    """``X`` if it is a multivector of G(4,1) with finite real (or SymPy) coefficients; else a clear error."""
+    if not isinstance(X, Multivector):
+        raise checks.fail(func, name, f"expected a multivector of G(4,1), got {type(X).__name__} {_short(X)}")
+    if X.algebra is not G41:
+        raise checks.fail(func, name, f"expected a multivector of G(4,1), got one of {X.algebra}")
+    for v in X._c.values():
+        if _bad_coefficient(v):
+            raise checks.fail(func, name, "the coefficients contain NaN or inf (or are not real numbers)")
+    return X
+
+
+def check_vector(X, func: str, name: str) -> Multivector:
+    """A finite multivector of G(4,1) of grade 1 (a point, sphere or plane in standard form)."""
+    check_multivector(X, func, name)
+    gs = X.grades_present()
+    if gs != [1]:
+        raise checks.fail(func, name, f"expected a conformal point or sphere (a vector, grade 1), got grades {gs}")
+    return X
+
+
+def _short(value) -> str:
+    r = repr(value)
+    return r if len(r) <= 40 else r[:37] + "..."
 
 
 def vector(x, func: str = "vector", name: str = "x") -> Multivector:
@@ -182,12 +235,7 @@ def up(x) -> Multivector:
     >>> X["e+"], X["e-"]  # (x^2 - 1)/2 and (x^2 + 1)/2, Eq. (2.63)
     (12.0, 13.0)
     """
-    arr, sym = check_points(x, "up")
-    if not sym and arr.size and float(np.max(np.abs(arr))) > COORD_LIMIT:
-        raise InvalidInputError(
-            f"up: x: coordinates up to {float(np.max(np.abs(arr))):.3g}: beyond {COORD_LIMIT:.0e} their squares "
-            "(the e+ and e- coefficients of a conformal point, 2.62) overflow"
-        )
+    arr, sym = check_points(x, "up", limit=True)  # beyond COORD_LIMIT the e+/e- coefficients x^2/2 (2.62) overflow
     if sym:
         c = exact_constants()
         v = vector(arr, "up")
@@ -217,35 +265,44 @@ def up(x) -> Multivector:
 
 
 def point_weight(X: Multivector):
-    """-e . X, the homogeneous weight of a conformal point or sphere (2.111, 2.115)."""
+    """-e . X, the homogeneous weight of a conformal point or sphere (2.111, 2.115); 0 for a plane."""
+    check_vector(X, "point_weight", "X")
+    return _weight(X)
+
+
+def _weight(X: Multivector):
     return -(X | einf).scalar() if not any_sympy(X) else -(X | exact_constants()["einf"]).scalar()
 
 
 def normalize_point(X: Multivector, func: str = "normalize_point") -> Multivector:
     """Scale a conformal point (or sphere) so that X . e = -1, Eq. (2.111)/(2.115).
 
-    Raises :class:`DegenerateGeometryError` when the weight is zero (the point
-    at infinity, a plane, or not a point at all).
+    ``func`` is the name errors give (for callers that normalise on a user's behalf).  Raises
+    :class:`DegenerateGeometryError` when the weight is zero (the point at infinity, a plane), and
+    :class:`InvalidInputError` for anything but a finite vector of G(4,1).
     """
-    w = point_weight(X)
+    check_vector(X, func, "X")
+    w = _weight(X)
     if is_sympy(w):
         return (X / w).simplify()
     if type(w) in REAL_TYPES and is_real_single(X):  # one point: plain floats, no NumPy calls
         scale = math.sqrt(sum(float(v) ** 2 for v in X._c.values()))
         if abs(w) <= 1e-14 * max(scale, 1e-300):
-            raise DegenerateGeometryError(
-                f"{func}: X . e = 0, the input is at infinity (or a plane), not a finite point"
-            )
+            raise checks.degenerate(func, "X", _AT_INFINITY)
         return X / float(w)
     w = np.asarray(w, dtype=float)
     scale = np.sqrt(sum(np.asarray(v, dtype=float) ** 2 for v in X._c.values())) if X._c else 0.0
     if np.any(np.abs(w) <= 1e-14 * np.maximum(scale, 1e-300)):
-        raise DegenerateGeometryError(f"{func}: X . e = 0, the input is at infinity (or a plane), not a finite point")
+        raise checks.degenerate(func, "X", _AT_INFINITY)
     return X / (float(w) if w.ndim == 0 else w)
+
+
+_AT_INFINITY = "X . e = 0, the input is at infinity (or a plane), not a finite point"
 
 
 def euclidean(X: Multivector):
     """The e1, e2, e3 coefficients of a multivector as an array (3,) or (N, 3)."""
+    check_multivector(X, "euclidean", "X")
     if any_sympy(X):
         import sympy
 
@@ -271,28 +328,37 @@ def down(X: Multivector):
     ------
     DegenerateGeometryError
         When ``X . e = 0`` (a point at infinity: no Euclidean point).
+    InvalidInputError
+        For anything but a conformal point: not a Multivector of G(4,1), NaN or inf, other grades than 1, or a
+        vector that is not null (``|X . X|`` above :data:`NULL_RTOL` of its squared coefficients: a sphere).
     """
-    if not isinstance(X, Multivector):
-        raise InvalidInputError(f"down: expected a conformal point (Multivector), got {type(X).__name__}")
+    return read_point(X, "down", "X")
+
+
+#: A vector X is a point when ``|X . X| <= NULL_RTOL (|X_E|^2 + X_+^2 + X_-^2)`` (2.61, X^2 = 0).  Points built by
+#: ``up`` or moved by versors keep X . X to ~1e-14 of that; a sphere of radius rho about p has
+#: X . X = w^2 rho^2, so spheres pass as points only when rho^2 is below ~1e-6 (|p|^2 + |p|^4 / 2) (rho < 1e-3 at
+#: the origin, a unit sphere beyond ~40 from it): there a float blade barely tells them apart.
+NULL_RTOL = 1e-6
+
+
+def read_point(X, func: str, name: str):
+    """:func:`down` with errors in the words of ``func`` and its argument ``name`` (for readers of points)."""
+    if not isinstance(X, Multivector) or X.algebra is not G41:
+        check_multivector(X, func, name)  # raises the usual error
     if is_real_single(X):
-        return _down_one(X)
+        return _down_one(X, func, name)
     if X.shape and not any_sympy(X):
-        return _down_batch(X)
-    if not any_sympy(X):
-        scale = max((absmax(v) for v in X._c.values()), default=0.0)
-        bad = [
-            G41.blade_names[b] for b, v in X._c.items() if G41.grades[b] != 1 and absmax(v) > 1e-9 * max(scale, 1e-300)
-        ]
-        X = X.grade(1)
-    else:
-        bad = [G41.blade_names[b] for b in X._c if G41.grades[b] != 1]
+        return _down_batch(X, func, name)
+    if not any_sympy(X):  # numbers of other types (NumPy scalars, 0-d arrays): as floats
+        check_multivector(X, func, name)
+        return _down_one(Multivector(G41, {b: float(v) for b, v in X._c.items()}), func, name)
+    bad = [G41.blade_names[b] for b in X._c if G41.grades[b] != 1]
     if bad:
-        raise InvalidInputError(f"down: a conformal point is a vector (grade 1), got blades {bad}")
-    Xn = normalize_point(X, "down")
-    if any_sympy(Xn):
-        c = exact_constants()
-        return euclidean(((Xn ^ c["E"]) * c["E"]).simplify())
-    return euclidean((Xn ^ E) * E)
+        raise checks.fail(func, name, f"a conformal point is a vector (grade 1), got blades {bad}")
+    Xn = normalize_point(X, func)
+    c = exact_constants()
+    return euclidean(((Xn ^ c["E"]) * c["E"]).simplify())
 
 
 #: A weight ``X_- - X_+`` within this many float epsilons of ``|X_-| + |X_+|`` is round-off, not a point: each of
@@ -301,26 +367,58 @@ def down(X: Multivector):
 _WEIGHT_ULPS = 4 * np.finfo(float).eps
 
 
-def _down_one(X: Multivector) -> np.ndarray:
+def _down_one(X: Multivector, func: str, name: str) -> np.ndarray:
     """:func:`down` of one point with real coefficients, in plain floats (the checks of :func:`_down_batch`)."""
     c = X._c
+    if not all(map(math.isfinite, c.values())):
+        raise checks.fail(func, name, "the coefficients contain NaN or inf")
     other = [b for b in c if G41.grades[b] != 1]
     if other:
         scale = max(abs(float(v)) for v in c.values())
         bad = [G41.blade_names[b] for b in other if abs(float(c[b])) > 1e-9 * max(scale, 1e-300)]
         if bad:
-            raise InvalidInputError(f"down: a conformal point is a vector (grade 1), got blades {bad}")
+            raise checks.fail(func, name, f"a conformal point is a vector (grade 1), got blades {bad}")
+    x1, x2, x3 = float(c.get(1, 0.0)), float(c.get(2, 0.0)), float(c.get(4, 0.0))
     xp, xm = float(c.get(8, 0.0)), float(c.get(16, 0.0))
     w = xm - xp  # -e . X, (2.111)
-    if not abs(w) > _WEIGHT_ULPS * (abs(xm) + abs(xp)):  # also false for a NaN weight
-        raise DegenerateGeometryError("down: X . e = 0, the input is at infinity (or a plane), not a finite point")
-    out = [float(c.get(1, 0.0)) / w, float(c.get(2, 0.0)) / w, float(c.get(4, 0.0)) / w]
+    if not abs(w) > _WEIGHT_ULPS * (abs(xm) + abs(xp)):
+        raise checks.degenerate(func, name, _AT_INFINITY)
+    if not _null(x1, x2, x3, xp, xm):  # X . X = 0 (2.61); scaled down when the squares overflow
+        big = max(abs(x1), abs(x2), abs(x3), abs(xp), abs(xm))
+        if not _null(x1 / big, x2 / big, x3 / big, xp / big, xm / big):
+            raise checks.fail(func, name, _NOT_NULL)
+    out = [x1 / w, x2 / w, x3 / w]
     if not all(map(math.isfinite, out)):
-        raise InvalidInputError("down: X has NaN or inf coefficients")
+        raise checks.fail(func, name, "the coefficients are too large: reading them overflows")
     return np.array(out)
 
 
-def _down_batch(X: Multivector) -> np.ndarray:
+def _null(x1, x2, x3, xp, xm, work=None):
+    """Whether ``|X . X| <= NULL_RTOL (|X_E|^2 + X_+^2 + X_-^2)`` (floats, or arrays: ``work`` a spare one).
+
+    False where the squares overflow or underflow (callers then retry with the coefficients scaled).
+    """
+    if not isinstance(x1, np.ndarray):
+        e2, pp, mm = x1 * x1 + x2 * x2 + x3 * x3, xp * xp, xm * xm
+        return abs(e2 + pp - mm) <= NULL_RTOL * (e2 + pp + mm) and e2 + pp + mm > 1e-290
+    with np.errstate(over="ignore", invalid="ignore", under="ignore"):
+        e2 = x1 * x1
+        e2 += x2 * x2
+        e2 += x3 * x3
+        sq = np.multiply(xp, xp, out=work)
+        e2 += sq  # |X_E|^2 + X_+^2
+        sq = np.multiply(xm, xm, out=sq)
+        dot = e2 - sq  # X . X (2.61)
+        e2 += sq
+        np.abs(dot, out=dot)
+        e2 *= NULL_RTOL
+        return (dot <= e2) & (e2 > 1e-296)
+
+
+_NOT_NULL = "X . X != 0: a sphere (or another vector that is not null), not a conformal point (2.61)"
+
+
+def _down_batch(X: Multivector, func: str, name: str) -> np.ndarray:
     """:func:`down` of a batch of points in one pass over its five coefficient arrays.
 
     The weight ``-e . X = X_- - X_+`` (2.111) and the Euclidean part
@@ -328,7 +426,7 @@ def _down_batch(X: Multivector) -> np.ndarray:
     are those of the general path: only grade 1 (other grades within 1e-9 of
     the largest coefficient), a weight clear of zero (beyond a few float
     epsilons of ``|X_-| + |X_+|``, the terms it is the difference of), a
-    finite result.
+    null vector (:data:`NULL_RTOL`), a finite result.
     """
     c, n = X._c, X.shape
     other = [b for b in c if G41.grades[b] != 1]
@@ -336,22 +434,26 @@ def _down_batch(X: Multivector) -> np.ndarray:
         scale = max(absmax(v) for v in c.values())
         bad = [G41.blade_names[b] for b in other if absmax(c[b]) > 1e-9 * max(scale, 1e-300)]
         if bad:
-            raise InvalidInputError(f"down: a conformal point is a vector (grade 1), got blades {bad}")
+            raise checks.fail(func, name, f"a conformal point is a vector (grade 1), got blades {bad}")
     zero = np.zeros(n)
     x1, x2, x3, xp, xm = (np.broadcast_to(c.get(b, zero), n) for b in (1, 2, 4, 8, 16))
     w = xm - xp  # -e . X, (2.111)
     ref = np.abs(xm)
     ref += np.abs(xp)
     if not np.all(np.abs(w) > _WEIGHT_ULPS * ref):  # relative to the terms it cancels; also false for a NaN weight
-        raise DegenerateGeometryError("down: X . e = 0, the input is at infinity (or a plane), not a finite point")
+        if not (all_finite(w) and all_finite(ref)):
+            raise checks.fail(func, name, "the coefficients contain NaN or inf")
+        raise checks.degenerate(func, name, _AT_INFINITY)
+    if not np.all(_null(x1, x2, x3, xp, xm, ref)):  # X . X = 0 (2.61)
+        if not (all_finite(x1) and all_finite(x2) and all_finite(x3)):
+            raise checks.fail(func, name, "the coefficients contain NaN or inf")
+        big = np.maximum.reduce([np.abs(x1), np.abs(x2), np.abs(x3), np.abs(xp), np.abs(xm)])  # squares overflow?
+        if not np.all(_null(x1 / big, x2 / big, x3 / big, xp / big, xm / big)):
+            raise checks.fail(func, name, _NOT_NULL)
     out = np.empty(n + (3,))
     np.divide(x1, w, out=out[..., 0])
     np.divide(x2, w, out=out[..., 1])
     np.divide(x3, w, out=out[..., 2])
     if not all_finite(out):
-        raise InvalidInputError("down: X has NaN or inf coefficients")
+        raise checks.fail(func, name, "the coefficients contain NaN or inf, or are too large to read")
     return out
-
-
-def is_scalar_like(v) -> bool:
-    return isinstance(v, numbers.Number) or is_sympy(v) or isinstance(v, np.ndarray)

@@ -28,16 +28,20 @@ References
 
 from __future__ import annotations
 
+import numbers
 from functools import lru_cache
 from itertools import product
 
 import numpy as np
 
+from cga_lessons import checks
 from cga_lessons.algebra import DegenerateGeometryError, GeometryError, InvalidInputError, Multivector
 
 from .entities import line_direction, line_moment
 from .model import G41, e1, e2, e3
+from .multivector_checks import multivector
 from .versors import apply_to_points, decompose_motor, motor_to_matrix, rotor, translator
+from .versors_rigid import why_not_motor
 
 __all__ = ["rotor_to_quaternion", "quaternion_to_rotor", "motor_from_points", "motor_from_lines", "mean_motor"]
 
@@ -56,14 +60,8 @@ def _rotor_from_coeffs(r: np.ndarray) -> Multivector:
 
 def _rotor_coeffs(R, func: str, name: str = "R") -> np.ndarray:
     """The coefficients r (4,) or (N, 4) of a numeric rotor; other blades must vanish."""
-    if not isinstance(R, Multivector):
-        raise InvalidInputError(f"{func}: {name}: expected a rotor (Multivector), got {type(R).__name__}")
-    try:
-        vals = {b: np.asarray(v, dtype=float) for b, v in R.coeffs.items()}
-    except (TypeError, ValueError) as exc:
-        raise InvalidInputError(f"{func}: {name}: numeric rotors only") from exc
-    if not all(np.all(np.isfinite(v)) for v in vals.values()):
-        raise InvalidInputError(f"{func}: {name}: contains NaN or inf")
+    multivector(R, func, name, what="a rotor (Multivector of G(4,1))", numeric=True, nonzero=False)
+    vals = {b: np.asarray(v, dtype=float) for b, v in R.coeffs.items()}
     scale = max((float(np.abs(v).max()) for v in vals.values() if v.size), default=0.0)
     known = {b for b, _ in _BLADES}
     bad = [G41.blade_names[b] for b, v in vals.items() if b not in known and np.abs(v).max() > 1e-9 * scale]
@@ -74,16 +72,12 @@ def _rotor_coeffs(R, func: str, name: str = "R") -> np.ndarray:
 
 
 def _weights(weights, n: int, func: str) -> np.ndarray:
+    """n finite, non-negative weights, not all zero (``checks.array``); None: all ones."""
     if weights is None:
         return np.ones(n)
-    try:
-        w = np.asarray(weights, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise InvalidInputError(f"{func}: weights: must be numbers, got {weights!r}") from exc
+    w = checks.array(weights, func, "weights", (None,))
     if w.shape != (n,):
-        raise InvalidInputError(f"{func}: weights: shape {w.shape} does not match the {n} data")
-    if not np.all(np.isfinite(w)):
-        raise InvalidInputError(f"{func}: weights: contains NaN or inf")
+        raise checks.fail(func, "weights", f"shape {w.shape} does not match the {n} data")
     if np.any(w < 0):
         raise InvalidInputError(f"{func}: weights: negative weight")
     if not np.any(w > 0):
@@ -106,10 +100,12 @@ def _rotor_matrix(S: np.ndarray) -> np.ndarray:
     return 0.5 * (N + N.T)
 
 
-def _top_eigenvector(N: np.ndarray, func: str, why: str) -> np.ndarray:
+def _top_eigenvector(N: np.ndarray, func: str, name: str, why: str) -> np.ndarray:
+    if not np.all(np.isfinite(N)):
+        raise checks.fail(func, name, "the data's magnitudes are too large: their products overflow a float")
     vals, vecs = np.linalg.eigh(N)
     if vals[-1] - vals[-2] <= 1e-12 * max(float(np.abs(vals).max()), 1e-300):
-        raise DegenerateGeometryError(f"{func}: {why}")
+        raise checks.degenerate(func, name, why)
     r = vecs[:, -1]
     return -r if r[0] < 0 else r
 
@@ -129,14 +125,9 @@ def _spread_checks(X: np.ndarray, w: np.ndarray, func: str, name: str, collinear
 
 
 def _points(x, func: str, name: str) -> np.ndarray:
-    try:
-        arr = np.asarray(x, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise InvalidInputError(f"{func}: {name}: must be numbers of shape (N, 3) or (N, 2)") from exc
-    if arr.ndim != 2 or arr.shape[1] not in (2, 3):
-        raise InvalidInputError(f"{func}: {name}: must have shape (N, 3) or (N, 2), got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise InvalidInputError(f"{func}: {name}: contains NaN or inf")
+    arr = checks.array(x, func, name, (None, None))
+    if arr.shape[1] not in (2, 3):
+        raise checks.fail(func, name, f"must have shape (N, 3) or (N, 2), got {arr.shape}")
     return arr
 
 
@@ -159,6 +150,7 @@ def rotor_to_quaternion(R: Multivector, *, scalar_first: bool = True) -> np.ndar
     array([0.    , 0.    , 0.7071, 0.7071])
     """
     r = _rotor_coeffs(R, "rotor_to_quaternion")
+    scalar_first = checks.flag(scalar_first, "rotor_to_quaternion", "scalar_first")
     norm = np.linalg.norm(r, axis=-1, keepdims=True)
     if np.any(norm <= 1e-300):
         raise DegenerateGeometryError("rotor_to_quaternion: R: the zero rotor has no rotation")
@@ -178,14 +170,9 @@ def quaternion_to_rotor(q, *, scalar_first: bool = True) -> Multivector:
     >>> np.round(cga.apply_to_points(R, [1.0, 0.0, 0.0]), 12) + 0.0
     array([0., 1., 0.])
     """
-    try:
-        arr = np.asarray(q, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise InvalidInputError(f"quaternion_to_rotor: q: must be numbers of shape (4,) or (N, 4), got {q!r}") from exc
-    if arr.ndim not in (1, 2) or arr.shape[-1] != 4:
-        raise InvalidInputError(f"quaternion_to_rotor: q: must have shape (4,) or (N, 4), got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise InvalidInputError("quaternion_to_rotor: q: contains NaN or inf")
+    arr, single = checks.batch(q, "quaternion_to_rotor", "q", (4,), at_least=1)
+    arr = arr[0] if single else arr
+    scalar_first = checks.flag(scalar_first, "quaternion_to_rotor", "scalar_first")
     norm = np.linalg.norm(arr, axis=-1, keepdims=True)
     if np.any(norm <= 1e-300):
         raise DegenerateGeometryError("quaternion_to_rotor: q: the zero quaternion is not a rotation")
@@ -248,10 +235,10 @@ def motor_from_points(source, target, weights=None) -> Multivector:
     ybar, B = _spread_checks(Y, w, func, "target", collinear=not planar)
     N = _rotor_matrix((w[:, None] * A).T @ B)
     if planar:
-        sub = _top_eigenvector(N[np.ix_([0, 3], [0, 3])], func, "the rotation is not unique")
+        sub = _top_eigenvector(N[np.ix_([0, 3], [0, 3])], func, "source, target", "the rotation is not unique")
         r = np.array([sub[0], 0.0, 0.0, sub[1]])
     else:
-        r = _top_eigenvector(N, func, "the rotation is not unique (degenerate correspondences)")
+        r = _top_eigenvector(N, func, "source, target", "the rotation is not unique (degenerate correspondences)")
     R = _rotor_from_coeffs(r / np.linalg.norm(r))
     t = ybar - apply_to_points(R, xbar)
     if planar:
@@ -260,9 +247,21 @@ def motor_from_points(source, target, weights=None) -> Multivector:
 
 
 # -------------------------------------------------------------------- lines
+def _sequence(items, func: str, name: str, what: str) -> list:
+    """``items`` (any iterable but a string or a mapping) as a non-empty list."""
+    if isinstance(items, (str, bytes, dict)) or not hasattr(items, "__iter__"):
+        raise checks.fail(func, name, f"expected a sequence or a batch of {what}, got {type(items).__name__}")
+    items = list(items)
+    if not items:
+        raise checks.fail(func, name, f"needs at least one of the {what}")
+    return items
+
+
 def _plucker(lines, func: str, name: str):
     """Unit directions and moments (N, 3) of a sequence (or batch) of lines, Eqs. (2.126)-(2.128)."""
-    items = [lines] if isinstance(lines, Multivector) else list(lines)
+    items = [lines] if isinstance(lines, Multivector) else _sequence(lines, func, name, "CGA lines (line_from_points)")
+    for L in items:
+        multivector(L, func, name, what="a CGA line (line_from_points)")
     try:
         d = np.vstack([np.reshape(line_direction(L), (-1, 3)) for L in items])
         m = np.vstack([np.reshape(line_moment(L), (-1, 3)) for L in items])
@@ -286,6 +285,41 @@ def _line_centre(d, m, w, func: str, name: str):
 def _skew(v):
     """The cross-product matrices [v]x (N, 3, 3) with [v]x u = v x u."""
     return np.cross(v[:, None, :], np.eye(3)).transpose(0, 2, 1)
+
+
+def _refine_lines(M, ds, ms, dt_, mt, w, length_scale: float, max_iterations: int) -> Multivector:
+    """Gauss-Newton on the 6 parameters of ``T(dt) R(omega) M`` for :func:`motor_from_lines` (its step 2)."""
+
+    def residual(M):
+        H = motor_to_matrix(M)
+        u = ds @ H[:3, :3].T
+        mu = ms @ H[:3, :3].T + np.cross(H[:3, 3], u)
+        res = np.concatenate([mu - mt, length_scale * (u - dt_)], axis=1) * np.sqrt(w)[:, None]
+        return res, u, mu
+
+    res, u, mu = residual(M)
+    cost = float(np.sum(res**2))
+    sw = np.sqrt(w)[:, None, None]
+    size = max(length_scale, float(np.sqrt(w @ np.sum(mt**2, axis=1) / w.sum())))  # metres per radian of a step
+    for _ in range(max_iterations):
+        Su = _skew(u)
+        J = np.concatenate(
+            [np.concatenate([-_skew(mu), -Su], axis=2), np.concatenate([-length_scale * Su, 0 * Su], axis=2)], axis=1
+        )
+        step = -np.linalg.lstsq((J * sw).reshape(-1, 6), res.reshape(-1), rcond=None)[0]
+        for _half in range(40):  # halve a step that raises E (beyond its round-off)
+            ang = float(np.linalg.norm(step[:3]))
+            trial = translator(step[3:]) * (rotor(step[:3], ang) if ang > 0 else 1.0) * M
+            res2, u2, mu2 = residual(trial)
+            if float(np.sum(res2**2)) <= cost * (1 + 1e-12):
+                break
+            step = step / 2
+        else:
+            break
+        M, res, u, mu, cost = trial, res2, u2, mu2, float(np.sum(res2**2))
+        if np.linalg.norm(step[:3]) + np.linalg.norm(step[3:]) / size <= 1e-13:
+            break
+    return M
 
 
 def motor_from_lines(
@@ -331,51 +365,26 @@ def motor_from_lines(
     func = "motor_from_lines"
     ds, ms = _plucker(source_lines, func, "source_lines")
     dt_, mt = _plucker(target_lines, func, "target_lines")
-    if ds.shape != dt_.shape:
-        raise InvalidInputError(f"{func}: target_lines: {len(dt_)} lines do not match the {len(ds)} source lines")
+    checks.same_length(func, source_lines=ds, target_lines=dt_)
     w = _weights(weights, len(ds), func)
     if np.count_nonzero(w > 0) < 2:
         raise DegenerateGeometryError(f"{func}: source_lines: needs at least 2 lines with positive weight")
-    if not (np.isfinite(length_scale) and length_scale > 0):
-        raise InvalidInputError(f"{func}: length_scale: must be a positive number, got {length_scale!r}")
+    length_scale = checks.real(length_scale, func, "length_scale", low=0.0, strict_low=True)
+    if not isinstance(max_iterations, numbers.Integral):
+        raise checks.fail(func, "max_iterations", f"must be a whole number (an int), got {max_iterations!r}")
+    max_iterations = checks.integer(max_iterations, func, "max_iterations", low=0)
     cs = _line_centre(ds, ms, w, func, "source_lines")
     ct = _line_centre(dt_, mt, w, func, "target_lines")
     ms, mt = ms - np.cross(cs, ds), mt - np.cross(ct, dt_)  # moments about the centres
-    r = _top_eigenvector(_rotor_matrix((w[:, None] * ds).T @ dt_), func, "the rotation of the directions is not unique")
+    r = _top_eigenvector(
+        _rotor_matrix((w[:, None] * ds).T @ dt_), func, "source_lines", "the rotation of the directions is not unique"
+    )
     R = _rotor_from_coeffs(r / np.linalg.norm(r))
     u, Rm = apply_to_points(R, ds), apply_to_points(R, ms)
     lhs = np.einsum("i,ijk->jk", w, np.eye(3) - u[:, :, None] * u[:, None, :])
     M = translator(np.linalg.solve(lhs, w @ np.cross(u, mt - Rm))) * R
 
-    def residual(M):
-        H = motor_to_matrix(M)
-        u = ds @ H[:3, :3].T
-        mu = ms @ H[:3, :3].T + np.cross(H[:3, 3], u)
-        res = np.concatenate([mu - mt, length_scale * (u - dt_)], axis=1) * np.sqrt(w)[:, None]
-        return res, u, mu
-
-    res, u, mu = residual(M)
-    cost = float(np.sum(res**2))
-    sw = np.sqrt(w)[:, None, None]
-    size = max(length_scale, float(np.sqrt(w @ np.sum(mt**2, axis=1) / w.sum())))  # metres per radian of a step
-    for _ in range(max_iterations):
-        Su = _skew(u)
-        J = np.concatenate(
-            [np.concatenate([-_skew(mu), -Su], axis=2), np.concatenate([-length_scale * Su, 0 * Su], axis=2)], axis=1
-        )
-        step = -np.linalg.lstsq((J * sw).reshape(-1, 6), res.reshape(-1), rcond=None)[0]
-        for _half in range(40):  # halve a step that raises E (beyond its round-off)
-            ang = float(np.linalg.norm(step[:3]))
-            trial = translator(step[3:]) * (rotor(step[:3], ang) if ang > 0 else 1.0) * M
-            res2, u2, mu2 = residual(trial)
-            if float(np.sum(res2**2)) <= cost * (1 + 1e-12):
-                break
-            step = step / 2
-        else:
-            break
-        M, res, u, mu, cost = trial, res2, u2, mu2, float(np.sum(res2**2))
-        if np.linalg.norm(step[:3]) + np.linalg.norm(step[3:]) / size <= 1e-13:
-            break
+    M = _refine_lines(M, ds, ms, dt_, mt, w, length_scale, max_iterations)
     Rf, tf = decompose_motor(M)
     # back to the original origin: x_t - ct = R (x_s - cs) + t  =>  t_total = ct + t - R cs
     return translator(ct + tf - apply_to_points(Rf, cs)) * Rf
@@ -383,18 +392,20 @@ def motor_from_lines(
 
 # ------------------------------------------------------------------ averages
 def _unit_motor(M, func: str, i: int):
-    if not isinstance(M, Multivector):
-        raise InvalidInputError(f"{func}: motors[{i}]: expected a motor (Multivector), got {type(M).__name__}")
-    if M.shape:
-        raise InvalidInputError(f"{func}: motors[{i}]: one motor per entry (pass a batch as the whole argument)")
+    name = f"motors[{i}]"
+    multivector(M, func, name, what="a motor (Multivector of G(4,1))", single=True, numeric=True)
     MM = M * ~M
     s = float(MM.scalar())
     if not np.isfinite(s) or s <= 1e-300:
         raise DegenerateGeometryError(f"{func}: motors[{i}]: M ~M = {s}, not a motor")
     if max((abs(float(v)) for b, v in MM.coeffs.items() if b), default=0.0) > 1e-8 * s:
         raise InvalidInputError(f"{func}: motors[{i}]: M ~M is not a scalar, not a motor")
-    R, t = decompose_motor(M / np.sqrt(s))
-    return _rotor_coeffs(R, func, f"motors[{i}]"), np.asarray(t, dtype=float)
+    M = M / np.sqrt(s)
+    why = why_not_motor(M)
+    if why:
+        raise checks.fail(func, name, why)
+    R, t = decompose_motor(M)
+    return _rotor_coeffs(R, func, name), np.asarray(t, dtype=float)
 
 
 def mean_motor(motors, weights=None) -> Multivector:
@@ -419,14 +430,13 @@ def mean_motor(motors, weights=None) -> Multivector:
     """
     func = "mean_motor"
     if isinstance(motors, Multivector):
+        multivector(motors, func, "motors", what="motors")
         motors = [motors.batch_item(i) for i in range(len(motors))] if motors.shape else [motors]
-    motors = list(motors)
-    if not motors:
-        raise InvalidInputError(f"{func}: motors: needs at least one motor")
-    w = _weights(weights, len(motors), func)
+    motors = _sequence(motors, func, "motors", "motors")
     parts = [_unit_motor(M, func, i) for i, M in enumerate(motors)]
+    w = _weights(weights, len(motors), func)
     r = np.array([p[0] for p in parts])
     t = np.array([p[1] for p in parts])
     K = np.einsum("i,ij,ik->jk", w, r, r)
-    rbar = _top_eigenvector(K, func, "the mean rotation is not unique (rotations spread symmetrically)")
+    rbar = _top_eigenvector(K, func, "motors", "the mean rotation is not unique (rotations spread symmetrically)")
     return translator(w @ t / w.sum()) * _rotor_from_coeffs(rbar / np.linalg.norm(rbar))

@@ -30,10 +30,11 @@ import math
 
 import numpy as np
 
-from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector
+from cga_lessons.algebra import DegenerateGeometryError, GeometryError, InvalidInputError, Multivector
 
 from .blades_classify import classify
-from .model import G41, down, einf
+from .model import down, einf
+from .multivector_checks import finite_multivector, multivector, mv_is_finite
 from .versors import apply, translator
 
 __all__ = ["motor_between"]
@@ -42,20 +43,15 @@ _TOL = 1e-9  # relative size of round-off taken as zero in the checks
 
 
 def _scalar_square(X: Multivector, func: str, name: str) -> float:
-    if not isinstance(X, Multivector) or X.algebra is not G41:
-        raise InvalidInputError(f"{func}: {name}: expected an object of G(4,1) (Multivector), got {type(X).__name__}")
-    if X.shape:
-        raise InvalidInputError(f"{func}: {name}: one object at a time, got a batch of shape {X.shape}")
-    vals = [float(v) for v in X.coeffs.values()] if X.coeffs else []
-    if not vals:
-        raise DegenerateGeometryError(f"{func}: {name}: the zero multivector is no object")
-    if not all(math.isfinite(v) for v in vals):
-        raise InvalidInputError(f"{func}: {name}: coefficients contain NaN or inf")
+    multivector(X, func, name, what="an object of G(4,1) (Multivector)", single=True, numeric=True)
+    vals = [float(v) for v in X.coeffs.values()]
     grades = X.grades_present()
     if len(grades) != 1 or grades[0] in (0, 5):
         raise InvalidInputError(f"{func}: {name}: expected a blade of grade 1 to 4 (an object), got grades {grades}")
     sq = X * X
     size = sum(v * v for v in vals)
+    if not math.isfinite(size) or not mv_is_finite(sq):
+        raise InvalidInputError(f"{func}: {name}: its coefficients are too large: their squares overflow a float")
     other = max((abs(float(v)) for b, v in sq.coeffs.items() if b != 0), default=0.0)
     s = float(sq.scalar())
     if other > 1e-6 * max(size, abs(s)):
@@ -126,6 +122,16 @@ def motor_between(X: Multivector, Y: Multivector) -> Multivector:
         exactly opposite (no unique turn: K has no square root).
     """
     func = "motor_between"
+    try:
+        V = _motor_between(X, Y, func)
+    except GeometryError as exc:
+        if str(exc).startswith(f"{func}:"):
+            raise
+        raise type(exc)(f"{func}: X, Y: {exc}") from None  # a product of the inputs out of float range
+    return finite_multivector(V, func, X=X, Y=Y)
+
+
+def _motor_between(X, Y, func: str) -> Multivector:
     sx, sy = _scalar_square(X, func, "X"), _scalar_square(Y, func, "Y")
     if X.grades_present() != Y.grades_present():
         raise InvalidInputError(f"{func}: Y: grade {Y.grades_present()} differs from X's {X.grades_present()}")

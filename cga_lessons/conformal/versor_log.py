@@ -40,9 +40,11 @@ import numbers
 
 import numpy as np
 
-from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector
+from cga_lessons import checks
+from cga_lessons.algebra import DegenerateGeometryError, GeometryError, InvalidInputError, Multivector
 
 from .model import G41, IE, E, einf, vector
+from .multivector_checks import finite_multivector, input_error, multivector
 from .versors import decompose_motor, rotor, translator
 
 __all__ = ["motor_log", "rotor_log", "screw_parameters", "motor_interpolate", "versor_sqrt", "versor_root", "dilator"]
@@ -59,19 +61,8 @@ _E_BLADES = {b for b in G41.blade_order if b & 0b11000}  # blades with an e+ or 
 def _unit_motor(M, func: str, name: str = "M") -> Multivector:
     """The unit motor M, checked (one numeric motor of G(4,1)) and renormalised; raises otherwise."""
     where = f"{func}: {name}:"
-    if not isinstance(M, Multivector):
-        raise InvalidInputError(f"{where} expected a motor (Multivector), got {type(M).__name__}")
-    if M.algebra is not G41:
-        raise InvalidInputError(f"{where} not a multivector of the conformal algebra G(4,1), but of {M.algebra!r}")
-    vals = {}
-    for b, v in M.coeffs.items():
-        if isinstance(v, np.ndarray):
-            raise InvalidInputError(f"{where} a batch of motors (coefficients of shape {v.shape}); pass one at a time")
-        if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
-            raise InvalidInputError(f"{where} numeric coefficients only, got {type(v).__name__} (no SymPy)")
-        vals[b] = float(v)
-    if not all(math.isfinite(v) for v in vals.values()):
-        raise InvalidInputError(f"{where} coefficients contain NaN or inf")
+    multivector(M, func, name, what="a motor (Multivector of G(4,1))", single=True, numeric=True, nonzero=False)
+    vals = {b: float(v) for b, v in M.coeffs.items()}
     scale = max([1.0] + [abs(v) for v in vals.values()])
     odd = [G41.blade_names[b] for b, v in vals.items() if G41.grades[b] % 2 and abs(v) > _TOL * scale]
     if odd:
@@ -259,18 +250,10 @@ def rotor_log(R: Multivector) -> Multivector:
 
 
 def _check_fraction(s, func: str):
-    """s as a float or a 1-D float array (finite); raises otherwise."""
-    if isinstance(s, (bool, np.bool_)) or isinstance(s, Multivector):
-        raise InvalidInputError(f"{func}: s: expected a real number or a 1-D array of them, got {type(s).__name__}")
-    try:
-        arr = np.asarray(s, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise InvalidInputError(f"{func}: s: expected a real number or a 1-D array of them, got {s!r}") from exc
-    if np.iscomplexobj(np.asarray(s)) or arr.ndim > 1 or arr.size == 0:
-        raise InvalidInputError(f"{func}: s: expected a real number or a non-empty 1-D array, got shape {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise InvalidInputError(f"{func}: s: contains NaN or inf")
-    return arr
+    """s as a float or a non-empty 1-D float array (finite), by :mod:`cga_lessons.checks`."""
+    if isinstance(s, (list, tuple, np.ndarray)) and np.ndim(s):
+        return checks.array(s, func, "s", (None,), at_least=1)
+    return np.asarray(checks.real(s, func, "s"))
 
 
 def motor_interpolate(M0: Multivector, M1: Multivector, s, *, shortest: bool = True) -> Multivector:
@@ -310,14 +293,15 @@ def motor_interpolate(M0: Multivector, M1: Multivector, s, *, shortest: bool = T
     M0 = _unit_motor(M0, "motor_interpolate", "M0")
     M1 = _unit_motor(M1, "motor_interpolate", "M1")
     frac = _check_fraction(s, "motor_interpolate")
+    shortest = checks.flag(shortest, "motor_interpolate", "shortest")
     half, n, t, sn, _ = _screw(M1 * ~M0, exact=not shortest)
     return _power(half, n, t, sn, frac if frac.ndim else float(frac), "motor_interpolate: M1 ~M0:") * M0
 
 
 def _check_order(n, func: str) -> int:
-    if isinstance(n, (bool, np.bool_)) or not isinstance(n, numbers.Integral) or n < 1:
-        raise InvalidInputError(f"{func}: n: expected an integer >= 1, got {n!r}")
-    return int(n)
+    if not isinstance(n, numbers.Integral):  # an int, not a float that happens to be whole
+        raise checks.fail(func, "n", f"expected an integer >= 1, got {n!r}")
+    return checks.integer(n, func, "n", low=1)
 
 
 def versor_root(M: Multivector, n: int) -> Multivector:
@@ -414,22 +398,16 @@ def dilator(scale, center=None) -> Multivector:
     >>> cga.down(cga.apply(dilator(3.0, [1.0, 1.0, 1.0]), cga.up([2.0, 1.0, 1.0])))
     array([4., 1., 1.])
     """
-    if isinstance(scale, (bool, np.bool_)) or not isinstance(scale, (numbers.Real, np.floating, np.integer)):
-        raise InvalidInputError(f"dilator: scale: expected a real number, got {type(scale).__name__}")
-    scale = float(scale)
-    if not math.isfinite(scale) or scale <= 0:
-        raise InvalidInputError(f"dilator: scale: must be finite and > 0, got {scale!r}")
+    scale = checks.real(scale, "dilator", "scale", low=0.0, strict_low=True)
     g = 0.5 * math.log(scale)
     D = E * (-math.sinh(g)) + math.cosh(g)
     if center is None:
         return D
-    try:
-        c = np.asarray(center, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise InvalidInputError(f"dilator: center: expected 3 numbers, got {center!r}") from exc
-    if c.shape != (3,):
-        raise InvalidInputError(f"dilator: center: expected shape (3,), got {c.shape}")
-    if not np.all(np.isfinite(c)):
-        raise InvalidInputError("dilator: center: contains NaN or inf")
+    c = checks.array(center, "dilator", "center", (3,))
     T = translator(c)
-    return T * D * ~T
+    try:
+        return finite_multivector(T * D * ~T, "dilator", scale=scale, center=c)
+    except GeometryError as exc:  # a product refused to overflow
+        if str(exc).startswith("dilator:"):
+            raise
+        raise input_error("dilator", {"scale": scale, "center": c}, exc) from None

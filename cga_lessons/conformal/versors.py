@@ -25,30 +25,31 @@ motor's matrices are built in closed form from its rotation and translation
 (:meth:`~cga_lessons.algebra.Algebra.rigid_motion`), so that points far from
 the origin keep their precision (see :mod:`cga_lessons.algebra.versor_matrices`).
 
-The rigid-motion conversions (:func:`decompose_motor`, :func:`rotor_angle_axis`,
-:func:`motor_to_matrix`, :func:`matrix_to_motor`) live in
-:mod:`cga_lessons.conformal.versors_rigid` and are re-exported here.
+The constructors (:func:`translator`, :func:`rotor`, :func:`rotor_about_line`,
+:func:`motor`, :func:`screw`) live in :mod:`cga_lessons.conformal.versors_build`, the
+rigid-motion conversions (:func:`decompose_motor`, :func:`rotor_angle_axis`,
+:func:`motor_to_matrix`, :func:`matrix_to_motor`) in
+:mod:`cga_lessons.conformal.versors_rigid`; both are re-exported here.
 """
 
 from __future__ import annotations
 
 import math
-import numbers
 
 import numpy as np
 
+from cga_lessons import checks
 from cga_lessons.algebra import (
-    DegenerateGeometryError,
-    InvalidInputError,
+    GeometryError,
     Multivector,
     any_sympy,
     is_real_batch,
     is_real_single,
-    is_sympy,
 )
-from cga_lessons.algebra import exp as _exp
 
-from .model import G41, IE, E, check_points, down, einf, exact_constants, up, vector
+from .model import COORD_LIMIT, G41, check_points, down, einf, up
+from .multivector_checks import input_error, multivector, mv_is_finite
+from .versors_build import motor, rotor, rotor_about_line, screw, translator
 from .versors_rigid import decompose_motor, matrix_to_motor, motor_to_matrix, rotor_angle_axis
 
 __all__ = [
@@ -69,15 +70,11 @@ __all__ = [
 ]
 
 
-def _consts(X: Multivector):
-    return exact_constants() if any_sympy(X) else {"einf": einf, "E": E, "IE": IE}
-
-
 # --------------------------------------------------------------- application
-def _parity(V: Multivector) -> int:
-    gs = {G41.grades[b] % 2 for b in V._c}
+def _parity(V: Multivector, func: str = "apply", name: str = "V") -> int:
+    gs = {V.algebra.grades[b] % 2 for b in V._c}
     if len(gs) != 1:
-        raise InvalidInputError("apply: a versor is either even or odd (2.82); got mixed parity")
+        raise checks.fail(func, name, "a versor is either even or odd (2.82); got mixed parity")
     return gs.pop()
 
 
@@ -91,24 +88,39 @@ def versor_matrix(V: Multivector, grade: int) -> np.ndarray:
     (:meth:`~cga_lessons.algebra.Algebra.versor_matrices`); other numeric
     multivectors (V ~V not a scalar) use one sandwich per basis blade.
     """
-    if not isinstance(grade, (int, np.integer)) or not 0 <= grade <= G41.n:
-        raise InvalidInputError(f"versor_matrix: grade must be an integer in 0..{G41.n}, got {grade!r}")
-    mats = G41.versor_matrices(V, (int(grade),))
+    func = "versor_matrix"
+    multivector(V, func, "V", what="a versor (Multivector of G(4,1))", single=True, numeric=True)
+    grade = checks.integer(grade, func, "grade", low=0, high=G41.n)
+    mats = G41.versor_matrices(V, (grade,))
     if mats is not None:
-        return mats[int(grade)].copy()
-    blades = G41.grade_blades[int(grade)]
-    Vinv = V.inv()
-    cols = []
-    for b in blades:
-        img = _apply_sandwich(V, Multivector(G41, {b: 1.0}), Vinv)
-        cols.append([float(img._c.get(r, 0.0)) for r in blades])
-    return np.array(cols).T
+        out = mats[grade].copy()
+    else:
+        blades = G41.grade_blades[grade]
+        _parity(V, func)
+        Vinv = _inverse(V, func, "V")
+        cols = []
+        for b in blades:
+            img = _apply_sandwich(V, Multivector(G41, {b: 1.0}), Vinv, func)
+            cols.append([float(img._c.get(r, 0.0)) for r in blades])
+        out = np.array(cols).T
+    if not np.all(np.isfinite(out)):
+        raise checks.fail(func, "V", "its matrix overflows a float (the coefficients' magnitudes are too large)")
+    return out
 
 
-def _apply_sandwich(V: Multivector, X: Multivector, Vinv: Multivector | None = None) -> Multivector:
-    odd = _parity(V)
+def _inverse(V: Multivector, func: str, name: str) -> Multivector:
+    try:
+        return V.inv()
+    except GeometryError as exc:
+        raise checks.degenerate(func, name, f"has no inverse, so it is no versor ({exc})") from None
+
+
+def _apply_sandwich(
+    V: Multivector, X: Multivector, Vinv: Multivector | None = None, func: str = "apply", name: str = "V"
+) -> Multivector:
+    odd = _parity(V, func, name)
     Xi = X.involute() if odd else X
-    Vinv = V.inv() if Vinv is None else Vinv
+    Vinv = _inverse(V, func, name) if Vinv is None else Vinv
     # A versor preserves grades (2.82); projecting drops round-off in others.
     return (V * Xi * Vinv).grade(*X.grades_present())
 
@@ -123,16 +135,51 @@ def apply(V: Multivector, X: Multivector) -> Multivector:
     grades only, as the sandwich has up to round-off.  SymPy coefficients,
     batches of versors and general (non-versor) multivectors use the plain
     sandwich.
+
+    Raises :class:`~cga_lessons.algebra.InvalidInputError` naming V or X
+    (``"apply: X: contains NaN or inf"``) for what is not a multivector, NaN
+    or inf coefficients, mixed parity, multivectors of two algebras, or a
+    result that overflows, and :class:`~cga_lessons.algebra.DegenerateGeometryError`
+    for a zero or non-invertible V (a point).  A batch X is taken as checked
+    where it was made (``up``, the entity constructors): scanning its
+    coefficients for NaN would cost about 15 % of the call.
     """
-    if not isinstance(V, Multivector) or not isinstance(X, Multivector):
-        raise InvalidInputError("apply: V and X must be Multivectors")
+    return _apply(V, X, "apply", "V", "X")
+
+
+def _apply(V, X, func: str, vname: str, xname: str) -> Multivector:
+    """:func:`apply` with its checks in the words of the public function ``func`` (arguments ``vname``,
+    ``xname``): V and X multivectors of one algebra, V non-zero and invertible of one parity, the result finite
+    (a NaN or inf in V or X, or an overflow, is refused; the check of a finite result is one sum)."""
+    if type(V) is not Multivector or type(X) is not Multivector:
+        multivector(V, func, vname, what="a versor (Multivector)", algebra=None)
+        multivector(X, func, xname, what="a Multivector", algebra=None, nonzero=False)
     if not V._c:
-        raise DegenerateGeometryError("apply: the zero multivector is not a versor")
-    if X._c and V.algebra is X.algebra and (is_real_single(X) or is_real_batch(X)):
-        mats = V.algebra.versor_matrices(V, X.grades_present())
-        if mats is not None:
-            return V.algebra.apply_matrices(mats, X)
-    return _apply_sandwich(V, X)
+        raise checks.degenerate(func, vname, "the zero multivector is not a versor")
+    if X.algebra is not V.algebra:
+        raise checks.fail(func, xname, f"a multivector of {X.algebra!r}, V one of {V.algebra!r}")
+    Y = None
+    try:
+        if X._c and (is_real_single(X) or is_real_batch(X)):
+            mats = V.algebra.versor_matrices(V, X.grades_present())
+            if mats is not None:
+                Y = V.algebra.apply_matrices(mats, X)
+        if Y is None:  # the sandwich (SymPy, batches of versors, non-versors, and what the matrices refused)
+            multivector(V, func, vname, what="a versor (Multivector)", algebra=None)
+            multivector(X, func, xname, what="a Multivector", algebra=None, nonzero=False)
+            Y = _apply_sandwich(V, X, None, func, vname)
+    except GeometryError as exc:  # an operation of the algebra refused a NaN, inf or overflow
+        if str(exc).startswith(f"{func}:"):
+            raise
+        raise input_error(func, {vname: V, xname: X}, exc) from None
+    try:  # mv_is_finite inlined for one entity (NaN and inf propagate through the sum)
+        if math.isfinite(math.fsum(Y._c.values())):
+            return Y
+    except (TypeError, ValueError, OverflowError):  # arrays (a batch), SymPy, inf - inf, or terms near 1e308
+        pass
+    if mv_is_finite(Y, batches=False):  # a batch of entities is checked where it is made (up, the constructors)
+        return Y
+    raise input_error(func, {vname: V, xname: X})
 
 
 def apply_to_points(V: Multivector, x) -> np.ndarray:
@@ -146,24 +193,52 @@ def apply_to_points(V: Multivector, x) -> np.ndarray:
     versors (inversions, dilations) and SymPy input go through the conformal
     point and :func:`~cga_lessons.conformal.model.down`.
     """
-    arr, sym = check_points(x, "apply_to_points")
-    if not isinstance(V, Multivector):
-        raise InvalidInputError(f"apply_to_points: V: expected a versor (Multivector), got {type(V).__name__}")
+    func = "apply_to_points"
+    arr, sym = check_points(x, func)
+    if type(V) is not Multivector:
+        multivector(V, func, "V", what="a versor (Multivector of G(4,1))")
     if sym or any_sympy(V):
-        return down(apply(V, up(arr)))
-    affine = G41.rigid_motion(V) if V.algebra is G41 else None
+        return down(_apply(V, up(arr), func, "V", "x"))
+    try:
+        affine = G41.rigid_motion(V) if V.algebra is G41 else None
+    except GeometryError:  # NaN or inf coefficients, refused by the algebra: say it in this function's words
+        affine = None
     if affine is None:
+        multivector(V, func, "V", what="a versor (Multivector of G(4,1))")
         affine = _rigid_affine(V)
     if affine is None:
-        return down(apply(V, up(arr)))
+        return _points_through_conformal(V, arr, func)
     R, t = affine
     if arr.ndim == 1:
-        return R @ arr + t
+        y = R @ arr + t
+        try:
+            ok = math.isfinite(math.fsum(y.tolist()))
+        except (OverflowError, ValueError):  # coordinates near 1e308, or inf - inf
+            ok = False
+        if not ok and not np.all(np.isfinite(y)):
+            raise checks.fail(func, "x", "the moved point overflows a float (its coordinates are too large)")
+        return y
     # (R x^T + t)^T: the sum runs along the long axis (adding t row by row to an (N, 3) array is several
     # times slower than the product itself); the result is the transposed view of a (3, N) block.
-    out = R @ arr.T
-    out += t[:, None]
+    try:
+        with np.errstate(over="raise"):
+            out = R @ arr.T
+            out += t[:, None]
+    except FloatingPointError:
+        raise checks.fail(func, "x", "the moved points overflow a float (their coordinates are too large)") from None
     return out.T
+
+
+def _points_through_conformal(V: Multivector, arr: np.ndarray, func: str) -> np.ndarray:
+    """``down(apply(V, up(x)))`` for a versor that is no isometry (an inversion, a dilation), errors named."""
+    big = float(np.max(np.abs(arr))) if arr.size else 0.0
+    if big > COORD_LIMIT:
+        raise checks.fail(func, "x", f"coordinates up to {big:.3g}: beyond {COORD_LIMIT:.0e} up(x) overflows")
+    Y = _apply(V, up(arr), func, "V", "x")
+    try:
+        return down(Y)
+    except GeometryError as exc:
+        raise checks.degenerate(func, "x", f"V sends a point to infinity or out of range ({exc})") from None
 
 
 _AFFINE_CACHE: dict = {}
@@ -202,187 +277,6 @@ def _rigid_affine(V: Multivector):
     return hit
 
 
-# ------------------------------------------------------------- constructors
-def _real(x, func: str, name: str, *, array: bool = False):
-    """A finite real angle or distance: a float (a float array when ``array``), or a SymPy expression.
-
-    Refuses bools, strings, None, complex numbers, NaN and inf (a SymPy
-    expression known to be non-real or infinite too) with "func: name: problem".
-    """
-    if is_sympy(x):
-        if x.is_real is False or x.is_finite is False or x.has(_sympy_nan()):
-            raise InvalidInputError(f"{func}: {name}: must be a finite real number, got {_short(x)}")
-        return x
-    if isinstance(x, (bool, np.bool_)):
-        raise InvalidInputError(f"{func}: {name}: must be a real number, got the bool {x!r}")
-    if isinstance(x, np.ndarray) and x.ndim == 0 and x.dtype.kind in "iuf":
-        x = x[()]  # a 0-d array: its number
-    if isinstance(x, numbers.Real):
-        try:
-            v = float(x)
-        except OverflowError:
-            v = math.inf
-        if not math.isfinite(v):
-            raise InvalidInputError(f"{func}: {name}: is NaN or inf ({_short(x)})")
-        return v
-    if array and isinstance(x, (np.ndarray, list, tuple)):
-        a = np.asarray(x) if not isinstance(x, np.ndarray) else x
-        if a.dtype.kind in "iuf" and a.ndim:
-            a = a.astype(float)
-            if not np.all(np.isfinite(a)):
-                raise InvalidInputError(f"{func}: {name}: contains NaN or inf")
-            return a
-    what = "a real number or an array of them" if array else "a real number"
-    raise InvalidInputError(f"{func}: {name}: must be {what}, got {_short(x)} ({type(x).__name__})")
-
-
-def _short(x) -> str:
-    r = repr(x)
-    return r if len(r) <= 40 else r[:37] + "..."
-
-
-def _sympy_nan():
-    import sympy
-
-    return sympy.nan
-
-
-def _exact(a):
-    """A Python/NumPy number as an exact SymPy number: integers stay integers, other floats become the
-    rational of their shortest decimal form (0.6 -> 3/5)."""
-    import sympy
-
-    if is_sympy(a):
-        return a
-    a = float(a)
-    return sympy.Integer(int(a)) if a.is_integer() else sympy.nsimplify(a, rational=True)
-
-
-def _translator(t, func: str, name: str) -> Multivector:
-    tv = vector(t, func, name)
-    c = _consts(tv)
-    half = 0.5 if not any_sympy(tv) else exact_constants()["eo"]["e-"]  # 1/2, exact when symbolic
-    return (c["einf"] * tv) * half + 1
-
-
-def translator(t) -> Multivector:
-    """Translator T = 1 + e t / 2 = exp(e t / 2), Eq. (2.100); moves by +t.
-
-    ``t`` has shape (3,) or (N, 3) (a batch of translators) or is symbolic.
-    """
-    return _translator(t, "translator", "t")
-
-
-def _unit_axis(axis, func: str, name: str = "axis", exact: bool = False):
-    """Unit axis (numeric, or SymPy when the axis is symbolic or ``exact``), from ``func``'s argument ``name``.
-
-    A numeric axis is scaled by its largest component before its norm is
-    taken, so that neither 1e200 nor 1e-200 over- or underflows.
-    """
-    arr, sym = check_points(axis, func, name)
-    if sym or exact:
-        import sympy
-
-        if not sym:
-            if arr.ndim != 1:
-                raise InvalidInputError(f"{func}: {name}: one axis (shape (3,)) with a SymPy angle, got {arr.shape}")
-            arr = [_exact(a) for a in arr]
-        n = sympy.sqrt(sum(a**2 for a in arr))
-        if n == 0:
-            raise DegenerateGeometryError(f"{func}: {name}: the rotation axis is the zero vector")
-        return [sympy.simplify(a / n) for a in arr], True
-    big = np.max(np.abs(arr), axis=-1, keepdims=True)
-    if np.any(big == 0):
-        raise DegenerateGeometryError(f"{func}: {name}: the rotation axis is the zero vector")
-    arr = arr / big
-    return arr / np.linalg.norm(arr, axis=-1, keepdims=True), False
-
-
-def _rotor(axis, angle, func: str, axis_name: str) -> Multivector:
-    angle = _real(angle, func, "angle", array=True)
-    exact = is_sympy(angle)
-    n, sym = _unit_axis(axis, func, axis_name, exact=exact)
-    if sym:
-        import sympy
-
-        l = vector(n) * exact_constants()["IE"]
-        return l * (-sympy.sin(angle / 2)) + sympy.cos(angle / 2)
-    l = vector(n) * IE
-    return l * (-np.sin(angle / 2)) + np.cos(angle / 2)
-
-
-def rotor(axis, angle) -> Multivector:
-    """Rotor R = exp(-angle/2 l) = cos(angle/2) - sin(angle/2) l, Eqs. (2.94)-(2.96).
-
-    ``l = n I_E`` is the unit bivector of the plane orthogonal to the axis n
-    (so ``l = n1 e23 + n2 e31 + n3 e12``, 2.96).  Turns by +angle about n
-    (right-hand rule).  ``axis`` (3,) or (N, 3); ``angle`` scalar or (N,).
-    A SymPy angle gives an exact rotor, a numeric axis then taken as exact
-    (``rotor([0, 0, 1], pi/2) = sqrt(2)/2 - sqrt(2)/2 e12``).
-    """
-    return _rotor(axis, angle, "rotor", "axis")
-
-
-def rotor_about_line(L: Multivector, angle) -> Multivector:
-    """Rotation about an arbitrary line, R_L = exp(-angle/2 L), Eqs. (2.106)-(2.109).
-
-    ``L`` is a line in dual form (grade 3, ``line_from_points(a, b)``) or
-    standard form (grade 2); it is normalised (2.126).  The rotation is by
-    +angle about the line's direction (from a to b), right-hand rule.
-    Equal to ``T R ~T`` of (2.104) with T moving the origin onto the line.
-    """
-    from .entities import as_dual_line, normalize_line, standard_form
-
-    angle = _real(angle, "rotor_about_line", "angle", array=True)
-    Ln = normalize_line(as_dual_line(L, "rotor_about_line"))
-    Lstd = standard_form(Ln)
-    # The standard form L = L* Ic of the unit line is l + e (t . l) of (2.108).
-    B = Lstd * (-angle / 2)
-    return _exp(B)
-
-
-def motor(rotation_axis, angle, translation) -> Multivector:
-    """Motor M = T R, Eq. (2.102): rotation by +angle about the axis through
-    the origin (right-hand rule), then translation.
-    """
-    return _translator(translation, "motor", "translation") * _rotor(rotation_axis, angle, "motor", "rotation_axis")
-
-
-def screw(axis, point, angle, distance) -> Multivector:
-    """Screw motion M = exp(-angle/2 (l + e m)), Eq. (2.110).
-
-    Rotation by +angle about the line through ``point`` with direction
-    ``axis``, combined with a translation ``distance`` along the axis; built
-    from the exponential of the screw bivector with
-    ``m = t . l - (distance/angle) r`` (2.110).  Equal to ``T_dr R_L``.
-    ``angle`` must be non-zero (a pure translation is :func:`translator`).
-    With a SymPy angle or distance the motor is built as that product,
-    ``T_dr T_p R ~T_p`` (2.104, 2.110), in closed form: exact and fast (the
-    exponential of a symbolic screw bivector needs SymPy to simplify square
-    roots of its square, which takes minutes).
-    """
-    func = "screw"
-    angle = _real(angle, func, "angle")
-    distance = _real(distance, func, "distance")
-    pt, psym = check_points(point, func, "point")
-    exact = is_sympy(angle) or is_sympy(distance) or psym
-    if angle == 0:
-        raise DegenerateGeometryError("screw: angle: is 0; a pure slide is a translator")
-    n, sym = _unit_axis(axis, func, "axis", exact=exact)
-    if sym:  # T_dr T_p R ~T_p, exact
-        if not psym:
-            if pt.ndim != 1:
-                raise InvalidInputError(f"{func}: point: one point (shape (3,)) when symbolic, got {pt.shape}")
-            pt = [_exact(a) for a in pt]
-        Tp = _translator(pt, func, "point")
-        Td = _translator([a * distance for a in n], func, "distance")
-        return Td * Tp * _rotor(n, angle, func, "axis") * ~Tp
-    r = vector(n)
-    l = r * IE
-    m = (vector(pt, func, "point") | l) - r * (distance / angle)  # (2.110)
-    return _exp((l + einf * m) * (-angle / 2))
-
-
 def reflect_in_plane(P: Multivector, X: Multivector) -> Multivector:
     """Reflection of any entity X in a plane P = n + delta e, Eqs. (2.84), (2.89)-(2.91).
 
@@ -391,11 +285,12 @@ def reflect_in_plane(P: Multivector, X: Multivector) -> Multivector:
     """
     from .entities import grade_of, standard_form
 
-    g = grade_of(P, "reflect_in_plane", (1, 4))
+    func = "reflect_in_plane"
+    g = grade_of(multivector(P, func, "P", what="a plane (Multivector of G(4,1))"), func, (1, 4), "P")
     Pv = P if g == 1 else standard_form(P)
     if not any_sympy(Pv) and np.max(np.abs(np.asarray((Pv | einf).scalar(), dtype=float))) > 1e-12:
-        raise InvalidInputError("reflect_in_plane: P . e != 0, P is a sphere (use invert_in_sphere)")
-    return apply(Pv, X)
+        raise checks.fail(func, "P", "P . e != 0: a sphere (or a point), not a plane (use invert_in_sphere)")
+    return _apply(Pv, X, func, "P", "X")
 
 
 def invert_in_sphere(S: Multivector, X: Multivector) -> Multivector:
@@ -407,6 +302,7 @@ def invert_in_sphere(S: Multivector, X: Multivector) -> Multivector:
     """
     from .entities import grade_of, standard_form
 
-    g = grade_of(S, "invert_in_sphere", (1, 4))
+    func = "invert_in_sphere"
+    g = grade_of(multivector(S, func, "S", what="a sphere (Multivector of G(4,1))"), func, (1, 4), "S")
     s = S if g == 1 else standard_form(S)
-    return apply(s, X)
+    return _apply(s, X, func, "S", "X")

@@ -23,9 +23,11 @@ import math
 
 import numpy as np
 
+from cga_lessons import checks
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector, motor_tolerance
 
 from .model import G41, IE, E, euclidean, exact_constants
+from .multivector_checks import multivector
 
 __all__ = [
     "decompose_motor",
@@ -49,17 +51,18 @@ def _is_symbolic(M: Multivector) -> bool:
 
 
 def _check_mv(M, func: str, name: str) -> Multivector:
-    if not isinstance(M, Multivector):
-        raise InvalidInputError(f"{func}: {name}: expected a Multivector, got {type(M).__name__}")
-    if M.algebra is not G41:
-        raise InvalidInputError(f"{func}: {name}: expected a multivector of the conformal algebra G41")
-    if not M.coeffs:
-        raise DegenerateGeometryError(f"{func}: {name}: the zero multivector is not a versor")
-    return M
+    return multivector(M, func, name, what="a motor (Multivector of G(4,1))")
 
 
 def why_not_motor(M: Multivector) -> str:
-    """Why a numeric M (single or batch) is not a motor, or '' when it is one (the test of ``rigid_motion``)."""
+    """Why a numeric M (single or batch) is not a motor, or '' when it is one (the test of ``rigid_motion``).
+
+    Raises :class:`~cga_lessons.algebra.InvalidInputError` when M is no multivector of G(4,1), or has SymPy
+    coefficients (the test is numeric).
+    """
+    M = multivector(M, "why_not_motor", "M", numeric=True, nonzero=False, finite=False)
+    if not M.coeffs:
+        return "is the zero multivector (R ~R = 0)"
     odd = [G41.blade_names[b] for b in M.coeffs if G41.grades[b] % 2]
     if odd:
         return f"not an even versor (a rotor or motor is even, 2.94, 2.102); it has odd blades {odd}"
@@ -240,27 +243,14 @@ def matrix_to_motor(H) -> Multivector:
     for ``q = (w, x, y, z)`` (2.96), with w >= 0; t enters through
     ``T = 1 + e t / 2`` (2.100), the product written out.
 
-    Raises :class:`InvalidInputError` unless H is a finite 4x4 real matrix
+    Raises :class:`InvalidInputError` unless H is a finite 4x4 real matrix (shape (4, 4))
     whose last row is (0, 0, 0, 1) and whose block R is a rotation
     (``max |R^T R - I|`` and the last row within ``RIGID_MATRIX_TOLERANCE``,
     det R > 0): a reflection, a scaling or a shear has no motor.
     """
     func = "matrix_to_motor"
     tol = RIGID_MATRIX_TOLERANCE
-    try:
-        arr = np.asarray(H)
-    except (TypeError, ValueError) as exc:  # pragma: no cover (ragged input)
-        raise InvalidInputError(f"{func}: H: must be a 4x4 matrix of real numbers, got {H!r}") from exc
-    if arr.dtype.kind not in "iuf" and arr.dtype != object:
-        raise InvalidInputError(f"{func}: H: must be a 4x4 matrix of real numbers, got dtype {arr.dtype}")
-    try:
-        arr = arr.astype(float)
-    except (TypeError, ValueError) as exc:
-        raise InvalidInputError(f"{func}: H: must be a 4x4 matrix of real numbers") from exc
-    if arr.shape != (4, 4):
-        raise InvalidInputError(f"{func}: H: must be a 4x4 matrix, got shape {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise InvalidInputError(f"{func}: H: contains NaN or inf")
+    arr = checks.array(H, func, "H", (4, 4))
     bottom = float(np.max(np.abs(arr[3] - [0.0, 0.0, 0.0, 1.0])))
     if bottom > tol:
         raise InvalidInputError(f"{func}: H: the last row must be (0, 0, 0, 1), got {arr[3].tolist()}")

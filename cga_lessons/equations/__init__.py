@@ -6,13 +6,12 @@ in ``__all__``; its modules:
 * :mod:`~cga_lessons.equations.core`: The equation registry: every numbered equation of the thesis -> code and test
 * :mod:`~cga_lessons.equations.course`: The course's chapters and how they depend on each other: one table for the
   README and notebook 00
+* :mod:`~cga_lessons.equations.readme`: The registry rendered: the README's equation table, the terminal's table and
+  the command ``python -m cga_lessons.equations``
 * :mod:`~cga_lessons.equations.registry`: one module of entries per part of the thesis
 """
 
 from .core import (
-    PARTS,
-    README_END,
-    README_START,
     REGISTRY,
     STATUSES,
     THESIS_LABELS,
@@ -20,15 +19,20 @@ from .core import (
     check_registry,
     coverage,
     coverage_summary,
+    table,
+)
+from .course import arrows, dependency_table
+from .readme import (
+    PARTS,
+    README_END,
+    README_START,
     main,
     ordered_entries,
     readme_is_current,
     readme_section,
-    table,
     text_table,
     write_readme,
 )
-from .course import arrows, dependency_table
 
 __all__ = [
     "Entry",

@@ -2,6 +2,6 @@
 
 import sys
 
-from cga_lessons.equations.core import main
+from cga_lessons.equations.readme import main
 
 sys.exit(main())

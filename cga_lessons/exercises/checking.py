@@ -47,6 +47,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from cga_lessons import checks
 from cga_lessons.algebra import InvalidInputError
 
 from .compare import (
@@ -112,10 +113,25 @@ class Exercise:
     given: Callable[[], Any] | None = field(default=None, repr=False)
 
     def __post_init__(self):
-        if self.kind not in KINDS:
-            raise InvalidInputError(f"Exercise {self.id}: kind {self.kind!r} is not one of {KINDS}")
-        if not re.fullmatch(r"[a-zA-Z]+[0-9A-Z]*\.[0-9]+", self.id):
-            raise InvalidInputError(f"Exercise {self.id!r}: an id is a part and a number, like 'ch2.4'")
+        _check_fields("Exercise", **{f: getattr(self, f) for f in self.__dataclass_fields__})
+
+
+def _check_fields(func, *, id, title, notebook, kind, expects, checker, equations, given):
+    """The fields of an exercise, checked (for :class:`Exercise` and :func:`exercise`)."""
+    checks.text(id, func, "id")
+    if not re.fullmatch(r"[a-zA-Z]+[0-9A-Z]*\.[0-9]+", id):
+        raise checks.fail(func, "id", f"{id!r}: an id is a part and a number, like 'ch2.4'")
+    for name, value in (("title", title), ("notebook", notebook), ("expects", expects)):
+        checks.text(value, func, name)
+    checks.choice(kind, func, "kind", KINDS)
+    if not callable(checker):
+        raise checks.fail(func, "checker", f"expected a function of the answer, got {checker!r:.40}")
+    if isinstance(equations, (str, bytes)) or not isinstance(equations, (tuple, list)):
+        raise checks.fail(func, "equations", f"expected a tuple of equation labels, got {equations!r:.40}")
+    for label in equations:
+        checks.text(label, func, "equations")
+    if given is not None and not callable(given):
+        raise checks.fail(func, "given", f"expected None or a function making the input, got {given!r:.40}")
 
 
 @dataclass(frozen=True)
@@ -125,6 +141,11 @@ class CheckResult:
     exercise_id: str
     verdict: str
     message: str
+
+    def __post_init__(self):
+        checks.text(self.exercise_id, "CheckResult", "exercise_id")
+        checks.choice(self.verdict, "CheckResult", "verdict", VERDICTS)
+        checks.text(self.message, "CheckResult", "message")
 
     def __bool__(self):
         return self.verdict == "right"
@@ -147,10 +168,13 @@ _LOADED = False
 def exercise(id: str, *, title: str, notebook: str, kind: str, expects: str, equations=(), given=None):
     """Decorator registering ``checker(answer)`` as exercise ``id`` (used by the chapters' modules of this package)."""
 
+    fields = dict(id=id, title=title, notebook=notebook, kind=kind, expects=expects, equations=equations, given=given)
+    _check_fields("exercise", checker=print, **fields)  # the checker itself comes with the decoration
+
     def register(checker):
         ex = Exercise(id, title, notebook, kind, expects, checker, tuple(equations), given)
         if id in _REGISTRY and _REGISTRY[id].checker.__qualname__ != checker.__qualname__:
-            raise InvalidInputError(f"exercise {id!r} registered twice ({_REGISTRY[id].checker.__module__})")
+            raise checks.fail("exercise", "id", f"{id!r} registered twice ({_REGISTRY[id].checker.__module__})")
         _REGISTRY[id] = ex
         return checker
 
@@ -163,7 +187,7 @@ def _load():
         return
     here = Path(__file__).resolve().parent  # every module of this package but the machinery holds exercises
     for info in sorted(pkgutil.iter_modules([str(here)]), key=lambda m: m.name):
-        if info.name not in ("checking", "compare"):
+        if info.name not in ("answers", "checking", "compare"):
             importlib.import_module(f"{__package__}.{info.name}")
     _LOADED = True
 
@@ -173,49 +197,70 @@ def _sort_key(ex_id: str):
 
 
 def list_exercises(part: str | None = None) -> list[Exercise]:
-    """Every registered exercise (or those whose id starts with ``part``, e.g. ``"ch2"``), in order."""
+    """Every registered exercise (or those whose id starts with ``part``, e.g. ``"ch2"``), in order.
+
+    A ``part`` no exercise belongs to is refused (the message lists the parts).
+    """
     _load()
     ids = sorted(_REGISTRY, key=_sort_key)
-    if part:
+    if part is not None:
+        checks.text(part, "list_exercises", "part")
         ids = [i for i in ids if i.split(".")[0] == part or i.startswith(part)]
+        if not ids:
+            parts = sorted({i.split(".")[0] for i in _REGISTRY}, key=_sort_key)
+            raise checks.fail("list_exercises", "part", f"no exercise belongs to {part!r}; the parts are {parts}")
     return [_REGISTRY[i] for i in ids]
 
 
 def get(exercise_id: str) -> Exercise:
     """The exercise with this id; raises :class:`UnknownExerciseError` naming the close ones."""
+    return _get(exercise_id, "get")
+
+
+def _get(exercise_id: str, func: str) -> Exercise:
+    """:func:`get` for the public function ``func`` (the name its errors carry)."""
     _load()
     if not isinstance(exercise_id, str):
-        raise UnknownExerciseError(f"check: the exercise id must be a string like 'ch2.4', got {exercise_id!r}")
+        raise UnknownExerciseError(
+            f"{func}: exercise_id: the exercise id must be a string like 'ch2.4', got {exercise_id!r}"
+        )
     key = exercise_id.strip()
     if key in _REGISTRY:
         return _REGISTRY[key]
     close = difflib.get_close_matches(key, list(_REGISTRY), n=3, cutoff=0.5)
     hint = f" Did you mean {', '.join(repr(c) for c in close)}?" if close else ""
     raise UnknownExerciseError(
-        f"check: there is no exercise {exercise_id!r}.{hint} "
+        f"{func}: exercise_id: there is no exercise {exercise_id!r}.{hint} "
         f"exercises.list_exercises() lists all {len(_REGISTRY)} of them."
     )
 
 
 def given(exercise_id: str):
     """The input of an exercise whose construction the notebook does not show (a motor, a camera matrix)."""
-    ex = get(exercise_id)
+    ex = _get(exercise_id, "given")
     if ex.given is None:
-        raise InvalidInputError(f"given: exercise {ex.id} has no hidden input; everything it needs is in its text")
+        raise checks.fail(
+            "given", "exercise_id", f"exercise {ex.id} has no hidden input; everything it needs is in its text"
+        )
     return ex.given()
 
 
 def evaluate(exercise_id: str, answer) -> CheckResult:
     """Judge ``answer`` without printing: a :class:`CheckResult`."""
-    ex = get(exercise_id)
+    return _evaluate(_get(exercise_id, "evaluate"), answer)
+
+
+def _evaluate(ex: Exercise, answer) -> CheckResult:
     if answer is None or answer is Ellipsis:
         return CheckResult(ex.id, "unanswered", f"{ex.id}: not answered yet. Replace None with {ex.expects}.")
     try:
         remark = ex.checker(answer)
     except Malformed as exc:
-        return CheckResult(ex.id, "malformed", f"{ex.id}: cannot read this answer: {exc} (expected {ex.expects}).")
+        return CheckResult(
+            ex.id, "malformed", f"{ex.id}: cannot read this answer: {exc.reason} (expected {ex.expects})."
+        )
     except Wrong as exc:
-        return CheckResult(ex.id, "wrong", f"{ex.id}: not right yet: {exc}")
+        return CheckResult(ex.id, "wrong", f"{ex.id}: not right yet: {exc.reason}")
     except Exception as exc:  # noqa: BLE001 - whatever the answer makes a checker trip on, say so
         return CheckResult(
             ex.id,
@@ -246,6 +291,6 @@ def check(exercise_id: str, answer) -> CheckResult:
     UnknownExerciseError
         If no exercise has this id (the message names the close ones).
     """
-    result = evaluate(exercise_id, answer)
+    result = _evaluate(_get(exercise_id, "check"), answer)
     print(result.message)
     return result

@@ -2,17 +2,34 @@
 
 Each ``compare_*`` raises :class:`Wrong` (or :class:`Malformed`) with a message naming what is off (the sign,
 the grade, the magnitude, the shape, the type, a known mistake passed as a hint) and returns None when the
-answer is right.  The messages never print the truth.  This module registers no exercise.
+answer is right.  The messages never print the truth.  A truth, tolerance or hint that is not what the helper
+needs (NaN, the wrong shape, the wrong type: the exercise's author's input) is refused by the checks layer.
+The reading of answers and the two exceptions live in :mod:`cga_lessons.exercises.answers`.  This module
+registers no exercise.
 """
 
 from __future__ import annotations
 
 import math
-import numbers
 
 import numpy as np
 
+from cga_lessons import checks
 from cga_lessons.algebra import Multivector
+
+from .answers import (
+    Malformed,
+    Wrong,
+    as_array,
+    as_expression,
+    as_float,
+    hint_pairs,
+    is_sympy,
+    names_the_answer,
+    real_array,
+    settings,
+    symbol_table,
+)
 
 __all__ = [
     "Wrong",
@@ -26,87 +43,6 @@ __all__ = [
     "compare_multivector",
     "compare_expression",
 ]
-
-
-class Wrong(Exception):
-    """Raised by a checker: the answer is readable but not right; the message says what is off."""
-
-
-class Malformed(Wrong):
-    """Raised by a checker: the answer cannot be read as the kind of value the exercise asks for."""
-
-
-# --------------------------------------------------------------------------- reading answers
-
-
-def _sympy():
-    import sympy
-
-    return sympy
-
-
-def _is_sympy(x) -> bool:
-    return type(x).__module__.startswith("sympy")
-
-
-def as_float(answer, what: str = "the answer") -> float:
-    """A real number from an int, float, NumPy scalar or 0-d/1-element array, SymPy number or scalar Multivector."""
-    if isinstance(answer, bool):
-        raise Malformed(f"{what} is a bool ({answer}), not a number")
-    if isinstance(answer, Multivector):
-        extra = [b for b in answer.blades() if b != "1"]
-        if extra:
-            raise Wrong(f"the grade is wrong: {what} should be a scalar, but your multivector has blades {extra}")
-        answer = answer.scalar()
-    if _is_sympy(answer):
-        if getattr(answer, "free_symbols", None):
-            raise Malformed(f"{what} still contains symbols {sorted(map(str, answer.free_symbols))}; give a number")
-        try:
-            value = complex(answer.evalf())
-        except (TypeError, ValueError) as exc:
-            raise Malformed(f"{what} is not a number ({exc})") from None
-        if abs(value.imag) > 1e-12 * max(1.0, abs(value.real)):
-            raise Wrong(f"{what} is complex ({value}); a real number is expected")
-        answer = value.real
-    if isinstance(answer, np.ndarray):
-        if answer.size != 1:
-            raise Wrong(f"the shape is wrong: {what} should be one number, you gave an array of shape {answer.shape}.")
-        answer = answer.reshape(-1)[0]
-    if isinstance(answer, (list, tuple)):
-        raise Wrong(
-            f"the shape is wrong: {what} should be one number, you gave a {type(answer).__name__} of {len(answer)}."
-        )
-    if isinstance(answer, complex) or isinstance(answer, np.complexfloating):
-        if abs(answer.imag) > 1e-12 * max(1.0, abs(answer.real)):
-            raise Wrong(f"{what} is complex ({answer}); a real number is expected")
-        answer = answer.real
-    if not isinstance(answer, numbers.Real):
-        raise Malformed(f"{what} is a {type(answer).__name__}, not a number")
-    value = float(answer)
-    if not math.isfinite(value):
-        raise Wrong(f"{what} is {value}, not a finite number")
-    return value
-
-
-def as_array(answer, shape: tuple, what: str = "the answer") -> np.ndarray:
-    """A finite float array of the given shape (``None`` entries in ``shape`` match any length)."""
-    if isinstance(answer, Multivector):
-        raise Malformed(f"{what} should be a NumPy array of shape {_shape_text(shape)}, not a Multivector")
-    if isinstance(answer, (str, bytes, dict, set)):
-        raise Malformed(f"{what} should be an array of shape {_shape_text(shape)}, not a {type(answer).__name__}")
-    try:
-        arr = np.asarray(answer, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise Malformed(f"{what} cannot be read as an array of numbers ({exc})") from None
-    if arr.ndim != len(shape) or any(s is not None and s != a for s, a in zip(shape, arr.shape)):
-        raise Wrong(f"the shape is wrong: {what} should have shape {_shape_text(shape)}, yours has {arr.shape}.")
-    if not np.all(np.isfinite(arr)):
-        raise Wrong(f"{what} contains NaN or infinite values.")
-    return arr
-
-
-def _shape_text(shape) -> str:
-    return "(" + ", ".join("n" if s is None else str(s) for s in shape) + ("," if len(shape) == 1 else "") + ")"
 
 
 # --------------------------------------------------------------------------- comparing
@@ -146,11 +82,16 @@ def _magnitude_text(value: float, truth: float) -> str:
     return "too large" if ratio > 1 else "too small"
 
 
+@names_the_answer("value", "truth")
 def compare_number(value, truth: float, *, rtol: float = 1e-6, atol: float = 1e-9, hints=(), what="the answer"):
     """Raise :class:`Wrong` unless ``value`` is ``truth`` to float noise; diagnose sign, factor, square, units.
 
     ``hints`` is a sequence of ``(wrong_value, message)``: known mistakes with their own explanation.
     """
+    func = "compare_number"
+    rtol, atol = settings(func, rtol=rtol, atol=atol, what=what)
+    truth = checks.real(truth, func, "truth")
+    hints = hint_pairs(hints, func, lambda c: checks.real(c, func, "hints"))
     v = as_float(value, what)
     if _close(v, truth, rtol, atol):
         return
@@ -181,6 +122,7 @@ def _angle_between(a, b) -> float:
     return math.degrees(math.acos(c))
 
 
+@names_the_answer("value", "truth")
 def compare_vector(
     value,
     truth,
@@ -196,7 +138,10 @@ def compare_vector(
 
     Diagnoses shape, overall sign, length (parallel but scaled), order of the components and direction.
     """
-    truth = np.asarray(truth, float)
+    func = "compare_vector"
+    rtol, atol = settings(func, rtol=rtol, atol=atol, what=what, up_to_scale=up_to_scale, up_to_sign=up_to_sign)
+    truth = real_array(truth, func, "truth", (None,), at_least=1)
+    hints = hint_pairs(hints, func, lambda c: real_array(c, func, "hints", truth.shape))
     v = as_array(value, truth.shape, what)
     scale = max(float(np.abs(truth).max()), 1e-300)
     tol = dict(rtol=rtol, atol=atol * max(scale, 1.0))
@@ -207,7 +152,7 @@ def compare_vector(
         if s != 0 and _close(v, s * truth, rtol=rtol, atol=atol * scale * abs(s)):
             return
     for cand, msg in hints:
-        if _close(v, np.asarray(cand, float), **tol):
+        if _close(v, cand, **tol):
             raise Wrong(msg)
     if _close(v, -truth, **tol):
         raise Wrong("the sign is wrong: your vector points the opposite way.")
@@ -229,12 +174,18 @@ def compare_vector(
     raise Wrong("the values are off.")
 
 
+@names_the_answer("value", "truth")
 def compare_matrix(
     value, truth, *, rtol: float = 1e-6, atol: float = 1e-9, up_to_scale=False, hints=(), what="the answer"
 ):
     """Raise :class:`Wrong` unless the 2-D ``value`` equals ``truth``; diagnoses shape, transpose, sign, scale."""
-    truth = np.asarray(truth, float)
-    if _is_sympy(value):
+    func = "compare_matrix"
+    rtol, atol = settings(func, rtol=rtol, atol=atol, what=what, up_to_scale=up_to_scale)
+    truth = real_array(truth, func, "truth", (None, None), at_least=1)
+    if truth.shape[1] == 0:
+        raise checks.fail(func, "truth", f"expected a matrix with at least one column, got shape {truth.shape}")
+    hints = hint_pairs(hints, func, lambda c: real_array(c, func, "hints", truth.shape))
+    if is_sympy(value):
         try:
             value = np.array(value.tolist(), dtype=float)
         except (TypeError, ValueError) as exc:
@@ -248,7 +199,7 @@ def compare_matrix(
         if s != 0 and _close(v, s * truth, rtol, atol * scale * abs(s)):
             return
     for cand, msg in hints:
-        if _close(v, np.asarray(cand, float), rtol, atol * scale):
+        if _close(v, cand, rtol, atol * scale):
             raise Wrong(msg)
     if _close(v, -truth, rtol, atol * scale):
         raise Wrong("the sign is wrong (the whole matrix is negated).")
@@ -278,15 +229,32 @@ def _mv_arrays(value: Multivector, truth: Multivector, what: str):
     out = np.zeros(len(names))
     for i, name in enumerate(names):
         c = value[name]
-        if _is_sympy(c):
+        if is_sympy(c):
             if getattr(c, "free_symbols", None):
                 raise Malformed(f"the {name} coefficient still contains symbols {sorted(map(str, c.free_symbols))}")
             c = float(c)
-        out[i] = float(c)
+        try:
+            out[i] = float(c)
+        except (TypeError, ValueError):
+            raise Malformed(f"the {name} coefficient is not a real number ({c!r:.40})") from None
+    if not np.all(np.isfinite(out)):
+        raise Wrong(f"{what} has NaN or infinite coefficients.")
     truth_arr = np.array([float(truth[n]) for n in names])
     return out, truth_arr, names
 
 
+def _truth_multivector(truth, func: str):
+    """``truth`` if it is one multivector with finite real coefficients, else the error."""
+    checks.instance(truth, func, "truth", Multivector, "a Multivector")
+    if truth.shape:
+        raise checks.fail(func, "truth", f"expected one multivector, got a batch of shape {truth.shape}")
+    for name, c in truth.items():
+        if is_sympy(c) or not np.isfinite(c):
+            raise checks.fail(func, "truth", f"the {name} coefficient is not a finite number ({c!r:.40})")
+    return truth
+
+
+@names_the_answer("value", "truth")
 def compare_multivector(
     value,
     truth: Multivector,
@@ -302,6 +270,10 @@ def compare_multivector(
 
     Diagnoses the algebra, the grades present, an overall sign, a scale factor and which blades are off.
     """
+    func = "compare_multivector"
+    rtol, atol = settings(func, rtol=rtol, atol=atol, what=what, up_to_scale=up_to_scale, up_to_sign=up_to_sign)
+    _truth_multivector(truth, func)
+    hints = hint_pairs(hints, func, lambda c: _mv_arrays(c, truth, "the hint")[0])
     v, t, names = _mv_arrays(value, truth, what)
     scale = max(float(np.abs(t).max()), 1e-300)
     tol = dict(rtol=rtol, atol=atol * max(scale, 1.0))
@@ -312,8 +284,7 @@ def compare_multivector(
     if up_to_scale and parallel:
         return
     for cand, msg in hints:
-        c, _, _ = _mv_arrays(cand, truth, "hint")
-        if _close(v, c, **tol):
+        if _close(v, cand, **tol):
             raise Wrong(msg)
     if not np.any(np.abs(v) > atol * scale):
         raise Wrong(f"{what} is zero.")
@@ -337,32 +308,33 @@ def compare_multivector(
     raise Wrong(f"the grades are right but coefficients are off (blades {shown}).")
 
 
-def as_expression(value, symbols: dict, what: str):
-    sp = _sympy()
-    if isinstance(value, Multivector):
-        extra = [b for b in value.blades() if b != "1"]
-        if extra:
-            raise Wrong(
-                f"the grade is wrong: {what} should be a scalar expression, your multivector has blades {extra}"
-            )
-        value = value.scalar()
-    if isinstance(value, str):
-        try:
-            value = sp.sympify(value, locals=dict(symbols))
-        except (sp.SympifyError, SyntaxError, TypeError) as exc:
-            raise Malformed(f"the string {value!r} is not a formula SymPy can read ({exc})") from None
-    if isinstance(value, bool) or not (_is_sympy(value) or isinstance(value, numbers.Number)):
-        raise Malformed(f"{what} should be a SymPy expression, not a {type(value).__name__}")
-    expr = sp.sympify(value)
-    if not isinstance(expr, sp.Expr):
-        raise Malformed(f"{what} should be a SymPy expression, not a {type(expr).__name__}")
-    # match symbols by name: a student's sp.Symbol("rho") is the exercise's rho whatever its assumptions
-    unknown = sorted(str(s) for s in expr.free_symbols if str(s) not in symbols)
+def _sample_points(symbols, domain, seed, func: str) -> np.ndarray:
+    """The 7 random points of ``domain`` (low, high) at which the two expressions are compared."""
+    if isinstance(domain, (str, bytes)) or not hasattr(domain, "__len__") or len(domain) != 2:
+        raise checks.fail(func, "domain", f"expected (low, high), got {domain!r:.40}")
+    low, high = (checks.real(v, func, "domain") for v in domain)
+    if not low < high:
+        raise checks.fail(func, "domain", f"expected low < high, got {domain!r:.40}")
+    seed = checks.integer(seed, func, "seed", low=0)
+    return np.random.default_rng(seed).uniform(low, high, size=(7, len(symbols)))
+
+
+def _truth_expression(truth, symbols: dict, func: str):
+    """``truth`` as a finite SymPy expression in the exercise's ``symbols``."""
+    import sympy as sp
+
+    if isinstance(truth, bool) or not (is_sympy(truth) or isinstance(truth, (int, float))):
+        raise checks.fail(func, "truth", f"expected a SymPy expression, got {type(truth).__name__} {truth!r:.40}")
+    truth = sp.sympify(truth)
+    if not isinstance(truth, sp.Expr) or truth.has(sp.zoo, sp.nan, sp.oo, -sp.oo):
+        raise checks.fail(func, "truth", f"expected a finite SymPy expression, got {truth!r:.40}")
+    unknown = truth.free_symbols - set(symbols.values())
     if unknown:
-        raise Wrong(f"{what} uses {', '.join(unknown)}, which the exercise does not have (use {', '.join(symbols)}).")
-    return expr.subs({s: symbols[str(s)] for s in expr.free_symbols})
+        raise checks.fail(func, "truth", f"uses {sorted(map(str, unknown))}, which are not among symbols")
+    return truth
 
 
+@names_the_answer("value", "truth")
 def compare_expression(value, truth, symbols: dict, *, domain=(0.3, 2.0), hints=(), seed: int = 0, what="the answer"):
     """Raise :class:`Wrong` unless the SymPy expression (or string) ``value`` equals ``truth`` as a function.
 
@@ -370,20 +342,31 @@ def compare_expression(value, truth, symbols: dict, *, domain=(0.3, 2.0), hints=
     points of ``domain`` (equivalent forms pass however they are written) and confirmed by ``simplify`` where
     it can; a constant ratio, an overall sign or a missing symbol is named.
     """
-    sp = _sympy()
-    expr = as_expression(value, symbols, what)
+    import sympy as sp
+
+    func = "compare_expression"
+    symbols = symbol_table(symbols, func)
+    checks.text(what, func, "what")
+    truth = _truth_expression(truth, symbols, func)
+    pts = _sample_points(symbols, domain, seed, func)
     syms = list(symbols.values())
-    rng = np.random.default_rng(seed)
-    pts = rng.uniform(*domain, size=(7, len(syms)))
 
     def values(e):
         f = sp.lambdify(syms, e, modules="numpy")
-        out = np.array([complex(f(*p)) for p in pts])
-        return out
+        with np.errstate(all="ignore"):
+            return np.array([complex(f(*p)) for p in pts])
 
     try:
-        a, b = values(expr), values(truth)
-    except (ZeroDivisionError, TypeError, ValueError, OverflowError) as exc:
+        b = values(truth)
+    except (ArithmeticError, TypeError, ValueError, KeyError, NameError) as exc:
+        raise checks.fail(func, "truth", f"cannot be evaluated on domain ({type(exc).__name__}: {exc})") from None
+    if not np.all(np.isfinite(b)):
+        raise checks.fail(func, "truth", f"is not finite at some points of domain {tuple(domain)}")
+    hints = hint_pairs(hints, func, lambda c: values(as_expression(c, symbols, "the hint")))
+    expr = as_expression(value, symbols, what)
+    try:
+        a = values(expr)
+    except (ArithmeticError, TypeError, ValueError, KeyError, NameError) as exc:
         raise Wrong(f"{what} cannot be evaluated on the exercise's values ({type(exc).__name__}).") from None
     if not np.all(np.isfinite(a)):
         raise Wrong(f"{what} is not finite for some values of {', '.join(symbols)} where the answer is.")
@@ -391,7 +374,7 @@ def compare_expression(value, truth, symbols: dict, *, domain=(0.3, 2.0), hints=
     if np.allclose(a, b, rtol=1e-9, atol=1e-12 * scale):
         return
     for cand, msg in hints:
-        if np.allclose(a, values(cand), rtol=1e-9, atol=1e-12 * scale):
+        if np.allclose(a, cand, rtol=1e-9, atol=1e-12 * scale):
             raise Wrong(msg)
     if np.allclose(a, -b, rtol=1e-9, atol=1e-12 * scale):
         raise Wrong("the sign is wrong.")

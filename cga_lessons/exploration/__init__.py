@@ -6,10 +6,14 @@ Nothing here draws (figures and widgets are in :mod:`cga_lessons.viz`).  This fa
 
 * :mod:`~cga_lessons.exploration.cases`: The test cases of the exploration document's section 3.1.4, and the check
   against ray casting
+* :mod:`~cga_lessons.exploration.grid`: The workspace grid, the robot's cameras and the obstacle of the exploration
+  document (section 3.1), and the checks of their inputs
 * :mod:`~cga_lessons.exploration.nodes`: Seen, unseen and occupied nodes around an obstacle: the exploration
   document, section 3.1
 * :mod:`~cga_lessons.exploration.path`: The path around an obstacle: the exploration document, section 3.2,
   equations (3.2)-(3.3)
+* :mod:`~cga_lessons.exploration.spheres`: The sphere that encloses an obstacle (exploration document, section
+  3.1.2) and points on spheres and boxes
 """
 
 from .cases import (
@@ -21,32 +25,26 @@ from .cases import (
     run_scenario,
     summary,
 )
+from .grid import CameraView, Grid, SphereObstacle, make_grid
 from .nodes import (
     ANALYSED,
     LABEL_NAMES,
     NOT_SEEN,
     OCCUPIED,
     SEEN,
-    CameraView,
-    Grid,
     NodeLabels,
     Projections,
-    SphereObstacle,
-    box_surface_points,
     cells_touched_by_sphere,
-    enclosing_sphere,
-    fit_sphere,
     l1_distances,
     label_nodes,
-    make_grid,
     occupied_nodes,
     occupied_nodes_loop,
     projections,
     ray_cast_seen,
     seen_nodes,
-    sphere_points,
 )
 from .path import detour, line_circle_intersections, line_circle_intersections_conformal
+from .spheres import box_surface_points, enclosing_sphere, fit_sphere, sphere_points
 
 __all__ = [
     "NOT_SEEN",

@@ -9,25 +9,36 @@ document's 2D rules with 3D ray casting and names the rule behind each differenc
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
-from .nodes import (
+from cga_lessons import checks
+from cga_lessons.algebra import GeometryError
+
+from .grid import (
     CameraView,
     Grid,
+    SphereObstacle,
+    check_grid_size,
+    check_point,
+    check_positive,
+    check_range,
+    check_reach,
+    make_grid,
+    node_count,
+)
+from .nodes import (
     NodeLabels,
     OccupancyLoop,
     Projections,
-    SphereObstacle,
-    make_grid,
     occupied_nodes,
     occupied_nodes_loop,
     projections,
     ray_cast_seen,
     seen_nodes,
-    sphere_points,
 )
+from .spheres import sphere_points
 
 __all__ = [
     "Scenario",
@@ -61,6 +72,28 @@ class Scenario:
     sphere_center: tuple | None = (-63.0, 6.0, 24.0)
     sphere_diameter: float = 15.0
     sphere_samples: int = 20
+
+    def __post_init__(self):
+        f = "Scenario"
+        d = check_positive(self.spacing, f, "spacing")
+        counts = []
+        for name in ("x_range", "y_range", "z_range"):
+            lo, hi = check_range(getattr(self, name), f, name)
+            counts.append(node_count(lo, hi, d, f, name))
+            object.__setattr__(self, name, (lo, hi))
+        check_grid_size(counts, f, "x_range, y_range, z_range, spacing")
+        object.__setattr__(self, "spacing", d)
+        object.__setattr__(self, "robot", tuple(float(v) for v in check_point(self.robot, f, "robot")))
+        object.__setattr__(self, "heading", checks.real(self.heading, f, "heading"))
+        fov = checks.real(self.fov, f, "fov", low=0.0, high=2 * np.pi, strict_low=True, strict_high=True)
+        object.__setattr__(self, "fov", fov)
+        object.__setattr__(self, "max_range", check_reach(self.max_range, f, "max_range"))
+        if self.sphere_center is not None:
+            c = tuple(float(v) for v in check_point(self.sphere_center, f, "sphere_center"))
+            object.__setattr__(self, "sphere_center", c)
+        object.__setattr__(self, "sphere_diameter", check_positive(self.sphere_diameter, f, "sphere_diameter"))
+        object.__setattr__(self, "sphere_samples", checks.integer(self.sphere_samples, f, "sphere_samples", low=3,
+                                                                  high=3000))  # fmt: skip
 
     def grid(self) -> Grid:
         return make_grid(self.x_range, self.y_range, self.z_range, self.spacing)
@@ -101,8 +134,21 @@ class ScenarioResult:
 
 
 def run_scenario(scenario: Scenario | None = None, **changes) -> ScenarioResult:
-    """Label the nodes of a scenario (the base one, with ``changes`` applied)."""
-    sc = replace(scenario or Scenario(), **changes)
+    """Label the nodes of a scenario (the base one, with ``changes`` applied: any of :class:`Scenario`'s fields)."""
+    f = "run_scenario"
+    if scenario is not None:
+        checks.instance(scenario, f, "scenario", Scenario, "a Scenario or None")
+    known = [fl.name for fl in fields(Scenario)]
+    for name in changes:
+        if name not in known:
+            raise checks.fail(f, name, f"is not a setting of Scenario; the settings are {', '.join(known)}")
+    try:
+        return _run(replace(scenario or Scenario(), **changes))
+    except GeometryError as exc:  # a bad change, or a robot inside the obstacle: say which call
+        raise type(exc)(f"{f}: {exc}") from None
+
+
+def _run(sc: Scenario) -> ScenarioResult:
     grid, view, obstacle = sc.grid(), sc.view(), sc.obstacle()
     points = None if obstacle is None else sphere_points(obstacle.center, obstacle.radius, sc.sphere_samples)
     loop = None if points is None else occupied_nodes_loop(grid, points)
@@ -114,6 +160,7 @@ def run_scenario(scenario: Scenario | None = None, **changes) -> ScenarioResult:
 
 def summary(result: ScenarioResult) -> str:
     """One line: node counts per label, the case of 3.1.2 and the projections' bearings in degrees."""
+    checks.instance(result, "summary", "result", ScenarioResult, "a ScenarioResult (run_scenario)")
     c = result.labels.counts()
     pr = result.projections
     text = (
@@ -132,13 +179,24 @@ def occupied_counts_random_centres(rng, n: int = 500, diameters=(15.0, 25.0), sc
 
     Centres are uniform over the workspace, kept one largest radius inside it.
     """
+    f = "occupied_counts_random_centres"
+    checks.instance(rng, f, "rng", np.random.Generator, "a numpy.random.Generator (numpy.random.default_rng(seed))")
+    n = checks.integer(n, f, "n", low=0, high=10**5)
+    diameters = checks.array(diameters, f, "diameters", (None,), at_least=1)
+    if np.any(diameters <= 0):
+        raise checks.fail(f, "diameters", f"must be > 0, got {diameters.tolist()}")
+    if scenario is not None:
+        checks.instance(scenario, f, "scenario", Scenario, "a Scenario or None")
     sc = scenario or Scenario()
     grid = sc.grid()
     hi = np.asarray(grid.origin) + grid.spacing * (np.asarray(grid.shape) - 1)
-    margin = max(diameters) / 2
-    out = np.zeros((int(n), len(diameters)), int)
-    for k in range(int(n)):
-        c = rng.uniform(np.asarray(grid.origin) + margin, hi + grid.spacing - margin)
+    margin = float(diameters.max()) / 2
+    low, high = np.asarray(grid.origin) + margin, hi + grid.spacing - margin
+    if np.any(low > high):
+        raise checks.degenerate(f, "diameters", f"a sphere of diameter {2 * margin:g} does not fit in the workspace")
+    out = np.zeros((n, len(diameters)), int)
+    for k in range(n):
+        c = rng.uniform(low, high)
         for j, d in enumerate(diameters):
             out[k, j] = occupied_nodes(grid, sphere_points(c, d / 2, sc.sphere_samples)).sum()
     return out
@@ -155,6 +213,7 @@ DISAGREEMENTS = {
 
 def ray_cast_disagreements(result: ScenarioResult) -> np.ndarray:
     """Code (0-3 of :data:`DISAGREEMENTS`) of each node: where and why the document's rule and 3D ray casting differ."""
+    checks.instance(result, "ray_cast_disagreements", "result", ScenarioResult, "a ScenarioResult (run_scenario)")
     nodes = result.grid.nodes
     doc = result.labels.seen
     truth = ray_cast_seen(nodes, result.view, result.obstacle)

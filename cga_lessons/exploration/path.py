@@ -26,31 +26,26 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from cga_lessons import checks
 from cga_lessons import conformal as cga
-from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
+
+from .grid import COORD_LIMIT, check_within
 
 __all__ = ["line_circle_intersections", "line_circle_intersections_conformal", "Detour", "detour"]
 
 
 def _xy(p, func: str, name: str) -> np.ndarray:
-    try:
-        arr = np.asarray(p, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise InvalidInputError(f"{func}: {name} must be two numbers (x, y)") from exc
-    if arr.shape != (2,):
-        raise InvalidInputError(f"{func}: {name} must have shape (2,), got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise InvalidInputError(f"{func}: {name} contains NaN or inf")
-    return arr
+    """A point (x, y) of finite coordinates up to :data:`COORD_LIMIT` (their squares stay finite)."""
+    return check_within(checks.array(p, func, name, (2,)), func, name)
 
 
 def _check(start, goal, center, radius, func: str):
     s, g, c = _xy(start, func, "start"), _xy(goal, func, "goal"), _xy(center, func, "center")
-    r = float(radius)
-    if not (np.isfinite(r) and r > 0):
-        raise InvalidInputError(f"{func}: radius must be a positive finite number, got {radius!r}")
+    r = checks.real(radius, func, "radius", low=0.0, strict_low=True, high=COORD_LIMIT)
     if np.linalg.norm(g - s) <= 1e-12 * max(1.0, np.abs(s).max()):
-        raise DegenerateGeometryError(f"{func}: start and goal coincide, the path (3.2) has no direction")
+        raise checks.degenerate(func, "start, goal", "start and goal coincide, the path (3.2) has no direction")
+    if max(np.linalg.norm(s - c), np.linalg.norm(g - c)) > COORD_LIMIT * r:
+        raise checks.degenerate(func, "radius", f"{r:.3g} is too small for the distances to the centre")
     return s, g, c, r
 
 
@@ -85,7 +80,10 @@ def line_circle_intersections(start, goal, center, radius):
     >>> line_circle_intersections([0.0, 0.0], [10.0, 0.0], [5.0, 0.0], 2.0).tolist()
     [[3.0, 0.0], [7.0, 0.0]]
     """
-    s, g, c, r = _check(start, goal, center, radius, "line_circle_intersections")
+    return _document(*_check(start, goal, center, radius, "line_circle_intersections"))
+
+
+def _document(s, g, c, r):
     swap = abs(g[1] - s[1]) > abs(g[0] - s[0])
     order = [1, 0] if swap else [0, 1]
     (x1, y1), (x2, y2), (a, b) = s[order], g[order], c[order]
@@ -116,7 +114,10 @@ def line_circle_intersections_conformal(start, goal, center, radius):
     Returns (2, 2) ordered along start -> goal, or None when the point pair is
     imaginary (the line misses the circle) or nearly a single point (it touches).
     """
-    s, g, c, r = _check(start, goal, center, radius, "line_circle_intersections_conformal")
+    return _conformal(*_check(start, goal, center, radius, "line_circle_intersections_conformal"))
+
+
+def _conformal(s, g, c, r):
     lift = lambda p: np.array([(p[0] - c[0]) / r, (p[1] - c[1]) / r, 0.0])  # noqa: E731
     L = cga.standard_form(cga.line_from_points(lift(s), lift(g)))
     PP = cga.sphere(np.zeros(3), 1.0) ^ L  # in the obstacle's frame: the unit sphere at the origin
@@ -190,22 +191,29 @@ def detour(start, goal, center, radius, clearance: float = 0.0, direction: int |
 
     Raises :class:`DegenerateGeometryError` when start or goal lies inside the circle.
     """
-    s, g, c, r = _check(start, goal, center, radius, "detour")
-    if not (np.isfinite(clearance) and clearance >= 0):
-        raise InvalidInputError(f"detour: clearance must be finite and >= 0, got {clearance!r}")
-    R = r + float(clearance)
+    f = "detour"
+    s, g, c, r = _check(start, goal, center, radius, f)
+    R = r + checks.real(clearance, f, "clearance", low=0.0, high=COORD_LIMIT)
+    if direction is not None:
+        direction = checks.integer(direction, f, "direction")
+        if direction not in (1, -1):
+            raise checks.fail(
+                f, "direction", f"must be +1 (counter-clockwise), -1 (clockwise) or None, got {direction}"
+            )
+    n_arc = checks.integer(n_arc, f, "n_arc", low=2, high=10**6)
+    method = checks.choice(method, f, "method", ("conformal", "document"))
     for name, p in (("start", s), ("goal", g)):
         if np.linalg.norm(p - c) <= R:
-            raise DegenerateGeometryError(f"detour: the {name} lies inside the obstacle's circle (radius {R:.6g})")
-    if method not in ("conformal", "document"):
-        raise InvalidInputError(f"detour: method must be 'conformal' or 'document', got {method!r}")
-    find = line_circle_intersections_conformal if method == "conformal" else line_circle_intersections
+            raise checks.degenerate(
+                f, name, f"the {name} lies inside the obstacle's circle (radius + clearance = {R:.6g})"
+            )
+    find = _conformal if method == "conformal" else _document
     cross = find(s, g, c, R)
     t_entry = None if cross is None else (cross[0] - s) @ (g - s) / ((g - s) @ (g - s))
     if t_entry is None or not 0.0 <= t_entry <= 1.0:  # misses, behind the robot, or beyond the goal
         return Detour(np.array([s, g]), cross, None, 0, float(np.linalg.norm(g - s)))
     options = []
-    for d in (1, -1) if direction is None else (int(direction),):
+    for d in (1, -1) if direction is None else (direction,):
         T1, T2 = _tangent_point(s, c, R, d, False), _tangent_point(g, c, R, d, True)
         arc, arc_len = _arc(c, R, T1, T2, d, n_arc)
         length = np.linalg.norm(T1 - s) + arc_len + np.linalg.norm(g - T2)

@@ -11,6 +11,8 @@ Nothing here draws (figures and widgets are in :mod:`cga_lessons.viz`).  This fa
   Marquardt), batched
 * :mod:`~cga_lessons.kinematics.motor_chain`: Kinematic chains of n joints as products of motors (the thesis's
   future work, section 6.2.2)
+* :mod:`~cga_lessons.kinematics.motor_numbers`: A motor as 8 numbers: reading them off a multivector, back to a
+  multivector, to a 4x4 matrix, to a twist
 """
 
 from .arms import PANDA_DH, UR5_DH, DHParameters, panda, ur5

@@ -28,8 +28,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from cga_lessons import checks
 from cga_lessons import conformal as cga
-from cga_lessons.algebra import InvalidInputError, Multivector
+from cga_lessons.algebra import Multivector
 
 from .motor_chain import Chain, chain, revolute
 
@@ -55,21 +56,12 @@ class DHParameters:
     flange: float = 0.0
 
     def __post_init__(self):
-        func = "DHParameters"
-        if self.convention not in ("standard", "modified"):
-            raise InvalidInputError(f"{func}: convention: 'standard' or 'modified', got {self.convention!r}")
-        rows = []
-        for field in ("d", "a", "alpha"):
-            v = np.asarray(getattr(self, field))
-            if v.dtype.kind not in "iuf" or v.ndim != 1 or v.size == 0:
-                raise InvalidInputError(f"{func}: {field}: expected a non-empty sequence of real numbers")
-            if not np.all(np.isfinite(v)):
-                raise InvalidInputError(f"{func}: {field}: contains NaN or inf")
-            rows.append(v.size)
-        if len(set(rows)) != 1:
-            raise InvalidInputError(f"{func}: d, a, alpha: expected one value per joint, got lengths {rows}")
-        if not np.isfinite(float(self.flange)):
-            raise InvalidInputError(f"{func}: flange: is NaN or inf")
+        f = "DHParameters"
+        checks.text(self.name, f, "name", empty=True)
+        checks.choice(self.convention, f, "convention", ("standard", "modified"))
+        rows = {k: checks.array(getattr(self, k), f, k, (None,), at_least=1) for k in ("d", "a", "alpha")}
+        checks.same_length(f, **rows)
+        object.__setattr__(self, "flange", checks.real(self.flange, f, "flange"))
 
 
 #: The UR5, Universal Robots' standard DH parameters.
@@ -105,8 +97,7 @@ def dh_chain(p: DHParameters) -> Chain:
     >>> kin.forward_matrix(dh_chain(two), [np.pi / 2, -np.pi / 2])[:3, 3].round(12) + 0.0
     array([1., 1., 0.])
     """
-    if not isinstance(p, DHParameters):
-        raise InvalidInputError(f"dh_chain: p: expected DHParameters, got {type(p).__name__}")
+    checks.instance(p, "dh_chain", "p", DHParameters, "DHParameters")
     F = cga.G41.scalar(1.0)
     joints = []
     for i, (d, a, alpha) in enumerate(zip(p.d, p.a, p.alpha)):

@@ -35,13 +35,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError, Multivector
+from cga_lessons import checks
+from cga_lessons.algebra import GeometryError, Multivector
 
 from .motor_chain import (
     REVERSE_SIGNS,
     Chain,
     check_configuration,
-    coefficients_to_matrix,
+    coefficients_to_matrix_unchecked,
+    dense,
     jacobian_and_pose,
     motor_coefficients,
     multiply_batches,
@@ -71,18 +73,13 @@ class IKOptions:
     seed: int = 0
 
     def __post_init__(self):
+        f = "IKOptions"
         for name, low in (("max_iterations", 0), ("restart_after", 1), ("seed", 0)):
             v = getattr(self, name)
-            if v is None and name == "restart_after":
-                continue
-            if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < low:
-                raise InvalidInputError(f"IKOptions: {name}: expected an integer >= {low}, got {v!r}")
+            if not (v is None and name == "restart_after"):
+                object.__setattr__(self, name, checks.integer(v, f, name, low=low))
         for name in ("tol_position", "tol_rotation", "damping", "max_step"):
-            v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)) or not v > 0:
-                raise InvalidInputError(f"IKOptions: {name}: expected a number > 0, got {v!r}")
-            if not np.isfinite(v):
-                raise InvalidInputError(f"IKOptions: {name}: is NaN or inf")
+            object.__setattr__(self, name, checks.real(getattr(self, name), f, name, low=0.0, strict_low=True))
 
 
 @dataclass(frozen=True, eq=False)
@@ -116,9 +113,10 @@ def twist_error(D: np.ndarray):
 
     the twist of :func:`cga_lessons.conformal.versor_log.motor_log` (``v = 2 w``), summed by a series near theta = 0.
     """
-    D = np.asarray(D, dtype=float)
-    if D.ndim != 2 or D.shape[1] != 8 or not np.all(np.isfinite(D)):
-        raise InvalidInputError(f"twist_error: D: expected finite motor numbers of shape (N, 8), got {D.shape}")
+    return _twist_error(checks.array(dense(D, "twist_error", "D"), "twist_error", "D", (None, 8)))
+
+
+def _twist_error(D: np.ndarray):
     D = D * np.where(D[:, :1] < 0, -1.0, 1.0)
     D = D / np.linalg.norm(D[:, :4], axis=1, keepdims=True)
     u = np.stack([-D[:, 3], D[:, 2], -D[:, 1]], axis=1)  # sin(theta/2) n, from 2.96
@@ -127,7 +125,7 @@ def twist_error(D: np.ndarray):
     half = np.arctan2(s, c)
     ratio = np.where(s > 1e-8, half / np.where(s > 0, s, 1.0), (1.0 + s * s / 6.0) / c)  # half / sin(half)
     omega = 2.0 * ratio[:, None] * u
-    t = coefficients_to_matrix(D)[:, :3, 3]
+    t = coefficients_to_matrix_unchecked(D)[:, :3, 3]
     h2 = half * half
     small = half < 1e-2
     safe = np.where(small, 1.0, half)
@@ -150,22 +148,23 @@ def _targets(target, func: str) -> np.ndarray:
         c = motor_coefficients(target, func, "target")
         return c.reshape(-1, 8)
     try:
-        H = np.asarray(target)
-    except (TypeError, ValueError):  # pragma: no cover (ragged input)
-        raise InvalidInputError(f"{func}: target: expected a motor or 4x4 matrices") from None
-    if H.dtype.kind not in "iuf" or H.shape[-2:] != (4, 4) or H.ndim not in (2, 3):
-        raise InvalidInputError(f"{func}: target: expected a motor, a 4x4 matrix or (N, 4, 4), got {H.shape}")
-    if not np.all(np.isfinite(H)):
-        raise InvalidInputError(f"{func}: target: contains NaN or inf")
+        shape = np.shape(target)
+    except (TypeError, ValueError):  # ragged
+        shape = ()
+    if shape[-2:] != (4, 4) or len(shape) not in (2, 3):
+        raise checks.fail(func, "target", f"expected a motor, a 4x4 matrix or (N, 4, 4), got shape {shape}")
+    H = checks.array(target, func, "target", (None, 4, 4) if len(shape) == 3 else (4, 4))
     from cga_lessons import conformal as cga
 
     out = []
     for Hi in H.reshape(-1, 4, 4):  # the checked conversion of one matrix (a rigid transform or an error)
         try:
             out.append(motor_coefficients(cga.matrix_to_motor(Hi), func, "target"))
-        except ValueError as exc:
-            raise InvalidInputError(f"{func}: target: {exc}") from None
-    return np.array(out)
+        except GeometryError as exc:
+            if str(exc).startswith(f"{func}: target:"):
+                raise
+            raise checks.fail(func, "target", str(exc)) from None
+    return np.array(out).reshape(-1, 8)
 
 
 def inverse_kinematics(ch: Chain, target, q0, options: IKOptions | None = None) -> IKResult:
@@ -183,24 +182,23 @@ def inverse_kinematics(ch: Chain, target, q0, options: IKOptions | None = None) 
     IKResult, with arrays of shape (N,) (scalars and q of shape (n,) for one target and one start).
     """
     func = "inverse_kinematics"
-    opt = IKOptions() if options is None else options
-    if not isinstance(opt, IKOptions):
-        raise InvalidInputError(f"{func}: options: expected IKOptions, got {type(opt).__name__}")
-    Mt = _targets(target, func)
+    opt = IKOptions() if options is None else checks.instance(options, func, "options", IKOptions, "IKOptions")
     q, single = check_configuration(ch, q0, func, "q0")
+    Mt = _targets(target, func)
+    q = q.copy()  # the solve writes into it, never into the caller's q0
     if len(q) == 1 and len(Mt) > 1:
         q = np.repeat(q, len(Mt), axis=0)
     if len(q) != len(Mt):
-        raise InvalidInputError(f"{func}: q0: {len(q)} starts for {len(Mt)} targets")
-    t_target = coefficients_to_matrix(Mt)[:, :3, 3]
+        raise checks.fail(func, "q0", f"{len(q)} starts for {len(Mt)} targets")
+    t_target = coefficients_to_matrix_unchecked(Mt)[:, :3, 3]
     N, n = q.shape
     lam = np.full(N, np.nan)
     nu = np.full(N, 2.0)
     iters = np.zeros(N, dtype=int)
     done = np.zeros(N, dtype=bool)
     J, M = jacobian_and_pose(ch, q)
-    err, t, angle = twist_error(multiply_batches(Mt, M * REVERSE_SIGNS))
-    pos = np.linalg.norm(t_target - coefficients_to_matrix(M)[:, :3, 3], axis=1)
+    err, t, angle = _twist_error(multiply_batches(Mt, M * REVERSE_SIGNS))
+    pos = np.linalg.norm(t_target - coefficients_to_matrix_unchecked(M)[:, :3, 3], axis=1)
     eye = np.eye(min(n, 6))
     rng = np.random.default_rng(opt.seed)
     rev = ch._tables.revolute
@@ -224,8 +222,8 @@ def inverse_kinematics(ch: Chain, target, q0, options: IKOptions | None = None) 
         dq *= np.minimum(1.0, opt.max_step / np.maximum(step, 1e-300))[:, None]
         q_new = q[act] + dq
         J_new, M_new = jacobian_and_pose(ch, q_new)
-        e_new, _, a_new = twist_error(multiply_batches(Mt[act], M_new * REVERSE_SIGNS))
-        p_new = np.linalg.norm(t_target[act] - coefficients_to_matrix(M_new)[:, :3, 3], axis=1)
+        e_new, _, a_new = _twist_error(multiply_batches(Mt[act], M_new * REVERSE_SIGNS))
+        p_new = np.linalg.norm(t_target[act] - coefficients_to_matrix_unchecked(M_new)[:, :3, 3], axis=1)
         Jdq = (Ja @ dq[:, :, None])[:, :, 0]
         predicted = np.einsum("ki,ki->k", ea, ea) - np.einsum("ki,ki->k", ea - Jdq, ea - Jdq)
         actual = np.einsum("ki,ki->k", ea, ea) - np.einsum("ki,ki->k", e_new, e_new)
@@ -245,9 +243,11 @@ def inverse_kinematics(ch: Chain, target, q0, options: IKOptions | None = None) 
         if stuck.size:  # refused again and again: a local minimum at a singularity; start over elsewhere
             q[np.ix_(stuck, rev)] = rng.uniform(-np.pi, np.pi, (stuck.size, int(rev.sum())))
             J[stuck], Ms = jacobian_and_pose(ch, q[stuck])
-            err[stuck], _, angle[stuck] = twist_error(multiply_batches(Mt[stuck], Ms * REVERSE_SIGNS))
-            pos[stuck] = np.linalg.norm(t_target[stuck] - coefficients_to_matrix(Ms)[:, :3, 3], axis=1)
+            err[stuck], _, angle[stuck] = _twist_error(multiply_batches(Mt[stuck], Ms * REVERSE_SIGNS))
+            pos[stuck] = np.linalg.norm(t_target[stuck] - coefficients_to_matrix_unchecked(Ms)[:, :3, 3], axis=1)
             lam[stuck], nu[stuck] = np.nan, 2.0
+    for value in (q, pos, angle):
+        checks.finite_result(value, func, "q0, target: the solve")
     one = single and N == 1
     return IKResult(
         q=q[0] if one else q,

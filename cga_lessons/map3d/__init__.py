@@ -15,6 +15,8 @@ and widgets are in :mod:`cga_lessons.viz`).  This facade exports the names in ``
   (section 4.2.3)
 * :mod:`~cga_lessons.map3d.robot`: The robot *geometer*: five degrees of freedom and its sensors as motor chains
   (section 4.2.2, Eqs. 4.1-4.10)
+* :mod:`~cga_lessons.map3d.state`: The robot *geometer*'s fixed geometry and its five degrees of freedom (section
+  4.2.2), with their checks
 * :mod:`~cga_lessons.map3d.tour`: A tour of the synthetic world: the robot scans with its laser and looks around
   with its stereo head
 * :mod:`~cga_lessons.map3d.world`: The synthetic world of the fused 3D map (section 4.2.3): a room and its objects

@@ -12,8 +12,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from cga_lessons import checks
 from cga_lessons import conformal as cga
-from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector
+from cga_lessons.algebra import Multivector
+from cga_lessons.conformal import G41
+from cga_lessons.kinematics import motor_coefficients
 from cga_lessons.mapping2d import robot_motor
 
 if TYPE_CHECKING:
@@ -22,11 +25,90 @@ if TYPE_CHECKING:
 _Z = np.array([0.0, 0.0, 1.0])
 
 
+# ----------------------------------------------------------------- input checks
+def dense(value, func: str, name: str):
+    """``value``, unless it is a ragged nest of sequences (rows of different lengths): an error naming it.
+
+    (A guard ahead of :mod:`cga_lessons.checks`, whose complex-number test raises a bare ``ValueError`` on ragged
+    lists.)
+    """
+    if isinstance(value, (list, tuple)):
+        try:
+            np.asarray(value)
+        except ValueError:
+            raise checks.fail(func, name, "ragged rows: the rows have different lengths") from None
+    return value
+
+
+#: The largest angle (radians) a rotor reads: beyond 2^52 no float precision is left for the angle itself.
+ANGLE_LIMIT = 2.0**52
+ANGLES = ("theta", "pan", "tilt")
+
+
+def check_dof(v, func: str, name: str):
+    """A degree of freedom: a finite number, or a non-empty (N,) array of them (one configuration per entry).
+
+    The angles (``theta``, ``pan``, ``tilt``) are at most :data:`ANGLE_LIMIT` in magnitude.
+    """
+    try:
+        scalar = np.ndim(v) == 0
+    except (TypeError, ValueError):  # ragged: the array check says so
+        scalar = False
+    out = checks.real(v, func, name) if scalar else checks.array(v, func, name, (None,), at_least=1)
+    if name in ANGLES and np.any(np.abs(out) > ANGLE_LIMIT):
+        raise checks.fail(func, name, f"angles beyond {ANGLE_LIMIT:.3g} rad have no float precision left")
+    return out
+
+
+def check_dofs(func: str, **dofs) -> dict:
+    """Every degree of freedom checked (:func:`check_dof`); the arrays among them of one length."""
+    out = {k: check_dof(v, func, k) for k, v in dofs.items()}
+    arrays = {k: v for k, v in out.items() if isinstance(v, np.ndarray)}
+    if len(arrays) > 1:
+        checks.same_length(func, **arrays)
+    return out
+
+
+def check_motor(M, func: str, name: str) -> Multivector:
+    """A numeric motor of G(4,1) (a rotor, a translator or their product), one or a batch (N,)."""
+    motor_coefficients(M, func, name)  # the kinematics' reading of a motor's numbers refuses what is not one
+    return M
+
+
+def check_entity(X, func: str, name: str = "X") -> Multivector:
+    """A conformal entity of G(4,1) with finite numeric coefficients (one, or a batch)."""
+    checks.instance(X, func, name, Multivector, "a conformal entity (Multivector)")
+    if X.algebra is not G41:
+        raise checks.fail(func, name, f"expected an entity of G(4,1), got a multivector of {X.algebra!r}")
+    for v in X.coeffs.values():
+        a = np.asarray(v)
+        if checks.is_symbolic(v) or a.dtype.kind not in "iuf":
+            raise checks.fail(func, name, f"expected real numeric coefficients, got {type(v).__name__}")
+        if not np.all(np.isfinite(a)):
+            raise checks.fail(func, name, "contains NaN or inf")
+    return X
+
+
+def finite_multivector(X: Multivector, func: str, what: str) -> Multivector:
+    """``X`` if every coefficient is finite; else its input overflowed the computation (``checks.finite_result``)."""
+    for v in X.coeffs.values():
+        checks.finite_result(v, func, what)
+    return X
+
+
+def same_batch(func: str, **motors) -> None:
+    """Motors (or entities) whose batches can multiply: one shape, or single ones with a batch."""
+    shapes = {k: M.shape for k, M in motors.items() if M.shape}
+    if len(set(shapes.values())) > 1:
+        got = " and ".join(map(str, shapes.values()))
+        raise checks.fail(func, ", ".join(shapes), f"batches of different shapes {got}")
+
+
 # ----------------------------------------------------------------- fixed parts
 def axis_line(point, direction, func):
     d = np.asarray(direction, float)
     if np.linalg.norm(d) < 1e-12:
-        raise DegenerateGeometryError(f"{func}: an axis direction is the zero vector")
+        raise checks.degenerate(func, "direction", "an axis direction is the zero vector")
     p = np.asarray(point, float)
     return cga.line_from_points(p, p + d / np.linalg.norm(d))  # (2.81)
 
@@ -49,7 +131,7 @@ def axes_nearest_point(L1: Multivector, L2: Multivector) -> np.ndarray:
     p1, p2 = np.asarray(cga.line_closest_point(L1), float), np.asarray(cga.line_closest_point(L2), float)
     c = float(r1 @ r2)
     if 1.0 - c * c < 1e-12:
-        raise DegenerateGeometryError("axes_nearest_point: the two axes are parallel; no single nearest point")
+        raise checks.degenerate("axes_nearest_point", "L1, L2", "the two axes are parallel; no single nearest point")
     w = p1 - p2
     s1 = (c * (r2 @ w) - (r1 @ w)) / (1.0 - c * c)
     s2 = ((r2 @ w) - c * (r1 @ w)) / (1.0 - c * c)
@@ -67,21 +149,15 @@ def laser_mount_motor(geometry: RobotGeometry) -> Multivector:
 
 
 # ----------------------------------------------------------------- the chains, one function per equation
-def finite_array(v):
-    a = np.asarray(v, dtype=float)
-    if not np.all(np.isfinite(a)):
-        raise InvalidInputError("robot: degrees of freedom must be finite")
-    return float(a) if a.ndim == 0 else a
-
-
 def base_rotor(theta) -> Multivector:
     """``R_pos``: rotor about z by the heading theta (2.96; the angle of 3.6). Scalar or (N,) theta."""
-    return cga.rotor(_Z, finite_array(theta))
+    return cga.rotor(_Z, check_dof(theta, "base_rotor", "theta"))
 
 
 def base_translator(x, y) -> Multivector:
     """``T_pos``: translator by ``t = (x, y, 0)`` (2.100; the position of 3.7). Scalars or (N,) arrays."""
-    x, y = np.broadcast_arrays(np.asarray(finite_array(x)), np.asarray(finite_array(y)))
+    v = check_dofs("base_translator", x=x, y=y)
+    x, y = np.broadcast_arrays(np.asarray(v["x"]), np.asarray(v["y"]))
     return cga.translator(np.stack([x, y, np.zeros_like(x)], axis=-1))
 
 
@@ -97,6 +173,8 @@ def base_motor(T_pos: Multivector, R_pos: Multivector) -> Multivector:
 
 def base_motor_as_printed(T_pos: Multivector, R_lsr: Multivector) -> Multivector:
     """Eq. (4.2) as printed, ``M_pos = T_pos R_lsr`` (``R_lsr`` the laser's mounting rotor): an erratum."""
+    f = "base_motor_as_printed"
+    same_batch(f, T_pos=check_motor(T_pos, f, "T_pos"), R_lsr=check_motor(R_lsr, f, "R_lsr"))
     return T_pos * R_lsr
 
 
@@ -112,6 +190,8 @@ def laser_chain(T_pos: Multivector, M_cl: Multivector, R_pos: Multivector) -> Mu
 
 def laser_chain_as_printed(M_cl: Multivector, M_pos: Multivector) -> Multivector:
     """Eq. (4.3) as printed, ``M_lu = M_cl M_pos``: right only for a laser with no yaw on the robot."""
+    f = "laser_chain_as_printed"
+    same_batch(f, M_cl=check_motor(M_cl, f, "M_cl"), M_pos=check_motor(M_pos, f, "M_pos"))
     return M_cl * M_pos
 
 
@@ -142,6 +222,9 @@ def stereo_chain(T_opt: Multivector, T_ep: Multivector, M_mpt: Multivector) -> M
 
 def stereo_chain_as_printed(T_opt: Multivector, T_ep: Multivector, R_pt: Multivector) -> Multivector:
     """Eq. (4.9) as printed, ``T_opt T_ep R_mpt``, with ``R_mpt`` read as the rotor of ``M_mpt`` (= R_pt)."""
+    f = "stereo_chain_as_printed"
+    motors = {k: check_motor(M, f, k) for k, M in (("T_opt", T_opt), ("T_ep", T_ep), ("R_pt", R_pt))}
+    same_batch(f, **motors)
     return T_opt * T_ep * R_pt
 
 
@@ -165,6 +248,10 @@ def to_unified(M: Multivector, X: Multivector) -> Multivector:
     ``M`` may hold a batch of motors (N,) matching a batch of entities (N,):
     entity i is moved by motor i.
     """
-    if not isinstance(X, Multivector):
-        raise InvalidInputError(f"to_unified: X must be a conformal entity (Multivector), got {type(X).__name__}")
-    return cga.apply(M, X)
+    return unified(check_motor(M, "to_unified", "M"), check_entity(X, "to_unified"), "to_unified")
+
+
+def unified(M: Multivector, X: Multivector, func: str) -> Multivector:
+    """:func:`to_unified` of a checked motor and entity; ``func`` names the caller in errors."""
+    same_batch(func, M=M, X=X)
+    return finite_multivector(cga.apply(M, X), func, "X: the moved entity")

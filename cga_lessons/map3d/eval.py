@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
 
 from .fuse import FusedMap
 
@@ -46,7 +46,9 @@ def line_at_height(params: dict, z: float) -> np.ndarray:
     """The point (3,) of a line (``direction``, ``point``) at height ``z``; raises for a horizontal line."""
     d, p = np.asarray(params["direction"], float), np.asarray(params["point"], float)
     if abs(d[2]) < 1e-9:
-        raise InvalidInputError("line_at_height: the line is horizontal; it has no single point at a height")
+        raise checks.degenerate(
+            "line_at_height", "params", "the line is horizontal; it has no single point at a height"
+        )
     return p + (z - p[2]) / d[2] * d
 
 
@@ -128,6 +130,7 @@ def view_errors(fused: FusedMap) -> list:
         ``view``, ``object``, ``entity``, ``distance_m`` (robot to object), ``points``,
         ``pos_cm`` and ``angle_deg`` or ``radius_cm`` as in :func:`residual_table`.
     """
+    checks.instance(fused, "view_errors", "fused", FusedMap, "a FusedMap (build_fused_map)")
     rows = []
     for e in fused.views:
         t = fused.tour.world.object(e.name).truth()
@@ -152,7 +155,7 @@ def _stereo_vs_truth(kind, p, t, laser_height) -> dict:
         q = line_at_height(p, laser_height)
         return {"stereo_pos_cm": 100 * float(np.linalg.norm(q[:2] - t["point"][:2])),
                 "stereo_angle_deg": _angle(p["direction"], t["direction"])}  # fmt: skip
-    raise InvalidInputError(f"residual_table: unknown entity kind {kind!r}")
+    raise checks.fail("residual_table", "fused", f"unknown entity kind {kind!r}")
 
 
 def residual_table(fused: FusedMap) -> list:
@@ -172,8 +175,7 @@ def residual_table(fused: FusedMap) -> list:
     segment, scans that found the post, map segments on the pedestal or the
     walls.  Missing entries are NaN (``format_table`` prints '-').
     """
-    if not isinstance(fused, FusedMap):
-        raise InvalidInputError(f"residual_table: expected a FusedMap, got {type(fused).__name__}")
+    checks.instance(fused, "residual_table", "fused", FusedMap, "a FusedMap (build_fused_map)")
     h = fused.laser_height
     world = fused.tour.world
     werr = wall_errors(fused)

@@ -30,12 +30,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from cga_lessons import checks
 from cga_lessons import conformal as cga
-from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
+from cga_lessons.algebra import DegenerateGeometryError, GeometryError, Multivector
 from cga_lessons.mapping2d import MapResult, build_map, extract_segments
 
+from .chains import check_entity, dense
 from .laser import group_detections, laser_posts, virtual_wall
-from .robot import Robot, RobotState, chain_motors, to_unified
+from .robot import Robot, RobotGeometry, RobotState, chain_motors, to_unified
 from .tour import Tour, triangulate_view
 
 __all__ = [
@@ -64,15 +66,16 @@ def fit_line_3d(X) -> dict:
         ``blade`` (dual line, 2.81), ``pair`` (2.68), ``direction`` (3,),
         ``point`` (the centroid), ``ends`` (2, 3), ``rms`` (m).
     """
-    X = np.asarray(X, float)
-    if X.ndim != 2 or X.shape[1] != 3 or not np.all(np.isfinite(X)):
-        raise InvalidInputError(f"fit_line_3d: points must be a finite (N, 3) array, got shape {X.shape}")
+    f = "fit_line_3d"
+    X = checks.rows(dense(X, f, "X"), f, "X", 3)
     if len(X) < 2:
-        raise DegenerateGeometryError(f"fit_line_3d: need at least 2 points, got {len(X)}")
+        raise checks.degenerate(f, "X", f"need at least 2 points, got {len(X)}")
+    if float(np.max(np.abs(X))) > 1e150:
+        raise checks.fail(f, "X", "coordinates beyond 1e150: their squares overflow a float")
     c = X.mean(axis=0)
     _, s, Vt = np.linalg.svd(X - c, full_matrices=False)
     if s[0] <= 1e-12 * max(1.0, np.abs(X).max()):
-        raise DegenerateGeometryError("fit_line_3d: all points coincide")
+        raise checks.degenerate(f, "X", "all points coincide")
     d = Vt[0] if Vt[0][np.argmax(np.abs(Vt[0]))] > 0 else -Vt[0]
     t = (X - c) @ d
     ends = c + np.outer([t.min(), t.max()], d)
@@ -87,13 +90,39 @@ def fit_line_3d(X) -> dict:
     }
 
 
+#: The classification (:func:`cga_lessons.conformal.classify`) of each kind of entity: kinds and dimension.
+_ENTITY = {"sphere": (("round",), 2), "plane": (("flat",), 2), "circle": (("round",), 1),
+           "line": (("flat", "dual flat"), 1)}  # fmt: skip
+
+
 def entity_parameters(kind: str, blade) -> dict:
     """Euclidean parameters read back from a conformal entity (section 4.1's recipes).
 
     ``sphere``: centre and radius (2.115, 2.116, 2.73); ``plane``: unit normal
     and distance (2.89); ``circle``: centre, radius, normal (2.119-2.124);
     ``line``: direction (2.127) and closest point to the origin (2.129).
+    ``blade`` is one numeric entity of that kind (either form).
     """
+    f = "entity_parameters"
+    kind = checks.choice(kind, f, "kind", tuple(_ENTITY))
+    blade = check_entity(blade, f, "blade")
+    if blade.shape:
+        raise checks.fail(f, "blade", f"expected one entity, got a batch of shape {blade.shape}")
+    try:
+        got = cga.classify(blade)
+        kinds, dimension = _ENTITY[kind]
+        if got.kind not in kinds or got.dimension != dimension or got.imaginary:
+            imaginary = "an imaginary " if got.imaginary else "a "
+            raise checks.fail(f, "blade", f"expected a {kind}, got {imaginary}{got.kind} of dimension {got.dimension}")
+        return _parameters(kind, blade)
+    except GeometryError as exc:
+        if str(exc).startswith(f"{f}: blade:"):
+            raise
+        raise checks.fail(f, "blade", f"not a {kind}: {exc}") from None
+
+
+def _parameters(kind: str, blade: Multivector) -> dict:
+    """:func:`entity_parameters` of an entity of that kind (no checks: the fits of section 4.1 made it)."""
     if kind == "sphere":
         c, r = cga.sphere_center_radius(blade)
         return {"center": np.asarray(c, float), "radius": float(r)}
@@ -103,10 +132,8 @@ def entity_parameters(kind: str, blade) -> dict:
     if kind == "circle":
         c, r, n = cga.circle_center_radius(blade)
         return {"center": np.asarray(c, float), "radius": float(r), "normal": np.asarray(n, float)}
-    if kind == "line":
-        return {"direction": np.asarray(cga.line_direction(blade), float),
-                "point": np.asarray(cga.line_closest_point(blade), float)}  # fmt: skip
-    raise InvalidInputError(f"entity_parameters: unknown kind {kind!r}; use sphere, plane, circle or line")
+    return {"direction": np.asarray(cga.line_direction(blade), float),
+            "point": np.asarray(cga.line_closest_point(blade), float)}  # fmt: skip
 
 
 def _fit(kind: str, X) -> dict:
@@ -117,9 +144,7 @@ def _fit(kind: str, X) -> dict:
         return cga.fit_plane(X)
     if kind == "circle":
         return cga.fit_circle(X)
-    if kind == "line":
-        return fit_line_3d(X)
-    raise InvalidInputError(f"map3d: no fit for kind {kind!r}")
+    return fit_line_3d(X)
 
 
 # ----------------------------------------------------------------- the fused map
@@ -136,6 +161,17 @@ class StereoEntity:
     blade_world: object
     params: dict
     points_world: np.ndarray
+
+    def __post_init__(self):
+        f = "StereoEntity"
+        checks.text(self.name, f, "name")
+        checks.choice(self.kind, f, "kind", tuple(_ENTITY))
+        self.view, self.scan = (checks.integer(getattr(self, k), f, k, low=0) for k in ("view", "scan"))
+        checks.instance(self.state, f, "state", RobotState, "a RobotState")
+        check_entity(self.blade_stereo, f, "blade_stereo")
+        check_entity(self.blade_world, f, "blade_world")
+        checks.instance(self.params, f, "params", dict, "a dict (entity_parameters)")
+        self.points_world = checks.rows(dense(self.points_world, f, "points_world"), f, "points_world", 3)
 
 
 @dataclass
@@ -174,6 +210,23 @@ class FusedMap:
     post_radius: float = 0.05
     robot: Robot | None = field(default=None, repr=False)
 
+    def __post_init__(self):
+        f = "FusedMap"
+        checks.instance(self.tour, f, "tour", Tour, "a Tour (simulate_tour)")
+        checks.instance(self.laser, f, "laser", MapResult, "a MapResult (mapping2d.build_map)")
+        self.laser_height = checks.real(self.laser_height, f, "laser_height")
+        for name in ("scan_segments", "virtual_walls", "laser_post_groups", "views"):
+            checks.instance(getattr(self, name), f, name, list, "a list")
+        for k, segs in enumerate(self.scan_segments):
+            checks.array(segs, f, f"scan_segments[{k}]", (None, 2, 3))
+        detections = dense(self.laser_post_detections, f, "laser_post_detections")
+        self.laser_post_detections = checks.rows(detections, f, "laser_post_detections", 3)
+        checks.instance(self.objects, f, "objects", dict, "a dict")
+        for name in ("wall_height", "post_radius"):
+            setattr(self, name, checks.real(getattr(self, name), f, name, low=0.0, strict_low=True))
+        if self.robot is not None:
+            checks.instance(self.robot, f, "robot", Robot, "a Robot or None")
+
 
 _KIND = {"Ball": "sphere", "Board": "plane", "Plate": "circle", "Post": "line"}
 _MIN_POINTS = {"sphere": 20, "plane": 12, "circle": 12, "line": 8}
@@ -192,13 +245,14 @@ def stereo_depth_limit(geometry, noise_px: float, max_depth_sigma: float = 0.05)
     >>> round(stereo_depth_limit(RobotGeometry(), 0.5, 0.05), 3)
     2.437
     """
-    if not (noise_px >= 0 and max_depth_sigma > 0):
-        raise InvalidInputError(
-            f"stereo_depth_limit: need noise_px >= 0 and max_depth_sigma > 0, got {noise_px}, {max_depth_sigma}"
-        )
+    f = "stereo_depth_limit"
+    checks.instance(geometry, f, "geometry", RobotGeometry, "a RobotGeometry")
+    noise_px = checks.real(noise_px, f, "noise_px", low=0.0)
+    max_depth_sigma = checks.real(max_depth_sigma, f, "max_depth_sigma", low=0.0, strict_low=True)
     if noise_px == 0:
         return float("inf")
-    return float(np.sqrt(max_depth_sigma * geometry.focal_px * geometry.baseline / (np.sqrt(2.0) * noise_px)))
+    z = float(np.sqrt(max_depth_sigma * geometry.focal_px * geometry.baseline / (np.sqrt(2.0) * noise_px)))
+    return checks.finite_result(z, f, "noise_px, max_depth_sigma: the depth")
 
 
 def build_fused_map(
@@ -238,22 +292,24 @@ def build_fused_map(
         A chapter-3 result of this tour to reuse (e.g. ``other.laser``) instead
         of building it again.
     """
-    if not isinstance(tour, Tour):
-        raise InvalidInputError(f"build_fused_map: expected a Tour, got {type(tour).__name__}")
+    f = "build_fused_map"
+    checks.instance(tour, f, "tour", Tour, "a Tour (simulate_tour)")
+    method = checks.choice(method, f, "method", ("plain", "conformal"))
+    virtual_wall_height = checks.real(virtual_wall_height, f, "virtual_wall_height", low=0.0, strict_low=True)
+    post_radius = checks.real(post_radius, f, "post_radius", low=0.0, strict_low=True)
+    min_post_detections = checks.integer(min_post_detections, f, "min_post_detections", low=1)
+    poses_from = checks.choice(poses_from, f, "poses_from", ("laser", "truth", "odometry"))
+    max_depth_sigma = checks.real(max_depth_sigma, f, "max_depth_sigma", low=0.0, strict_low=True)
+    if laser is not None and (not isinstance(laser, MapResult) or len(laser.poses) != len(tour.scans)):
+        raise checks.fail(f, "laser", "must be the MapResult of this tour's scans (or None)")
     g = tour.geometry
     lx, ly, h, yaw = (float(v) for v in g.laser_mount)
     if laser is None:
         laser = build_map(tour.scans, tour.odometry, method=method, mount=(lx, ly, yaw))
-    elif not isinstance(laser, MapResult) or len(laser.poses) != len(tour.scans):
-        raise InvalidInputError("build_fused_map: laser must be the MapResult of this tour's scans")
     robot = Robot(g)
 
     # 2. every scan's segments and post centres through M_lu (4.4): one batch of motors, one sandwich
-    poses = {"laser": laser.poses, "truth": tour.truth, "odometry": tour.odometry}.get(poses_from)
-    if poses is None:
-        raise InvalidInputError(
-            f"build_fused_map: poses_from must be 'laser', 'truth' or 'odometry', got {poses_from!r}"
-        )
+    poses = {"laser": laser.poses, "truth": tour.truth, "odometry": tour.odometry}[poses_from]
     ends, seg_scan, centres, post_scan = [], [], [], []
     for k, (ranges, angles) in enumerate(tour.scans):
         for s in extract_segments(ranges, angles, max_range=5.0):
@@ -272,6 +328,8 @@ def build_fused_map(
         for k in np.unique(seg_scan):
             scan_segments[k] = moved[seg_scan == k]
     detections = np.zeros((0, 3))
+    if centres and not np.max(np.abs(centres)) <= 1e6:  # a circle fit of a huge radius lands its centre far away
+        raise checks.fail(f, "post_radius", f"{post_radius:g} m: the posts' centres land beyond 1e6 m")
     if centres:
         M = _laser_motors(g, poses[np.array(post_scan)])
         detections = np.atleast_2d(cga.down(to_unified(M, cga.up(np.array(centres)))))  # (4.4)
@@ -310,7 +368,7 @@ def build_fused_map(
             blade_w = robot.stereo_to_unified(fit["blade"])  # (4.10): the entity itself
             X_w = cga.apply_to_points(robot["M_eu"], X_s)  # its points, by the same motor
             views.append(StereoEntity(name, kind, vi, view.scan, robot.state, fit["blade"], blade_w,
-                                      entity_parameters(kind, blade_w), X_w))  # fmt: skip
+                                      _parameters(kind, blade_w), X_w))  # fmt: skip
             pooled.setdefault(name, []).append(X_w)
 
     # 6. one entity per object from all its views
@@ -318,7 +376,7 @@ def build_fused_map(
     for name, parts in pooled.items():
         X = np.vstack(parts)
         fit = _fit(kinds[name], X)
-        obj = {"kind": kinds[name], "blade": fit["blade"], "params": entity_parameters(kinds[name], fit["blade"]),
+        obj = {"kind": kinds[name], "blade": fit["blade"], "params": _parameters(kinds[name], fit["blade"]),
                "n_views": len(parts), "points": X, "rms": fit["rms"]}  # fmt: skip
         if kinds[name] == "line":
             obj["ends"] = fit["ends"]

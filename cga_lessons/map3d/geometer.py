@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from cga_lessons.errors import InvalidInputError
+from cga_lessons import checks
 from cga_lessons.kinematics import Chain, chain, prismatic, revolute
 
 __all__ = ["GeometerChains", "geometer_chains"]
@@ -32,6 +32,10 @@ class GeometerChains:
     camera: Chain
     laser: Chain
 
+    def __post_init__(self):
+        for name in ("camera", "laser"):
+            checks.instance(getattr(self, name), "GeometerChains", name, Chain, "a Chain (kinematics.chain)")
+
 
 def geometer_chains(geometry=None) -> GeometerChains:
     """Today's robot geometer (:mod:`cga_lessons.map3d.robot`) rebuilt as two chains of joints.
@@ -48,8 +52,8 @@ def geometer_chains(geometry=None) -> GeometerChains:
     """
     from cga_lessons.map3d.robot import RobotGeometry, chain_motors
 
-    if geometry is not None and not isinstance(geometry, RobotGeometry):
-        raise InvalidInputError(f"geometer_chains: geometry: expected a RobotGeometry, got {type(geometry).__name__}")
+    if geometry is not None:
+        checks.instance(geometry, "geometer_chains", "geometry", RobotGeometry, "a RobotGeometry or None")
     fixed = chain_motors(geometry or RobotGeometry())
     base = [prismatic(_X, "x"), prismatic([0.0, 1.0, 0.0], "y"), revolute(_Z, name="theta")]
     head = [revolute(fixed["L_pan"], name="pan"), revolute(fixed["L_tilt"], name="tilt")]

@@ -15,8 +15,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from cga_lessons import checks
 from cga_lessons import conformal as cga
-from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
+
+from .chains import dense
 
 __all__ = ["VirtualWall", "virtual_wall", "fit_post_center", "laser_posts", "group_detections"]
 
@@ -59,10 +61,11 @@ def virtual_wall(start_xy, end_xy, laser_height: float, height: float = 1.0) -> 
     >>> n, d = cga.plane_normal_distance(w.plane); (abs(n) + 0.0).round(12).tolist(), round(abs(d), 12)
     ([0.0, 1.0, 0.0], 0.0)
     """
-    a = np.array([*np.asarray(start_xy, float).reshape(2), laser_height])
-    b = np.array([*np.asarray(end_xy, float).reshape(2), laser_height])
-    if not height > 0:
-        raise InvalidInputError(f"virtual_wall: height must be > 0, got {height}")
+    f = "virtual_wall"
+    laser_height = checks.real(laser_height, f, "laser_height")
+    a = np.array([*checks.array(start_xy, f, "start_xy", (2,)), laser_height])
+    b = np.array([*checks.array(end_xy, f, "end_xy", (2,)), laser_height])
+    height = checks.real(height, f, "height", low=0.0, strict_low=True)
     P = cga.plane_from_points(a, b, a + _UP)  # (2.77): e ^ a ^ b ^ a_up
     lo, hi = np.array([0.0, 0.0, -laser_height]), np.array([0.0, 0.0, height - laser_height])
     corners = np.array([a + lo, b + lo, b + hi, a + hi])
@@ -75,9 +78,9 @@ def fit_post_center(points, origin, radius: float, iterations: int = 10) -> np.n
     Least squares of ``|p_i - c| - radius`` by Gauss-Newton, started behind the
     points' centroid (the laser sees the near side).
     """
-    p = np.asarray(points, float).reshape(-1, 2)
+    p = checks.rows(dense(points, "fit_post_center", "points"), "fit_post_center", "points", 2)
     if len(p) < 2:
-        raise DegenerateGeometryError(f"fit_post_center: need at least 2 points, got {len(p)}")
+        raise checks.degenerate("fit_post_center", "points", f"need at least 2 points, got {len(p)}")
     m = p.mean(axis=0)
     away = m - np.asarray(origin, float)
     c = m + radius * away / max(np.linalg.norm(away), 1e-12)
@@ -106,10 +109,10 @@ def laser_posts(ranges, angles, radius: float = 0.05, max_width: float = 0.25, j
     centres : ndarray (k, 2)
     counts : ndarray (k,)
     """
-    r = np.asarray(ranges, float)
-    a = np.asarray(angles, float)
-    if r.shape != a.shape or r.ndim != 1:
-        raise InvalidInputError(f"laser_posts: ranges and angles must be equal 1-D arrays, got {r.shape}, {a.shape}")
+    f = "laser_posts"
+    r = checks.array(ranges, f, "ranges", (None,), finite=False)  # inf: no return
+    a = checks.array(angles, f, "angles", (None,))
+    checks.same_length(f, ranges=r, angles=a)
     fin = np.isfinite(r)
     out, counts = [], []
     i, n = 0, len(r)

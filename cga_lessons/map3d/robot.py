@@ -50,12 +50,13 @@ arrays for the degrees of freedom, so 1,000 configurations cost one batch.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields, replace
+from dataclasses import replace
 
 import numpy as np
 
+from cga_lessons import checks
 from cga_lessons import conformal as cga
-from cga_lessons.algebra import InvalidInputError, Multivector
+from cga_lessons.algebra import Multivector
 
 from .chains import (  # noqa: F401  (re-exported: the chains are part of this module's API)
     axes_nearest_point,
@@ -64,8 +65,9 @@ from .chains import (  # noqa: F401  (re-exported: the chains are part of this m
     base_motor_as_printed,
     base_rotor,
     base_translator,
+    check_dofs,
+    check_entity,
     eye_translator,
-    finite_array,
     head_motor,
     head_rotor,
     head_translator,
@@ -77,7 +79,9 @@ from .chains import (  # noqa: F401  (re-exported: the chains are part of this m
     stereo_chain_as_printed,
     to_unified,
     turned_laser_mount,
+    unified,
 )
+from .state import DOFS, RobotGeometry, RobotState, check_changes
 
 __all__ = [
     "DOFS",
@@ -105,118 +109,16 @@ __all__ = [
     "MOTOR_INPUTS",
 ]
 
-#: The five degrees of freedom of section 4.2.3, in the thesis's order.
-DOFS = ("x", "y", "theta", "pan", "tilt")
-
-
-# ----------------------------------------------------------------- geometry and state
-@dataclass(frozen=True)
-class RobotGeometry:
-    """The fixed dimensions of geometer, metres and radians, in the base frame at pan = tilt = 0.
-
-    The thesis prints no dimensions (figure 4.1 is a photograph of the scale
-    model); every default is *our choice* for a small wheeled base with a laser
-    at the front of its deck and a stereo head on a mast, except ``baseline``,
-    ``focal_px`` and ``image_size``, which are the stereo head of section 4.1
-    in this project (``data/stereo_rig.json``), and the camera height, about
-    1.2 m as there.
-
-    Attributes
-    ----------
-    base_size : (float, float, float)
-        Length (x), width (y) and height (z) of the body, drawn as a box.
-    base_clearance : float
-        Height of the body's underside above the floor (the wheels).
-    laser_mount : (float, float, float, float)
-        ``(x, y, height, yaw)`` of the laser's origin: the 2D laser-robot
-        transform of (3.16) plus the height of its scanning plane (4.2.2).
-    pan_point, pan_direction : (3,) each
-        A point of the pan axis ``L_pan`` and its direction.
-    tilt_point, tilt_direction : (3,) each
-        A point of the tilt axis ``L_tilt`` (at pan = 0) and its direction.
-    eye_offset : (3,)
-        Left camera centre minus the point nearest both axes, at pan = tilt = 0
-        (the translation of ``T_ojo``).
-    baseline, focal_px, image_size
-        The stereo pair: right camera ``baseline`` metres to the right of the left.
-    pan_limits, tilt_limits : (float, float)
-        Joint ranges enforced by :class:`Robot` (the chain functions accept any angle).
-    """
-
-    base_size: tuple = (0.50, 0.40, 0.25)
-    base_clearance: float = 0.06
-    laser_mount: tuple = (0.30, 0.0, 0.35, 0.0)
-    pan_point: tuple = (-0.10, 0.0, 1.0)
-    pan_direction: tuple = (0.0, 0.0, 1.0)
-    tilt_point: tuple = (-0.10, 0.0, 1.10)
-    tilt_direction: tuple = (0.0, 1.0, 0.0)
-    eye_offset: tuple = (0.05, 0.06, 0.06)
-    baseline: float = 0.12
-    focal_px: float = 700.0
-    image_size: tuple = (640, 480)
-    pan_limits: tuple = (-np.radians(170.0), np.radians(170.0))
-    tilt_limits: tuple = (-np.radians(45.0), np.radians(80.0))
-
-    def __post_init__(self):
-        for f in fields(self):
-            v = np.asarray(getattr(self, f.name), dtype=float)
-            if not np.all(np.isfinite(v)):
-                raise InvalidInputError(f"RobotGeometry: {f.name} must be finite, got {getattr(self, f.name)!r}")
-        for name, n in (("base_size", 3), ("laser_mount", 4), ("pan_point", 3), ("pan_direction", 3),
-                        ("tilt_point", 3), ("tilt_direction", 3), ("eye_offset", 3), ("image_size", 2),
-                        ("pan_limits", 2), ("tilt_limits", 2)):  # fmt: skip
-            if np.shape(getattr(self, name)) != (n,):
-                raise InvalidInputError(f"RobotGeometry: {name} must have {n} numbers, got {getattr(self, name)!r}")
-        if min(self.base_size) <= 0 or self.baseline <= 0 or self.focal_px <= 0:
-            raise InvalidInputError("RobotGeometry: base_size, baseline and focal_px must be positive")
-
-
-@dataclass(frozen=True)
-class RobotState:
-    """The five degrees of freedom: position ``x, y`` (m), heading ``theta``, ``pan``, ``tilt`` (rad)."""
-
-    x: float = 0.0
-    y: float = 0.0
-    theta: float = 0.0
-    pan: float = 0.0
-    tilt: float = 0.0
-
-    def __post_init__(self):
-        for name in DOFS:
-            v = getattr(self, name)
-            try:
-                f = float(v)
-            except (TypeError, ValueError):
-                raise InvalidInputError(f"RobotState: {name} must be a number, got {v!r}") from None
-            if not np.isfinite(f):
-                raise InvalidInputError(f"RobotState: {name} must be finite, got {v!r}")
-            object.__setattr__(self, name, f)
-
-    @property
-    def pose(self) -> np.ndarray:
-        """The planar pose ``(x, y, theta)`` of chapter 3, shape (3,)."""
-        return np.array([self.x, self.y, self.theta])
-
-    def replace(self, **changes) -> RobotState:
-        bad = set(changes) - set(DOFS)
-        if bad:
-            raise InvalidInputError(f"RobotState.replace: unknown degree(s) of freedom {sorted(bad)}; use {DOFS}")
-        return replace(self, **changes)
-
-    def changed(self, other: RobotState) -> tuple:
-        """Names of the degrees of freedom in which ``other`` differs from this state."""
-        return tuple(n for n in DOFS if getattr(self, n) != getattr(other, n))
-
 
 # ----------------------------------------------------------------- dependency graph
 def _axis_rotor(angle, axis):
     """The thesis's R_pan / R_tilt: a rotor about the axis *direction* (2.96), placed by T_eje in (4.5)-(4.9)."""
-    return cga.rotor(axis, finite_array(angle))
+    return cga.rotor(axis, angle)
 
 
 def _line_rotor(angle, L):
     """R_L = exp(-angle/2 L) about the axis line itself (2.109; the footnote of 4.2.2)."""
-    return cga.rotor_about_line(L, finite_array(angle))
+    return cga.rotor_about_line(L, angle)
 
 
 #: Each motor of the chains: ``(degrees of freedom it reads, parts it is built from, function)``; the
@@ -289,8 +191,11 @@ def chain_motors(geometry: RobotGeometry | None = None, *, x=0.0, y=0.0, theta=0
         lines ``L_pan``, ``L_tilt`` and their unit directions ``pan_axis``,
         ``tilt_axis`` (arrays).
     """
+    f = "chain_motors"
+    if geometry is not None:
+        checks.instance(geometry, f, "geometry", RobotGeometry, "a RobotGeometry or None")
+    vals = check_dofs(f, x=x, y=y, theta=theta, pan=pan, tilt=tilt)
     fixed = _fixed_parts(geometry or RobotGeometry())
-    vals = {"x": x, "y": y, "theta": theta, "pan": pan, "tilt": tilt}
     m = {k: fixed[k] for k in _FIXED}
     for name in MOTOR_INPUTS:
         m[name] = _build(name, m, vals)
@@ -313,12 +218,16 @@ class Robot:
     """
 
     def __init__(self, geometry: RobotGeometry | None = None, state: RobotState | None = None):
+        if geometry is not None:
+            checks.instance(geometry, "Robot", "geometry", RobotGeometry, "a RobotGeometry or None")
+        if state is not None:
+            checks.instance(state, "Robot", "state", RobotState, "a RobotState or None")
         self.geometry = geometry or RobotGeometry()
         self._fixed = _fixed_parts(self.geometry)
         self.motors = {k: self._fixed[k] for k in _FIXED}
         self.evaluations = dict.fromkeys(MOTOR_INPUTS, 0)
         self.state = RobotState()
-        self._check(state or self.state)
+        self._check(state or self.state, "Robot", "state")
         self.state = state or self.state
         self.last_updated = self._recompute(set(DOFS))
 
@@ -340,17 +249,17 @@ class Robot:
 
     def __getitem__(self, name: str) -> Multivector:
         if name not in self.motors:
-            raise InvalidInputError(f"Robot: no motor {name!r}; known: {sorted(self.motors)}")
+            raise checks.fail("Robot", "name", f"no motor {name!r}; known: {sorted(self.motors)}")
         return self.motors[name]
 
     # -- state changes
-    def _check(self, state: RobotState):
-        if not isinstance(state, RobotState):
-            raise InvalidInputError(f"Robot: state must be a RobotState, got {type(state).__name__}")
+    def _check(self, state: RobotState, func: str, arg: str | None):
+        """``state`` within the joint ranges; errors name ``arg`` (None: the degree of freedom itself)."""
+        checks.instance(state, func, arg or "state", RobotState, "a RobotState")
         for name, (lo, hi) in (("pan", self.geometry.pan_limits), ("tilt", self.geometry.tilt_limits)):
             v = getattr(state, name)
             if not lo <= v <= hi:
-                raise InvalidInputError(f"Robot: {name} = {v:.4f} rad is outside its range [{lo:.4f}, {hi:.4f}]")
+                raise checks.fail(func, arg or name, f"{name} = {v:.4f} rad is outside its range [{lo:.4f}, {hi:.4f}]")
 
     def _recompute(self, changed: set) -> tuple:
         vals = {n: getattr(self.state, n) for n in DOFS}
@@ -364,7 +273,10 @@ class Robot:
 
     def set_state(self, state: RobotState) -> tuple:
         """Move to ``state``; recompute only the motors touched by the changed degrees of freedom."""
-        self._check(state)
+        self._check(state, "Robot.set_state", "state")
+        return self._move(state)
+
+    def _move(self, state: RobotState) -> tuple:
         changed = set(self.state.changed(state))
         self.state = state
         self.last_updated = self._recompute(changed)
@@ -372,19 +284,25 @@ class Robot:
 
     def update(self, **dofs) -> tuple:
         """Change some degrees of freedom (``x=..., pan=...``); returns the names of the recomputed motors."""
-        return self.set_state(self.state.replace(**dofs))
+        f = "Robot.update"
+        state = replace(self.state, **check_changes(dofs, f))
+        self._check(state, f, None)
+        return self._move(state)
 
     # -- using the chains
     def laser_to_unified(self, X: Multivector) -> Multivector:
         """An entity seen by the laser, in the unified frame: ``M_lu X ~M_lu`` (4.4)."""
-        return to_unified(self.motors["M_lu"], X)
+        f = "Robot.laser_to_unified"
+        return unified(self.motors["M_lu"], check_entity(X, f), f)
 
     def stereo_to_unified(self, X: Multivector, about_lines: bool = False) -> Multivector:
         """An entity seen by the stereo head, in the unified frame: ``M_eu X ~M_eu`` (4.10).
 
         ``about_lines=True`` uses the chain about the axis lines (2.109) instead.
         """
-        return to_unified(self.motors["M_eu_lines" if about_lines else "M_eu"], X)
+        f = "Robot.stereo_to_unified"
+        about_lines = checks.flag(about_lines, f, "about_lines")
+        return unified(self.motors["M_eu_lines" if about_lines else "M_eu"], check_entity(X, f), f)
 
     def stereo_rig(self):
         """The stereo pair in the stereo frame: left camera at the origin looking along +x (a :class:`StereoRig`)."""

@@ -16,10 +16,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from cga_lessons import stereo
-from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d import simulate_odometry, simulate_scan
+from cga_lessons import checks, stereo
+from cga_lessons.mapping2d import OdometryModel, simulate_odometry, simulate_scan
 
+from .chains import check_dofs, dense
 from .robot import Robot, RobotGeometry, RobotState
 from .world import World3D, default_world
 
@@ -59,8 +59,12 @@ def homogeneous_chains(geometry: RobotGeometry | None = None, *, x=0.0, y=0.0, t
     dict
         ``"laser"``, ``"camera_left"``, ``"base"``: arrays (4, 4) or (N, 4, 4).
     """
+    f = "homogeneous_chains"
+    if geometry is not None:
+        checks.instance(geometry, f, "geometry", RobotGeometry, "a RobotGeometry or None")
     g = geometry or RobotGeometry()
-    x, y, theta, pan, tilt = np.broadcast_arrays(*(np.asarray(v, float) for v in (x, y, theta, pan, tilt)))
+    dofs = check_dofs(f, x=x, y=y, theta=theta, pan=pan, tilt=tilt).values()
+    x, y, theta, pan, tilt = np.broadcast_arrays(*(np.asarray(v, float) for v in dofs))
     shape = x.shape
     H_pos = _h(_rot(_Z, theta), np.stack([x, y, np.zeros_like(x)], -1), shape)
     lx, ly, h, yaw = g.laser_mount
@@ -84,16 +88,29 @@ def waypoint_tour(waypoints, step: float = 0.15, turn_step: float = 0.2) -> np.n
     >>> waypoint_tour([[0, 0], [1, 0], [1, 1]], step=0.5, turn_step=0.8).round(3).tolist()[-3:]
     [[1.0, 0.0, 1.571], [1.0, 0.5, 1.571], [1.0, 1.0, 1.571]]
     """
-    wp = np.asarray(waypoints, float)
-    if wp.ndim != 2 or wp.shape[1] != 2 or len(wp) < 2 or not np.all(np.isfinite(wp)):
-        raise InvalidInputError(f"waypoint_tour: waypoints must be a finite (k >= 2, 2) array, got {wp.shape}")
-    if not (step > 0 and turn_step > 0):
-        raise InvalidInputError("waypoint_tour: step and turn_step must be > 0")
+    f = "waypoint_tour"
+    wp = checks.rows(dense(waypoints, f, "waypoints"), f, "waypoints", 2, at_least=2)
+    step = checks.real(step, f, "step", low=0.0, strict_low=True)
+    turn_step = checks.real(turn_step, f, "turn_step", low=0.0, strict_low=True)
+    return _poses(wp, step, turn_step, f)
+
+
+#: The most poses a tour may have (the bundled loop has 134).
+MAX_POSES = 100_000
+
+
+def _poses(wp: np.ndarray, step: float, turn_step: float, func: str) -> np.ndarray:
+    """:func:`waypoint_tour` of checked waypoints (k, 2) and steps; at most :data:`MAX_POSES` poses."""
+    legs = np.diff(wp, axis=0)
+    lengths = np.hypot(legs[:, 0], legs[:, 1])
+    if np.any(lengths < 1e-9):
+        raise checks.fail(func, "waypoints", "two consecutive waypoints coincide")
+    count = float(np.sum(np.maximum(1.0, np.round(lengths / step)))) + len(wp) * np.ceil(np.pi / turn_step)
+    if not count <= MAX_POSES:
+        raise checks.fail(func, "waypoints, step", f"the tour would take {count:.3g} poses; at most {MAX_POSES}")
     heading = float(np.arctan2(*(wp[1] - wp[0])[::-1]))
     poses = [[wp[0, 0], wp[0, 1], heading]]
     for a, b in zip(wp[:-1], wp[1:]):
-        if np.hypot(*(b - a)) < 1e-9:
-            raise InvalidInputError("waypoint_tour: two consecutive waypoints coincide")
         target = float(np.arctan2(b[1] - a[1], b[0] - a[0]))
         turn = (target - heading + np.pi) % (2 * np.pi) - np.pi
         n_turn = int(np.ceil(abs(turn) / turn_step))
@@ -167,19 +184,26 @@ def simulate_tour(
     -------
     Tour
     """
-    if not isinstance(rng, np.random.Generator):
-        raise InvalidInputError("simulate_tour: pass rng=numpy.random.default_rng(seed)")
-    world = world or default_world()
+    f = "simulate_tour"
+    checks.instance(rng, f, "rng", np.random.Generator, "a numpy.random.Generator: pass numpy.random.default_rng(seed)")
+    world = default_world() if world is None else checks.instance(world, f, "world", World3D, "a World3D or None")
+    if geometry is not None:
+        checks.instance(geometry, f, "geometry", RobotGeometry, "a RobotGeometry or None")
     geometry = geometry or RobotGeometry()
-    truth = waypoint_tour(waypoints, step=step)
-    if max(stops) >= len(truth) or min(stops) < 0:
-        raise InvalidInputError(f"simulate_tour: stops must be scan indices below {len(truth)}, got {stops}")
-    if not (noise_px >= 0 and range_noise >= 0 and min_points >= 1):
-        raise InvalidInputError(f"simulate_tour: need noise_px, range_noise >= 0, min_points >= 1, got "
-                                f"{noise_px}, {range_noise}, {min_points}")  # fmt: skip
+    wp = checks.rows(dense(waypoints, f, "waypoints"), f, "waypoints", 2, at_least=2)
+    truth = _poses(wp, checks.real(step, f, "step", low=0.0, strict_low=True), 0.2, f)
+    stops = [checks.integer(k, f, "stops", low=0) for k in checks.array(stops, f, "stops", (None,))]
+    if stops and max(stops) >= len(truth):
+        raise checks.fail(f, "stops", f"must be scan indices below {len(truth)}, got {tuple(stops)}")
+    noise_px = checks.real(noise_px, f, "noise_px", low=0.0)
+    range_noise = checks.real(range_noise, f, "range_noise", low=0.0)
+    min_points = checks.integer(min_points, f, "min_points", low=1)
+    if odometry_model is not None:
+        checks.instance(odometry_model, f, "odometry_model", OdometryModel, "an OdometryModel or None")
     for name, values, (lo, hi) in (("pans", pans, geometry.pan_limits), ("tilts", tilts, geometry.tilt_limits)):
+        values = checks.array(values, f, name, (None,))
         if not all(lo <= v <= hi for v in values):
-            raise InvalidInputError(f"simulate_tour: {name} {tuple(values)} leave the joint range [{lo:.3f}, {hi:.3f}]")
+            raise checks.fail(f, name, f"{tuple(values.tolist())} leave the joint range [{lo:.3f}, {hi:.3f}]")
     lx, ly, h, yaw = geometry.laser_mount
     scene = world.laser_scene(h, truth)
     scans = [
@@ -215,5 +239,6 @@ def simulate_tour(
 
 def triangulate_view(geometry: RobotGeometry, view: View) -> dict:
     """Triangulated points (stereo frame) of each object seen in ``view`` (A.14, midpoint of figure A.4)."""
+    checks.instance(view, "triangulate_view", "view", View, "a View (simulate_tour)")
     rig = Robot(geometry).stereo_rig()
     return {name: stereo.triangulate(rig.P1, rig.P2, x1, x2) for name, (x1, x2) in view.pixels.items()}

@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
+from cga_lessons import checks
 from cga_lessons.mapping2d import Scene
 
 __all__ = ["Ball", "Board", "Plate", "Pedestal", "Post", "World3D", "default_world"]
@@ -36,7 +36,7 @@ def _unit(v, func):
     v = np.asarray(v, float)
     n = np.linalg.norm(v)
     if v.shape != (3,) or not np.isfinite(n) or n < 1e-12:
-        raise DegenerateGeometryError(f"{func}: need a finite non-zero 3-vector, got {v!r}")
+        raise checks.degenerate(func, "cameras", f"need a finite non-zero 3-vector, got {v!r}")
     return v / n
 
 
@@ -250,15 +250,14 @@ class World3D:
         self.walls = [np.asarray(w, float) for w in self.walls]
         names = [o.name for o in self.objects]
         if len(set(names)) != len(names):
-            raise InvalidInputError(f"World3D: object names must be unique, got {names}")
-        if not self.wall_height > 0:
-            raise InvalidInputError(f"World3D: wall_height must be > 0, got {self.wall_height}")
+            raise checks.fail("World3D", "objects", f"object names must be unique, got {names}")
+        self.wall_height = checks.real(self.wall_height, "World3D", "wall_height", low=0.0, strict_low=True)
 
     def object(self, name: str):
         for o in self.objects:
             if o.name == name:
                 return o
-        raise InvalidInputError(f"World3D: no object named {name!r}; have {[o.name for o in self.objects]}")
+        raise checks.fail("World3D.object", "name", f"no object named {name!r}; have {[o.name for o in self.objects]}")
 
     def laser_scene(self, laser_height: float, trajectory) -> Scene:
         """The chapter-3 scene the laser sees: walls and every object that reaches its plane."""

@@ -7,6 +7,8 @@ Nothing here draws (figures and widgets are in :mod:`cga_lessons.viz`).  This fa
 
 * :mod:`~cga_lessons.mapping2d.adjust`: All the poses and all the map lines estimated together from every
   observation (beyond section 3.1)
+* :mod:`~cga_lessons.mapping2d.carmen`: Laser logs in the CARMEN text format (chapter 3, section 3.1): their
+  FLASER lines as scans and poses
 * :mod:`~cga_lessons.mapping2d.build`: Line maps from laser scans and odometry (thesis sections 3.1.2-3.1.4, Eqs.
   3.4-3.12), with loop closure
 * :mod:`~cga_lessons.mapping2d.builder`: The incremental line-map builder behind
@@ -29,6 +31,8 @@ Nothing here draws (figures and widgets are in :mod:`cga_lessons.viz`).  This fa
   map lines on the old ones
 * :mod:`~cga_lessons.mapping2d.index`: A spatial index of the 2D line map: a uniform grid of buckets over the boxes
   of the map's segments
+* :mod:`~cga_lessons.mapping2d.inputs`: The argument checks of the 2D line map that the shared layer
+  (:mod:`cga_lessons.checks`) lacks, built on it
 * :mod:`~cga_lessons.mapping2d.laser`: A 2D laser scanner, robot odometry and laser log reading (chapter 3, section
   3.1)
 * :mod:`~cga_lessons.mapping2d.laser_facts`: What a laser log says about its laser: the values its driver writes for
@@ -42,8 +46,12 @@ Nothing here draws (figures and widgets are in :mod:`cga_lessons.viz`).  This fa
   so that the map can be refitted
 * :mod:`~cga_lessons.mapping2d.params`: The thresholds of the 2D line-map builder
   (:func:`cga_lessons.mapping2d.build_map`), with the thesis's meaning
+* :mod:`~cga_lessons.mapping2d.poses`: Planar poses ``(x, y, theta)``: their composition (the rigid motion 3.4),
+  inverse and difference, and angle wrapping
 * :mod:`~cga_lessons.mapping2d.scan_registration`: Two laser scans registered by the motor that fits their
   corresponding points (iterative closest points)
+* :mod:`~cga_lessons.mapping2d.segment`: Lines and line segments of the 2D map (thesis section 3.1.1, equations
+  3.1-3.3): the :class:`Segment` structure
 * :mod:`~cga_lessons.mapping2d.trajectories`: Planar trajectory evaluation and TUM trajectory files (chapter 3's
   maps, measured the field's way)
 """

@@ -50,10 +50,10 @@ from scipy.sparse.linalg import splu
 
 from cga_lessons.errors import InvalidInputError
 
-from .corrections import line_variances
+from .corrections import line_variances_unchecked
 from .geometry import SegmentSet
-from .laser import wrap_angle
 from .noise import RANGE_NOISE_FLOOR, segment_residual_sigma
+from .poses import wrap_unchecked
 
 __all__ = ["AdjustParams", "Adjustment", "adjust_map", "adjust_built_map", "solve_spd"]
 
@@ -265,7 +265,7 @@ def adjust_map(poses, increments, step_covs, obs: SegmentSet, scan, line, G: Seg
     d = obs.end - obs.start
     a_rob = np.arctan2(-d[:, 0], d[:, 1]) + mount[2]  # the normal: direction turned by -90 degrees
     noise = _scan_noise(segment_residual_sigma(obs), scan, T)[scan]
-    var_t, var_r = line_variances(obs, obs.centroid, 1.0, 0.0, 0.0)  # per unit noise, at the centroid
+    var_t, var_r = line_variances_unchecked(obs, obs.centroid, 1.0, 0.0, 0.0)  # per unit noise, at the centroid
     # the registration error common to a scan's lines (learnt by the builder), seen by each observation: its
     # angle, and its offset at the centroid (a turn about the robot moves the centroid along the lever)
     R = np.zeros((3, 3)) if scan_cov is None else np.asarray(scan_cov, float)
@@ -300,7 +300,7 @@ def adjust_map(poses, increments, step_covs, obs: SegmentSet, scan, line, G: Seg
         wy = s * c_rob[:, 0] + c * c_rob[:, 1] + X[scan, 1]
         ct, st = np.cos(theta[line]), np.sin(theta[line])
         raw_off = ct * wx + st * wy - rho[line]
-        psi = wrap_angle(a_rob + X[scan, 2] - theta[line])
+        psi = wrap_unchecked(a_rob + X[scan, 2] - theta[line])
         psi = np.where(psi > np.pi / 2, psi - np.pi, np.where(psi <= -np.pi / 2, psi + np.pi, psi))  # unoriented
         r_off, r_ang = raw_off * w_r, np.sin(psi) * w_t
         # --- edge rows: the sighting's position along its line against the line's end
@@ -313,9 +313,9 @@ def adjust_map(poses, increments, step_covs, obs: SegmentSet, scan, line, G: Seg
         # --- odometry rows
         c0, s0 = _rot(X[:-1, 2])
         dx, dy = X[1:, 0] - X[:-1, 0], X[1:, 1] - X[:-1, 1]
-        rel = np.column_stack([c0 * dx + s0 * dy, -s0 * dx + c0 * dy, wrap_angle(X[1:, 2] - X[:-1, 2])])
+        rel = np.column_stack([c0 * dx + s0 * dy, -s0 * dx + c0 * dy, wrap_unchecked(X[1:, 2] - X[:-1, 2])])
         e = rel - inc
-        e[:, 2] = wrap_angle(e[:, 2])
+        e[:, 2] = wrap_unchecked(e[:, 2])
         r_od = np.einsum("kij,kj->ki", Wod, e)
         # --- robust weights per observation (both rows together)
         u = np.sqrt(r_off**2 + r_ang**2)
@@ -385,7 +385,7 @@ def adjust_map(poses, increments, step_covs, obs: SegmentSet, scan, line, G: Seg
         if step is None or not np.all(np.isfinite(step)):
             raise InvalidInputError(f"{func}: the normal equations are singular (a line or pose is not determined)")
         X[1:] += step[:n_pose].reshape(-1, 3)
-        X[1:, 2] = wrap_angle(X[1:, 2])
+        X[1:, 2] = wrap_unchecked(X[1:, 2])
         theta = theta + step[n_pose:n_lines:2]
         rho = rho + step[n_pose + 1 : n_lines : 2]
         sval = sval + step[n_lines:]

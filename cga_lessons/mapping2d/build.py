@@ -83,16 +83,19 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
 
 from .adjust import adjust_built_map
 from .builder import MapBuilder
 from .corrections import odometry_covariance
 from .geometry import PlainGeometry, SegmentSet
-from .laser import compose, relative, scan_points
-from .lines import extract_segments
+from .inputs import array, pose, reach, scan_list, squares_finite
+from .laser import scan_points_unchecked
+from .lines import extract_unchecked, extraction_settings
 from .loops import LoopCloser
 from .params import MapParams
+from .poses import compose_unchecked, relative_unchecked
+from .segment import Segment
 
 __all__ = [
     "MapResult",
@@ -138,18 +141,89 @@ class MapResult:
     history: list = field(default_factory=list)
     loops: list = field(default_factory=list)
 
+    def __post_init__(self):
+        f = "MapResult"
+        if not isinstance(self.segments, list):
+            raise checks.fail(f, "segments", f"expected a list of Segment, got {type(self.segments).__name__}")
+        for s in self.segments:
+            checks.instance(s, f, "segments", Segment, "a list of Segment")
+        self.poses = array(self.poses, f, "poses", (None, 3))
+        self.predicted = array(self.predicted, f, "predicted", (None, 3))
+        self.n_matches = _whole(array(self.n_matches, f, "n_matches", (None,)), f, "n_matches", 0, None)  # fmt: skip
+        self.corrected = _whole(array(self.corrected, f, "corrected", (None,)), f, "corrected", 0, 1).astype(bool)
+        names = ("poses", "predicted", "n_matches", "corrected")
+        checks.same_length(f, **{k: getattr(self, k) for k in names})
+        self.method = checks.choice(self.method, f, "method", ("plain", "conformal"))
+        for name in ("history", "loops"):
+            if not isinstance(getattr(self, name), list):
+                raise checks.fail(f, name, f"expected a list, got {type(getattr(self, name)).__name__}")
+        self.history = [checks.integer(n, f, "history", low=0) for n in self.history]
+        self.loops = [_scan_pair(p, f) for p in self.loops]
+
+
+def _whole(a, func: str, name: str, low, high) -> np.ndarray:
+    """A float array of whole numbers within ``[low, high]`` (``None``: up to 2**53), as ints."""
+    high = 2**53 if high is None else high
+    if np.any(a != np.round(a)) or np.any(a < low) or np.any(a > high):
+        raise checks.fail(func, name, f"must hold whole numbers from {low} to {high}")
+    return a.astype(int)
+
+
+def _scan_pair(pair, func: str) -> tuple:
+    if not isinstance(pair, (tuple, list)) or len(pair) != 2:
+        raise checks.fail(func, "loops", f"expected (earlier scan, scan) pairs, got {pair!r}")
+    return tuple(checks.integer(k, func, "loops", low=0) for k in pair)
+
 
 # --------------------------------------------------------------------------- the map
+
+
+def _inputs(scans, odometry, method, params, mount, max_range, extraction, record_history, progress, overrides):
+    """The checked arguments of :func:`build_map`: scans, odometry, geometry, params, mount, extraction settings."""
+    f = "build_map"
+    scans = scan_list(scans, f, "scans", increasing=True)
+    odometry = array(odometry, f, "odometry", (None, 3))
+    if len(scans) != len(odometry) or len(scans) == 0:
+        raise checks.fail(f, "scans, odometry", f"{len(scans)} scans but {len(odometry)} odometry poses")
+    squares_finite(odometry[:, :2] - odometry[0, :2], f, "odometry")  # the steps' covariances square them
+    method = checks.choice(method, f, "method", ("plain", "conformal"))
+    if params is None:
+        params = MapParams()
+    params = checks.instance(params, f, "params", MapParams, "a MapParams (or None)")
+    bad = set(overrides) - set(MapParams.__dataclass_fields__)
+    if bad:
+        raise checks.fail(f, ", ".join(sorted(bad)), f"unknown parameter(s) {sorted(bad)} (see MapParams)")
+    if overrides:
+        params = MapParams(**{**params.__dict__, **overrides})
+    ext = {"max_range": reach(max_range, f, "max_range")}
+    if extraction is not None:
+        if not isinstance(extraction, dict):
+            raise checks.fail(f, "extraction", f"expected a dict of extract_segments settings, got {extraction!r}")
+        ext.update(extraction_settings(extraction, f, "extraction: "))
+    ext["func"] = f
+    checks.flag(record_history, f, "record_history")
+    if progress is not None and not callable(progress):
+        raise checks.fail(f, "progress", f"expected a callable progress(k, T) or None, got {progress!r}")
+    if method == "plain":
+        geometry = PlainGeometry()
+    else:
+        from .conformal import ConformalGeometry
+
+        geometry = ConformalGeometry()
+    mount = squares_finite(pose(mount, f, "mount"), f, "mount")
+    return scans, odometry, geometry, params, mount, ext["max_range"], ext
 
 
 def _warm_up(corrector, scans, odometry, ext, params):
     """Learn how good the odometry is from the first scans, each registered on the one before, before any
     correction (so that the first corrections already use it); returns their segments (laser frame)."""
     n = min(len(scans), corrector.innovations.min_count + 1) if params.estimate_odometry else 0
-    local = [SegmentSet.from_segments(extract_segments(r, a, **ext)) for r, a in scans[:n]]
+    local = [
+        SegmentSet.from_segments(extract_unchecked(r, a, **ext, names=_names(k))) for k, (r, a) in enumerate(scans[:n])
+    ]
     for k in range(1, n):
         if len(local[k]) and len(local[k - 1]):
-            inc = relative(odometry[k - 1], odometry[k])
+            inc = relative_unchecked(odometry[k - 1], odometry[k])
             corrector.learn_odometry(local[k - 1], local[k], inc, odometry_covariance(inc, params))
         if params.learn_lag > 1 and k >= params.learn_lag and k % params.learn_lag == 0:
             corrector.learn_lagged(local[k - params.learn_lag], local[k], odometry, k - params.learn_lag, k)
@@ -205,32 +279,9 @@ def build_map(
     InvalidInputError
         If the inputs disagree in length or shape, or a parameter is unknown.
     """
-    odometry = np.asarray(odometry, float)
-    if odometry.ndim != 2 or odometry.shape[1] != 3 or not np.all(np.isfinite(odometry)):
-        raise InvalidInputError(f"build_map: odometry must be a finite (T, 3) array, got shape {odometry.shape}")
-    scans = list(scans)
-    if len(scans) != len(odometry) or len(scans) == 0:
-        raise InvalidInputError(f"build_map: {len(scans)} scans but {len(odometry)} odometry poses")
-    params = params or MapParams()
-    bad = set(overrides) - set(MapParams.__dataclass_fields__)
-    if bad:
-        raise InvalidInputError(f"build_map: unknown parameter(s) {sorted(bad)}")
-    if overrides:
-        params = MapParams(**{**params.__dict__, **overrides})
-    if not (isinstance(params.learn_lag, (int, np.integer)) and params.learn_lag >= 1):
-        raise InvalidInputError(f"build_map: learn_lag must be an integer >= 1, got {params.learn_lag!r}")
-    if not max_range > 0:
-        raise InvalidInputError(f"build_map: max_range must be > 0, got {max_range}")
-    if method == "plain":
-        geometry = PlainGeometry()
-    elif method == "conformal":
-        from .conformal import ConformalGeometry
-
-        geometry = ConformalGeometry()
-    else:
-        raise InvalidInputError(f"build_map: method must be 'plain' or 'conformal', got {method!r}")
-    mount = np.asarray(mount, float).reshape(3)
-    ext = {"max_range": max_range, **(extraction or {})}
+    scans, odometry, geometry, params, mount, max_range, ext = _inputs(
+        scans, odometry, method, params, mount, max_range, extraction, record_history, progress, overrides
+    )
     # Work near the origin: a log placed far away (map coordinates of 1e6 m) would leave the conformal entities
     # of table 2.1 with ~eps |x|^2 of accuracy.  A multiple of 1024 m is subtracted exactly and added back
     # exactly, so a log near the origin is computed bit for bit as before.
@@ -255,15 +306,19 @@ def build_map(
             pose = odometry[0].copy()
             b.path.append(0.0)
         else:
-            inc = relative(odometry[k - 1], odometry[k])  # odometry increment
-            pose = compose(poses[k - 1], inc)
+            inc = relative_unchecked(odometry[k - 1], odometry[k])  # odometry increment
+            pose = compose_unchecked(poses[k - 1], inc)
             b.path.append(b.path[-1] + float(np.hypot(inc[0], inc[1])))
             Q = odometry_covariance(inc, params)
             d = pose[:2] - poses[k - 1, :2]
             J = np.array([[1.0, 0.0, -d[1]], [0.0, 1.0, d[0]], [0.0, 0.0, 1.0]])
             carried = J @ P @ J.T
         predicted[k] = pose
-        L = local[k] if k < len(local) else SegmentSet.from_segments(extract_segments(ranges, angles, **ext))
+        L = (
+            local[k]
+            if k < len(local)
+            else SegmentSet.from_segments(extract_unchecked(ranges, angles, **ext, names=_names(k)))
+        )
         if k >= len(local) and len(L) and len(previous):
             b.corrector.learn_odometry(previous, L, inc, Q)  # how good the odometry is, scan against scan
         previous = L
@@ -276,8 +331,7 @@ def build_map(
             increments[k - 1], step_covs[k - 1] = inc, b.corrector.odometry_scale * Q
         pts = np.zeros((0, 2))
         if len(L):
-            r = np.asarray(ranges, float)
-            pts, _ = scan_points(np.where(r < max_range, r, np.inf), angles)
+            pts, _ = scan_points_unchecked(np.where(ranges < max_range, ranges, np.inf), angles)
         if k > 0 and len(L) and len(b.G):
             pose, P, pairs, corrected[k] = b.correct(L, pose, P, b.near(pose[:2], k), pts, step=(carried, Q))
             n_matches[k] = 0 if pairs is None else len(pairs[0])
@@ -285,8 +339,7 @@ def build_map(
         if k > 0:
             loops.add_step(k, poses, P if n_matches[k] else b.corrector.odometry_scale * Q)
         b.fuse(L, pose, k)
-        a = np.asarray(angles, float)
-        closed = loops.search(b, k, poses, L, pts, (a.min(), a.max()))
+        closed = loops.search(b, k, poses, L, pts, (angles.min(), angles.max()))
         if closed is not None:
             poses[: k + 1], P = closed
         if params.cleanup_every and (k + 1) % params.cleanup_every == 0:
@@ -298,9 +351,19 @@ def build_map(
     b.remove_duplicates()
     if params.adjust and T > 1:
         poses = adjust_built_map(b, poses, increments, step_covs).poses
+    return _result(b, shift, poses, predicted, n_matches, corrected, history, loops.graph.loops)
+
+
+def _names(k: int) -> tuple:
+    return f"scans[{k}] ranges", f"scans[{k}] angles"
+
+
+def _result(b, shift, poses, predicted, n_matches, corrected, history, loops) -> MapResult:
+    """The map and poses moved back by ``shift`` (the multiple of 1024 m taken off the odometry)."""
+    checks.finite_result(poses, "build_map", "scans, odometry")
     segments = b.G.to_segments()
     if np.any(shift):
         back = np.array([shift[0], shift[1], 0.0])
         poses, predicted = poses + back, predicted + back
         segments = [s.transformed(back) for s in segments]
-    return MapResult(segments, poses, predicted, n_matches, corrected, geometry.name, history, loops.graph.loops)
+    return MapResult(segments, poses, predicted, n_matches, corrected, b.geo.name, history, loops)

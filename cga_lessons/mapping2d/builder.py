@@ -32,13 +32,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
 
 from .correction import ScanCorrector
-from .geometry import SegmentSet, compose_unchecked, correspondences
+from .geometry import PlainGeometry, SegmentSet, correspondences_unchecked
 from .index import SegmentIndex, duplicate_pairs, sphere_boxes
-from .lines import line_from_sums
+from .inputs import array, pose, reach
 from .observations import Growing, Observations, PathLog, refit_lines
+from .params import MapParams
+from .poses import compose_unchecked, wrap_unchecked
+from .segment import line_from_sums
 
 __all__ = ["MapBuilder"]
 
@@ -88,16 +91,17 @@ class MapBuilder:
 
     def __init__(self, geometry, params, mount=(0.0, 0.0, 0.0), max_range=np.inf, *, index_cell=None,
                  refit_tolerance=None):  # fmt: skip
-        self.geo = geometry
-        self.p = params
-        self.mount = np.asarray(mount, float).reshape(3)
-        self.max_range = float(max_range)
+        f = "MapBuilder"
+        self.geo = checks.instance(geometry, f, "geometry", PlainGeometry, "a PlainGeometry or a ConformalGeometry")
+        self.p = checks.instance(params, f, "params", MapParams, "a MapParams")
+        self.mount = pose(mount, f, "mount")
+        self.max_range = reach(max_range, f, "max_range")
         tol = self.REFIT_TOLERANCE if refit_tolerance is None else refit_tolerance
-        tol = tuple(float(t) for t in np.asarray(tol, float).reshape(-1))
-        if len(tol) != 2 or not all(t >= 0 for t in tol):
-            raise InvalidInputError(f"MapBuilder: refit_tolerance must be two numbers >= 0 (m, rad), got {tol}")
-        self.refit_tolerance = tol
-        self.index = SegmentIndex() if index_cell is None else SegmentIndex(index_cell)
+        self.refit_tolerance = tuple(float(t) for t in array(tol, f, "refit_tolerance", (2,)))
+        if min(self.refit_tolerance) < 0:
+            raise checks.fail(f, "refit_tolerance", f"must be two numbers >= 0 (m, rad), got {self.refit_tolerance}")
+        cell = None if index_cell is None else checks.real(index_cell, f, "index_cell", low=0.0, strict_low=True)
+        self.index = SegmentIndex() if cell is None else SegmentIndex(cell)
         self._G = SegmentSet.empty()
         self.gid = np.zeros(0, int)  # a stable id per map line, ascending along the rows
         self.last = np.zeros(0, int)  # the last scan that saw it
@@ -120,7 +124,7 @@ class MapBuilder:
     @G.setter
     def G(self, segs: SegmentSet):
         if len(segs) != len(self.gid):
-            raise InvalidInputError(f"MapBuilder.G: {len(segs)} segments for {len(self.gid)} line ids")
+            raise checks.fail("MapBuilder.G", "segs", f"{len(segs)} segments for {len(self.gid)} line ids")
         self._G = segs
         self.index.clear()
         self._touch(np.arange(len(segs)))
@@ -299,7 +303,7 @@ class MapBuilder:
         """
         Lw = self.geo.to_global(L, pose, self.mount)
         idx = self.near(pose[:2], k)
-        C, _, _ = correspondences(self._G.take(idx), Lw, pose[:2], self.p, self.geo)
+        C, _, _ = correspondences_unchecked(self._G.take(idx), Lw, pose[:2], self.p, self.geo)
         gl = np.flatnonzero(C >= 0)
         pairs = (idx[gl], C[gl])
         ids = np.full(len(L), -1, int)
@@ -422,7 +426,7 @@ class MapBuilder:
         first = max(0, min(int(first), n))
         was = self._placed.view[first:n]
         d = poses[first:n] - was
-        turn = np.abs(np.mod(d[:, 2] + np.pi, 2 * np.pi) - np.pi)
+        turn = np.abs(wrap_unchecked(d[:, 2]))
         tol_xy, tol_th = self.refit_tolerance
         moved = first + np.flatnonzero((np.hypot(d[:, 0], d[:, 1]) > tol_xy) | (turn > tol_th))
         lines = np.union1d(self.obs.lines_of_scans(moved, self.resolve), np.array(sorted(self._unfit), int))
@@ -436,7 +440,7 @@ class MapBuilder:
         line_of = np.searchsorted(lines, self.resolve(self.obs.line.view[obs]))
         new = refit_lines(self.geo, self.mount, self._G.take(rows), line_of, W, self.p.edge_match)
         G = self._G
-        self._G = SegmentSet(G.start.copy(), G.end.copy(), G.sums.copy(), G.edge.copy())
+        self._G = SegmentSet.trusted(G.start.copy(), G.end.copy(), G.sums.copy(), G.edge.copy())
         self._G.start[rows], self._G.end[rows], self._G.sums[rows], self._G.edge[rows] = (
             new.start, new.end, new.sums, new.edge)  # fmt: skip
         self._touch(rows, fitted=True)

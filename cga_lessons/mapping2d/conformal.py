@@ -34,11 +34,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from cga_lessons import checks
 from cga_lessons import conformal as cga
-from cga_lessons.algebra import InvalidInputError, Multivector
+from cga_lessons.algebra import Multivector
 
 from .geometry import PlainGeometry, SegmentSet, transform_sums
-from .lines import TWO_PI, Segment
+from .inputs import array, batch, relabel, squares_finite
+from .lines import TWO_PI, Segment, diff_theta_unchecked
 
 __all__ = [
     "e2c",
@@ -72,24 +74,29 @@ def e2c(xy) -> Multivector:
     >>> X = e2c([3.0, 4.0]); float(X["e-"] - X["e+"]), float((X | X).scalar())
     (1.0, 0.0)
     """
-    p = np.asarray(xy, float)
-    if p.shape[-1:] != (2,):
-        raise InvalidInputError(f"e2c: points must have shape (2,) or (N, 2), got {p.shape}")
-    return cga.up(_xyz(p))
+    p, single = batch(xy, "e2c", "xy", (2,))
+    squares_finite(p, "e2c", "xy")
+    return cga.up(_xyz(p[0] if single else p))
 
 
 def c2e(X: Multivector) -> np.ndarray:
     """The inverse of E2C (3.13): ``(x, y)`` of a conformal point of the z = 0 plane, shape (2,) or (N, 2)."""
-    return np.asarray(cga.down(X), float)[..., :2]
+    checks.instance(X, "c2e", "X", Multivector, "a conformal point (a Multivector)")
+    return np.asarray(relabel("c2e", "X", cga.down, X), float)[..., :2]
 
 
 def segment_point_pair(segments) -> Multivector:
     """Point pairs ``PP* = E2C(p_i) ^ E2C(p_f)`` of segments (2.68, section 3.2.1); a batch for a list."""
+    f = "segment_point_pair"
     if isinstance(segments, Segment):
-        return cga.point_pair(_xyz(segments.start), _xyz(segments.end))
+        return relabel(f, "segments", cga.point_pair, _xyz(segments.start), _xyz(segments.end))
+    if not isinstance(segments, (list, tuple)) or not segments:
+        raise checks.fail(f, "segments", f"expected a Segment or a non-empty list of them, got {segments!r:.60}")
+    for s in segments:
+        checks.instance(s, f, "segments", Segment, "a Segment or a list of them")
     starts = np.array([s.start for s in segments])
     ends = np.array([s.end for s in segments])
-    return cga.point_pair(_xyz(starts), _xyz(ends))
+    return relabel(f, "segments", cga.point_pair, _xyz(starts), _xyz(ends))
 
 
 def point_pair_structure(PP: Multivector) -> dict:
@@ -110,7 +117,11 @@ def point_pair_structure(PP: Multivector) -> dict:
     >>> round(d["rho"], 12), round(d["theta"], 12), (d["closest_point"].round(12) + 0.0).tolist()
     (1.0, 0.0, [1.0, 0.0])
     """
-    p1, p2 = cga.point_pair_endpoints(PP)  # (2.131)
+    f = "point_pair_structure"
+    checks.instance(PP, f, "PP", Multivector, "a point pair (a Multivector)")
+    if PP.shape:
+        raise checks.fail(f, "PP", f"expected one point pair, got a batch of shape {PP.shape}")
+    p1, p2 = relabel(f, "PP", cga.point_pair_endpoints, PP)  # (2.131)
     L = PP ^ cga.einf
     rho = float(cga.point_line_distance(np.zeros(3), L))  # (3.14) = (2.130) with x = e0
     closest = np.asarray(cga.line_closest_point(L), float)[:2]  # (3.15) = (2.129)
@@ -132,7 +143,18 @@ def point_pair_structure(PP: Multivector) -> dict:
 
 def robot_motor(pose) -> Multivector:
     """Motor ``M = T R`` of a planar pose ``(x, y, theta)``: rotor about e3 (2.94), translator (2.100), (2.102)."""
-    x, y, th = np.asarray(pose, float).reshape(3)
+    return _motor(_planar_pose(pose, "robot_motor", "pose"))
+
+
+def _planar_pose(value, func: str, name: str) -> np.ndarray:
+    """A pose (3,) whose position's square is finite (a motor squares it)."""
+    p = array(value, func, name, (3,))
+    squares_finite(p[:2], func, name)
+    return p
+
+
+def _motor(pose) -> Multivector:
+    x, y, th = pose
     return cga.translator([x, y, 0.0]) * cga.rotor(_Z, th)
 
 
@@ -155,10 +177,14 @@ def laser_motor(pose, mount=(0.0, 0.0, 0.0), printed: bool = False) -> Multivect
     printed : bool
         Use (3.17) as printed.
     """
-    M_robot = robot_motor(pose)
-    M_lr = robot_motor(mount)  # (3.16) M_laser-robot = T_laser-robot R_laser-robot
+    f = "laser_motor"
+    pose, mount = _planar_pose(pose, f, "pose"), _planar_pose(mount, f, "mount")
+    printed = checks.flag(printed, f, "printed")
+    squares_finite(np.abs(pose[:2]) + np.abs(mount[:2]), f, "pose, mount")
+    M_robot = _motor(pose)
+    M_lr = _motor(mount)  # (3.16) M_laser-robot = T_laser-robot R_laser-robot
     if printed:
-        R = cga.rotor(_Z, float(np.asarray(pose, float)[2]))
+        R = cga.rotor(_Z, float(pose[2]))
         M_l_r = R * M_lr * ~R
     else:
         M_l_r = M_robot * M_lr * ~M_robot
@@ -206,10 +232,17 @@ def sphere_case(
         1 intersect, same segment; 2 nested, same; 3 intersect, not the same;
         4 nested, not the same; 5 apart (and not the same).
     """
-    from .lines import diff_theta
-
-    PPg = cga.point_pair(_xyz(g_start), _xyz(g_end))
-    PPl = cga.point_pair(_xyz(l_start), _xyz(l_end))
+    f = "sphere_case"
+    ends = {k: v for k, v in (("g_start", g_start), ("g_end", g_end), ("l_start", l_start), ("l_end", l_end))}
+    ends = {k: squares_finite(array(v, f, k, (2,)), f, k) for k, v in ends.items()}
+    angle_gate = checks.real(angle_gate, f, "angle_gate", low=0.0)
+    xi_d = checks.real(xi_d, f, "xi_d", low=0.0)
+    margin = checks.real(margin, f, "margin", low=0.0, high=1e150)
+    for a, b in (("g_start", "g_end"), ("l_start", "l_end")):
+        if np.array_equal(ends[a], ends[b]):
+            raise checks.degenerate(f, f"{a}, {b}", "the segment's ends coincide")
+    PPg = cga.point_pair(_xyz(ends["g_start"]), _xyz(ends["g_end"]))
+    PPl = cga.point_pair(_xyz(ends["l_start"]), _xyz(ends["l_end"]))
     cg, _, Sg = _spheres(PPg, margin)
     cl, _, Sl = _spheres(PPl, margin)
     wedge2 = float(np.squeeze(((Sg ^ Sl) * (Sg ^ Sl)).scalar()))
@@ -221,7 +254,10 @@ def sphere_case(
     rl = np.asarray(cga.line_direction(PPl ^ cga.einf), float)
     tg = np.mod(np.arctan2(-rg[0], rg[1]), TWO_PI)
     tl = np.mod(np.arctan2(-rl[0], rl[1]), TWO_PI)
-    same = abs(diff_theta(tg, tl, angle_gate)) < angle_gate and cga.point_line_distance(cg[0], PPl ^ cga.einf) < xi_d
+    same = (
+        abs(diff_theta_unchecked(tg, tl, angle_gate)) < angle_gate
+        and cga.point_line_distance(cg[0], PPl ^ cga.einf) < xi_d
+    )
     if intersect:
         return 1 if same else 3
     if nested:
@@ -266,7 +302,7 @@ class ConformalGeometry(PlainGeometry):
         PP = _sandwich(M, _pp_from_set(segs))  # (3.18)
         p1, p2 = _ends_2d(PP)
         H = np.asarray(cga.motor_to_matrix(M))  # the point sums follow the same rigid motion
-        return SegmentSet(p1, p2, transform_sums(segs.sums, H[:2, :2], H[:2, 3]), segs.edge)
+        return SegmentSet.trusted(p1, p2, transform_sums(segs.sums, H[:2, :2], H[:2, 3]), segs.edge)
 
     def transform(self, segs: SegmentSet, pose) -> SegmentSet:
         return self.to_global(segs, pose, (0.0, 0.0, 0.0))
@@ -286,7 +322,7 @@ class ConformalGeometry(PlainGeometry):
         o = c2e(M * e2c(np.zeros((n, 2))) * ~M)
         ex = c2e(M * e2c(np.tile([1.0, 0.0], (n, 1))) * ~M) - o
         R = np.stack([np.stack([ex[:, 0], -ex[:, 1]], -1), np.stack([ex[:, 1], ex[:, 0]], -1)], -2)
-        return SegmentSet(p1, p2, transform_sums(segs.sums, R, o), segs.edge)
+        return SegmentSet.trusted(p1, p2, transform_sums(segs.sums, R, o), segs.edge)
 
     def _lines_about(self, segs: SegmentSet, centre):
         """Lines ``L* = PP* ^ e`` of the segments, moved so that ``centre`` is the origin (a translator)."""

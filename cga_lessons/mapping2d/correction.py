@@ -27,12 +27,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .corrections import chain_covariance, line_variances
+from .corrections import chain_covariance, line_variances_unchecked
 from .estimation import Correction, Measurements, estimate_correction
-from .geometry import SegmentSet, correspondences
-from .laser import wrap_angle
-from .lines import diff_theta
+from .geometry import SegmentSet, correspondences_unchecked
+from .lines import diff_theta_unchecked
 from .noise import InnovationModel, NoiseFloors, scan_range_noise
+from .poses import wrap_unchecked
 
 __all__ = ["Registration", "ScanCorrector"]
 
@@ -108,12 +108,12 @@ class ScanCorrector:
         G2, L2 = Gn.take(gi), Lw.take(li)
         _, tg = self.geo.hough(G2, centre)
         _, tl = self.geo.hough(L2, centre)
-        dth = diff_theta(tg, tl, p.theta_xi)
+        dth = diff_theta_unchecked(tg, tl, p.theta_xi)
         ng = np.column_stack([np.cos(tg), np.sin(tg)])
         lever = L2.centroid - centre
         offset = np.einsum("ij,ij->i", ng, G2.centroid - L2.centroid)
-        vt_l, vr_l = line_variances(L2, L2.centroid, noise, p.angle_floor, p.offset_floor)
-        vt_g, vr_g = line_variances(G2, L2.centroid, noise, p.angle_floor, p.offset_floor)
+        vt_l, vr_l = line_variances_unchecked(L2, L2.centroid, noise, p.angle_floor, p.offset_floor)
+        vt_g, vr_g = line_variances_unchecked(G2, L2.centroid, noise, p.angle_floor, p.offset_floor)
         return dth, vt_l + vt_g, offset, vr_l + vr_g, ng, lever
 
     def _edge_terms(self, Gn, Lw, gi, li, centre):
@@ -174,7 +174,7 @@ class ScanCorrector:
 
     def _estimate(self, meas, floors, predicted, pose, prior_cov):
         back = np.asarray(predicted, float) - pose  # the correction that returns to the prediction
-        back[2] = wrap_angle(back[2])
+        back[2] = wrap_unchecked(back[2])
         return estimate_correction(
             meas.with_floors(floors),
             prior_cov,
@@ -192,7 +192,7 @@ class ScanCorrector:
         d[:2] = np.clip(d[:2], -p.t_xi, p.t_xi)
         d[2] = np.clip(d[2], -p.theta_max, p.theta_max)
         out = np.asarray(pose, float) + d  # (3.6), (3.7)
-        out[2] = wrap_angle(out[2])
+        out[2] = wrap_unchecked(out[2])
         return out
 
     def register(self, ref: SegmentSet, L: SegmentSet, predicted, prior_cov, widen=True, gate_cov=None):
@@ -226,7 +226,7 @@ class ScanCorrector:
         found = None
         for it in range(p.n_iterations):
             Lw = self.geo.to_global(L, pose, self.mount)
-            C, _, _ = correspondences(ref, Lw, pose[:2], p, self.geo)
+            C, _, _ = correspondences_unchecked(ref, Lw, pose[:2], p, self.geo)
             gi = np.flatnonzero(C >= 0)
             if len(gi) == 0:
                 break

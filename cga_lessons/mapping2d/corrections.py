@@ -11,12 +11,16 @@ the odometry's prediction.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
 
 from .geometry import SegmentSet
-from .laser import OdometryModel, relative
+from .inputs import array, covariance, squares_finite, vector
+from .laser import OdometryModel
+from .poses import relative_unchecked, wrap_unchecked
 
 __all__ = [
     "theta_correction",
@@ -47,11 +51,21 @@ def theta_correction(dth, weights=None) -> float:
     >>> theta_correction([0.01, 0.03])
     0.02
     """
-    dth = np.asarray(dth, float)
-    if dth.size == 0:
-        raise InvalidInputError("theta_correction: no correspondences")
-    w = np.ones_like(dth) if weights is None else np.asarray(weights, float)
-    return float(np.sum(w * dth) / np.sum(w))
+    f = "theta_correction"
+    dth = vector(dth, f, "dth", at_least=1)
+    w = np.ones_like(dth) if weights is None else _weights(weights, None, f)
+    checks.same_length(f, dth=dth, weights=w)
+    with np.errstate(over="ignore", invalid="ignore"):
+        out = float(np.sum(w * dth) / np.sum(w))
+    return checks.finite_result(out, f, "dth, weights")
+
+
+def _weights(weights, n, func: str, name: str = "weights") -> np.ndarray:
+    """Weights (n,) (``n`` None: any length): finite, >= 0, not all zero."""
+    w = array(weights, func, name, (n,))
+    if np.any(w < 0) or not np.any(w > 0):
+        raise checks.fail(func, name, "must be >= 0 and not all zero")
+    return w
 
 
 def translation_correction(rho_g, rho_l, theta_l, weights=None, weak_ratio: float = 0.0, along=None):
@@ -88,10 +102,25 @@ def translation_correction(rho_g, rho_l, theta_l, weights=None, weak_ratio: floa
     >>> translation_correction([1.0], [0.9], [np.pi / 2]).round(12).tolist()  # one line: (3.9)
     [0.0, 0.1]
     """
-    rho_g, rho_l, theta_l = (np.atleast_1d(np.asarray(v, float)) for v in (rho_g, rho_l, theta_l))
-    if rho_g.size == 0:
-        raise InvalidInputError("translation_correction: no correspondences")
-    w = np.ones_like(rho_g) if weights is None else np.asarray(weights, float)
+    f = "translation_correction"
+    rho_g, rho_l = vector(rho_g, f, "rho_g", at_least=1), vector(rho_l, f, "rho_l", at_least=1)
+    theta_l = vector(theta_l, f, "theta_l", at_least=1)
+    checks.same_length(f, rho_g=rho_g, rho_l=rho_l, theta_l=theta_l)
+    w = np.ones_like(rho_g) if weights is None else _weights(weights, None, f)
+    checks.same_length(f, rho_g=rho_g, weights=w)
+    weak_ratio = checks.real(weak_ratio, f, "weak_ratio", low=0.0, high=1.0)
+    if along is not None:
+        if not isinstance(along, (tuple, list)) or len(along) != 2:
+            raise checks.fail(f, "along", "expected a pair (offsets (k, 2), weights (k,))")
+        off = array(along[0], f, "along", (None, 2))
+        along = None if len(off) == 0 else (off, _weights(along[1], len(off), f, "along"))
+    with np.errstate(over="ignore", invalid="ignore"):
+        t = _translation(rho_g, rho_l, theta_l, w, weak_ratio, along)
+    return checks.finite_result(t, f, "rho_g, rho_l, weights")
+
+
+def _translation(rho_g, rho_l, theta_l, w, weak_ratio, along):
+    """:func:`translation_correction` of checked arrays."""
     n = np.column_stack([np.cos(theta_l), np.sin(theta_l)])
     b = rho_g - rho_l
     A = (n * w[:, None]).T @ n
@@ -101,8 +130,8 @@ def translation_correction(rho_g, rho_l, theta_l, weights=None, weak_ratio: floa
         return np.linalg.solve(A, rhs)
     strong, weak = vecs[:, 1], vecs[:, 0]
     t = strong * (strong @ rhs) / vals[1]
-    if along is not None and len(along[0]):
-        off, ew = np.asarray(along[0], float).reshape(-1, 2), np.asarray(along[1], float)
+    if along is not None:
+        off, ew = along
         t = t + weak * float(np.sum(ew * (off @ weak)) / np.sum(ew))
     return t
 
@@ -159,11 +188,37 @@ def pose_correction(dth, var_theta, offset, var_offset, normal, lever, prior_cov
     >>> round(float(d[2]), 9)  # the mean of (3.8)
     0.03
     """
-    dth, vt, off, vo = (np.atleast_1d(np.asarray(v, float)) for v in (dth, var_theta, offset, var_offset))
-    normal = np.asarray(normal, float).reshape(-1, 2)
-    lever = np.asarray(lever, float).reshape(-1, 2)
-    if not (len(dth) == len(vt) == len(off) == len(vo) == len(normal) == len(lever)):
-        raise InvalidInputError("pose_correction: the measurement arrays must have the same length")
+    f = "pose_correction"
+    dth, vt, off = vector(dth, f, "dth"), vector(var_theta, f, "var_theta"), vector(offset, f, "offset")
+    vo = vector(var_offset, f, "var_offset", finite=False)
+    normal = array(normal, f, "normal", (None, 2))
+    lever = array(lever, f, "lever", (None, 2))
+    checks.same_length(f, dth=dth, var_theta=vt, offset=off, var_offset=vo, normal=normal, lever=lever)
+    if np.any(vt <= 0):
+        raise checks.fail(f, "var_theta", "variances must be > 0")
+    if np.any(np.isnan(vo)) or np.any(vo <= 0):
+        raise checks.fail(f, "var_offset", "variances must be > 0 (inf: the offsets left out)")
+    for name, v in (("dth", dth), ("offset", off), ("normal", normal), ("lever", lever)):
+        squares_finite(v, f, name)
+    prior = None if prior_cov is None else covariance(prior_cov, f, "prior_cov")
+    prior_offset = None if prior_offset is None else array(prior_offset, f, "prior_offset", (3,))
+    if extra is not None:
+        if not isinstance(extra, (tuple, list)) or len(extra) != 3:
+            raise checks.fail(f, "extra", "expected a triple (H (k, 3), r (k,), w (k,))")
+        H = array(extra[0], f, "extra", (None, 3))
+        extra = (H, array(extra[1], f, "extra", (len(H),)), array(extra[2], f, "extra", (len(H),)))
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        A, b = _normal_equations(dth, vt, off, vo, normal, lever, prior, prior_offset, extra)
+    checks.finite_result(np.append(A, b), f, "the measurements (their weights)")
+    vals = np.linalg.eigvalsh(A)
+    if not vals[0] > 1e-12 * max(vals[-1], 1e-300):
+        raise checks.fail(f, "dth, prior_cov", "the measurements do not determine the correction")
+    cov = np.linalg.inv(A)
+    return checks.finite_result(cov @ b, f, "the measurements"), cov
+
+
+def _normal_equations(dth, vt, off, vo, normal, lever, Pinv, prior_offset, extra):
+    """The information matrix (3, 3) and vector (3,) of :func:`pose_correction`'s measurements."""
     A = np.zeros((3, 3))
     b = np.zeros(3)
     if len(dth):
@@ -175,19 +230,14 @@ def pose_correction(dth, var_theta, offset, var_offset, normal, lever, prior_cov
         A += (H * wo[:, None]).T @ H
         b += (H * wo[:, None]).T @ off
     if extra is not None and len(extra[0]):
-        He, re, we = (np.asarray(v, float) for v in extra)
+        He, re, we = extra
         A += (He * we[:, None]).T @ He
         b += (He * we[:, None]).T @ re
-    if prior_cov is not None:
-        Pinv = np.linalg.inv(np.asarray(prior_cov, float))
+    if Pinv is not None:
         A += Pinv
         if prior_offset is not None:
-            b += Pinv @ np.asarray(prior_offset, float)
-    vals = np.linalg.eigvalsh(A)
-    if not vals[0] > 1e-12 * max(vals[-1], 1e-300):
-        raise InvalidInputError("pose_correction: the measurements do not determine the correction")
-    cov = np.linalg.inv(A)
-    return cov @ b, cov
+            b += Pinv @ prior_offset
+    return A, b
 
 
 def line_variances(segs: SegmentSet, centre, range_noise: float, angle_floor: float = 0.0, offset_floor: float = 0.0):
@@ -204,6 +254,22 @@ def line_variances(segs: SegmentSet, centre, range_noise: float, angle_floor: fl
     -------
     var_theta, var_rho : ndarray, shape (n,)
     """
+    f = "line_variances"
+    what = "a SegmentSet (SegmentSet.from_segments(list of Segment))"
+    segs = checks.instance(segs, f, "segs", SegmentSet, what)
+    centre = squares_finite(array(centre, f, "centre", (2,)), f, "centre")
+    noise = np.float64(checks.real(range_noise, f, "range_noise", low=0.0))  # a NumPy float: overflows to inf
+    floors = [
+        np.float64(checks.real(v, f, k, low=0.0))
+        for k, v in (("angle_floor", angle_floor), ("offset_floor", offset_floor))
+    ]
+    with np.errstate(over="ignore", invalid="ignore"):
+        out = line_variances_unchecked(segs, centre, noise, *floors)
+    return checks.finite_result(out, f, "range_noise, angle_floor, offset_floor")
+
+
+def line_variances_unchecked(segs: SegmentSet, centre, range_noise, angle_floor=0.0, offset_floor=0.0):
+    """:func:`line_variances` of checked arguments; ``centre`` (2,) or one per segment (n, 2)."""
     n = segs.n_points
     L = np.maximum(segs.length, 1e-3)
     d = (segs.end - segs.start) / L[:, None]
@@ -221,8 +287,13 @@ def odometry_covariance(increment, params) -> np.ndarray:
     + (odo_heading_bias d)^2`` (the bias counted as one more error), as in
     :class:`cga_lessons.mapping2d.laser.OdometryModel`.
     """
-    model = OdometryModel(params.odo_sigma_xy, params.odo_sigma_heading, params.odo_sigma_turn, params.odo_heading_bias)
-    return model.step_covariance(increment) + np.diag([1e-8, 1e-8, 1e-10])
+    return _drift_model(params).step_covariance_unchecked(increment) + np.diag([1e-8, 1e-8, 1e-10])
+
+
+@functools.lru_cache(maxsize=8)
+def _drift_model(params) -> OdometryModel:
+    """The drift model of a (frozen, hashable) :class:`~cga_lessons.mapping2d.params.MapParams`."""
+    return OdometryModel(params.odo_sigma_xy, params.odo_sigma_heading, params.odo_sigma_turn, params.odo_heading_bias)
 
 
 def chain_covariance(odometry, first, last, params) -> tuple[np.ndarray, np.ndarray]:
@@ -242,11 +313,11 @@ def chain_covariance(odometry, first, last, params) -> tuple[np.ndarray, np.ndar
     u = np.zeros(3)
     cov = np.zeros((3, 3))
     for k in range(int(first) + 1, int(last) + 1):
-        s = relative(odo[k - 1], odo[k])
+        s = relative_unchecked(odo[k - 1], odo[k])
         c, sn = np.cos(u[2]), np.sin(u[2])
         Ju = np.array([[1.0, 0.0, -sn * s[0] - c * s[1]], [0.0, 1.0, c * s[0] - sn * s[1]], [0.0, 0.0, 1.0]])
         Js = np.array([[c, -sn, 0.0], [sn, c, 0.0], [0.0, 0.0, 1.0]])
         cov = Ju @ cov @ Ju.T + Js @ odometry_covariance(s, params) @ Js.T
         u = np.array([u[0] + c * s[0] - sn * s[1], u[1] + sn * s[0] + c * s[1], u[2] + s[2]])
-    u[2] = np.mod(u[2] + np.pi, 2 * np.pi) - np.pi
+    u[2] = wrap_unchecked(u[2])
     return u, cov

@@ -5,9 +5,11 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
 
-from .laser import wrap_angle
+from .inputs import array, numbers, squares_finite
+from .poses import wrap_unchecked
+from .segment import Segment
 
 __all__ = ["pose_errors", "map_errors", "map_point_errors", "read_log_benchmark", "format_log_benchmark"]
 
@@ -23,12 +25,22 @@ def pose_errors(poses, truth):
     -------
     (float, float)
     """
-    p, t = np.asarray(poses, float), np.asarray(truth, float)
-    if p.shape != t.shape or p.ndim != 2 or p.shape[1] != 3:
-        raise InvalidInputError(f"pose_errors: shapes {p.shape} and {t.shape} must be equal (T, 3)")
-    pos = np.sqrt(np.mean(np.sum((p[:, :2] - t[:, :2]) ** 2, axis=1)))
-    head = np.sqrt(np.mean(wrap_angle(p[:, 2] - t[:, 2]) ** 2))
-    return float(pos), float(head)
+    f = "pose_errors"
+    p = array(poses, f, "poses", (None, 3), at_least=1)
+    t = array(truth, f, "truth", (len(p), 3))
+    with np.errstate(over="ignore", invalid="ignore"):
+        pos = np.sqrt(np.mean(np.sum((p[:, :2] - t[:, :2]) ** 2, axis=1)))
+        head = np.sqrt(np.mean(wrap_unchecked(p[:, 2] - t[:, 2]) ** 2))
+    return checks.finite_result((float(pos), float(head)), f, "poses, truth")
+
+
+def _segments(segments, func: str) -> list:
+    """A list (or tuple) of :class:`~cga_lessons.mapping2d.Segment`."""
+    if not isinstance(segments, (list, tuple)):
+        raise checks.fail(func, "segments", f"expected a list of Segment, got {type(segments).__name__}")
+    for s in segments:
+        checks.instance(s, func, "segments", Segment, "a list of Segment")
+    return list(segments)
 
 
 def map_errors(segments, walls):
@@ -37,13 +49,18 @@ def map_errors(segments, walls):
     Parameters
     ----------
     segments : list of Segment
-    walls : array_like, shape (W, 2, 2)
+    walls : array_like, shape (W, 2, 2) or (W, 4)
 
     Returns
     -------
     ndarray, shape (2 * len(segments),)
     """
-    walls = np.asarray(walls, float).reshape(-1, 2, 2)
+    f = "map_errors"
+    segments = _segments(segments, f)
+    walls = numbers(walls, f, "walls")
+    flat = walls.ndim == 2  # segments as rows (x0, y0, x1, y1)
+    walls = array(walls, f, "walls", (None, 4) if flat else (None, 2, 2), at_least=1).reshape(-1, 2, 2)
+    squares_finite(walls, f, "walls")
     if not segments:
         return np.zeros(0)
     pts = np.array([p for s in segments for p in (s.start, s.end)])
@@ -51,7 +68,7 @@ def map_errors(segments, walls):
     rel = pts[:, None, :] - a[None]
     t = np.clip(np.einsum("pwi,wi->pw", rel, v) / np.maximum(np.einsum("wi,wi->w", v, v), 1e-300), 0, 1)
     d = np.hypot(*(rel - t[..., None] * v[None]).transpose(2, 0, 1))
-    return d.min(axis=1)
+    return checks.finite_result(d.min(axis=1), f, "segments, walls")
 
 
 def map_point_errors(segments, points):
@@ -66,12 +83,15 @@ def map_point_errors(segments, points):
     -------
     ndarray, shape (2 * len(segments),)
     """
-    ref = np.asarray(points, float).reshape(-1, 2)
+    f = "map_point_errors"
+    segments = _segments(segments, f)
+    ref = array(points, f, "points", (None, 2))
+    squares_finite(ref, f, "points")
     if not segments or len(ref) == 0:
         return np.zeros(0)
     ends = np.array([p for s in segments for p in (s.start, s.end)])
     d, _ = cKDTree(ref).query(ends)
-    return d
+    return checks.finite_result(d, f, "segments, points")
 
 
 def read_log_benchmark(path) -> tuple[dict, list]:
@@ -83,17 +103,42 @@ def read_log_benchmark(path) -> tuple[dict, list]:
         If the file is missing or is not such a table.
     """
     import json
-    from pathlib import Path
 
-    path = Path(path)
+    f = "read_log_benchmark"
+    path = checks.existing_path(path, f, "path")
     try:
         data = json.loads(path.read_text(encoding="utf-8"))
         meta, rows = data["meta"], data["rows"]
-        for r in rows:
-            r["name"], r["rmse"], r["odo"]  # noqa: B018 - the fields every row has
-    except (OSError, ValueError, KeyError, TypeError) as exc:
-        raise InvalidInputError(f"read_log_benchmark: {path} is not a bench_logs.py table ({exc})") from None
+        if not isinstance(meta, dict):
+            raise TypeError("its meta is not a table")
+    except (OSError, UnicodeDecodeError, ValueError, KeyError, TypeError) as exc:
+        why = f"missing field {exc}" if isinstance(exc, KeyError) else str(exc)
+        raise checks.fail(f, "path", f"{str(path)!r} is not a bench_logs.py table ({why})") from None
+    _rows(rows, f, "path")
     return meta, rows
+
+
+_NUMBERS = ("odo", "rmse", "heading_deg", "rpe_cm", "map_cm", "ms")  # the columns of every row
+
+
+def _rows(rows, func: str, name: str) -> list:
+    """The rows of a bench_logs.py table: dicts with a ``name``, finite ``_NUMBERS``, whole ``loops`` and a
+    ``seed`` (None for the run on the log's own poses)."""
+    if not isinstance(rows, list):
+        raise checks.fail(func, name, f"the rows must be a list of dicts, got {type(rows).__name__}")
+    for k, r in enumerate(rows):
+        if not isinstance(r, dict):
+            raise checks.fail(func, name, f"row {k} is not a dict")
+        missing = [c for c in ("name", *_NUMBERS, "loops") if c not in r]
+        if missing:
+            raise checks.fail(func, name, f"row {k} lacks {', '.join(missing)}")
+        checks.text(r["name"], func, f"{name}: row {k}: name")
+        for c in _NUMBERS:
+            checks.real(r[c], func, f"{name}: row {k}: {c}")
+        checks.integer(r["loops"], func, f"{name}: row {k}: loops", low=0)
+        if r.get("seed") is not None:
+            checks.integer(r["seed"], func, f"{name}: row {k}: seed")
+    return rows
 
 
 def format_log_benchmark(rows) -> str:
@@ -102,6 +147,7 @@ def format_log_benchmark(rows) -> str:
     The ``odometry`` column says ``truth`` for the run fed the log's own poses (its "corrected" column is then how
     far the builder moved them) and ``seed N`` for simulated drift; ``ratio`` is odometry RMSE / corrected RMSE.
     """
+    _rows(rows, "format_log_benchmark", "rows")
     out = []
     header = ["log", "odometry", "odo RMSE m", "corrected m", "ratio", "heading deg", "RPE cm/m", "map cm", "loops",
               "ms/scan", "verdict"]  # fmt: skip

@@ -16,7 +16,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .lines import TWO_PI, Segment, diff_theta
+from cga_lessons import checks
+
+from .inputs import array, squares_finite
+from .lines import diff_theta_unchecked
+from .params import MapParams
+from .poses import compose_unchecked
+from .segment import TWO_PI, Segment, make_segment
 
 __all__ = ["SegmentSet", "PlainGeometry", "proximity_matrix", "correspondences"]
 
@@ -38,15 +44,45 @@ class SegmentSet:
     sums: np.ndarray
     edge: np.ndarray
 
+    def __post_init__(self):
+        f = "SegmentSet"
+        self.start = array(self.start, f, "start", (None, 2))
+        self.end = array(self.end, f, "end", (None, 2))
+        self.sums = array(self.sums, f, "sums", (None, 6))
+        edge = array(self.edge, f, "edge", (None, 2))
+        checks.same_length(f, start=self.start, end=self.end, sums=self.sums, edge=edge)
+        if np.any(edge < 0) or np.any(edge > 2**53) or np.any(edge != np.round(edge)):
+            raise checks.fail(f, "edge", "must hold whole numbers from 0 to 2**53 (how often each end was an edge)")
+        self.edge = edge.astype(int)
+        with np.errstate(over="ignore", invalid="ignore"):
+            length = np.hypot(*(self.end - self.start).T)
+        checks.finite_result(np.append(self.sums, length), f, "start, end, sums")
+        if np.any(length == 0):
+            raise checks.fail(f, "start, end", f"segment {int(np.argmin(length))} has coinciding ends")
+
+    @classmethod
+    def trusted(cls, start, end, sums, edge):
+        """A set of arrays the caller made (finite, matching, segments of nonzero length), without the checks."""
+        s = object.__new__(cls)
+        s.start, s.end, s.sums, s.edge = start, end, sums, edge
+        return s
+
     @classmethod
     def empty(cls):
-        return cls(np.zeros((0, 2)), np.zeros((0, 2)), np.zeros((0, 6)), np.zeros((0, 2), int))
+        return cls.trusted(np.zeros((0, 2)), np.zeros((0, 2)), np.zeros((0, 6)), np.zeros((0, 2), int))
 
     @classmethod
     def from_segments(cls, segs):
+        """The set of a list of :class:`~cga_lessons.mapping2d.Segment`."""
+        if isinstance(segs, (str, bytes)) or not isinstance(segs, (list, tuple)):
+            raise checks.fail(
+                "SegmentSet.from_segments", "segs", f"expected a list of Segment, got {type(segs).__name__}"
+            )
+        for s in segs:
+            checks.instance(s, "SegmentSet.from_segments", "segs", Segment, "a list of Segment")
         if not segs:
             return cls.empty()
-        return cls(
+        return cls.trusted(
             np.array([s.start for s in segs]),
             np.array([s.end for s in segs]),
             np.array([s.sums for s in segs]),
@@ -59,7 +95,7 @@ class SegmentSet:
         sets = list(sets)
         if not sets:
             return cls.empty()
-        return cls(
+        return cls.trusted(
             np.vstack([s.start for s in sets]),
             np.vstack([s.end for s in sets]),
             np.vstack([s.sums for s in sets]),
@@ -70,11 +106,11 @@ class SegmentSet:
         return len(self.start)
 
     def take(self, idx):
-        return SegmentSet(self.start[idx], self.end[idx], self.sums[idx], self.edge[idx])
+        return SegmentSet.trusted(self.start[idx], self.end[idx], self.sums[idx], self.edge[idx])
 
     def to_segments(self):
         return [
-            Segment(s, e, int(round(w[0])), w, bool(f[0] > 0), bool(f[1] > 0))
+            make_segment(s, e, int(round(w[0])), w, bool(f[0] > 0), bool(f[1] > 0))
             for s, e, w, f in zip(self.start, self.end, self.sums, self.edge)
         ]
 
@@ -141,7 +177,7 @@ class PlainGeometry:
         x, y, th = pose
         R = _rotations(th)
         t = np.array([x, y])
-        return SegmentSet(segs.start @ R.T + t, segs.end @ R.T + t, transform_sums(segs.sums, R, t), segs.edge)
+        return SegmentSet.trusted(segs.start @ R.T + t, segs.end @ R.T + t, transform_sums(segs.sums, R, t), segs.edge)
 
     def to_global(self, segs: SegmentSet, pose, mount) -> SegmentSet:
         """Laser-frame segments into the global frame: robot ``pose`` composed with the laser ``mount`` (3.4)."""
@@ -152,7 +188,7 @@ class PlainGeometry:
         lp = compose_unchecked(np.asarray(poses, float), mount)
         R = _rotations(lp[:, 2])
         t = lp[:, :2]
-        return SegmentSet(
+        return SegmentSet.trusted(
             np.einsum("nij,nj->ni", R, segs.start) + t,
             np.einsum("nij,nj->ni", R, segs.end) + t,
             transform_sums(segs.sums, R, t),
@@ -246,17 +282,6 @@ class PlainGeometry:
         return ends[0], ends[1], replaced, g_longer, same
 
 
-def compose_unchecked(a, b):
-    """``compose`` of :mod:`cga_lessons.mapping2d.laser` without the input checks (hot path); ``a`` (3,) or (n, 3)."""
-    a = np.asarray(a, float)
-    b = np.asarray(b, float)
-    c, s = np.cos(a[..., 2]), np.sin(a[..., 2])
-    x = a[..., 0] + c * b[..., 0] - s * b[..., 1]
-    y = a[..., 1] + s * b[..., 0] + c * b[..., 1]
-    th = np.mod(a[..., 2] + b[..., 2] + np.pi, TWO_PI) - np.pi
-    return np.stack([x, y, th], axis=-1)
-
-
 # --------------------------------------------------------------------------- correspondence (3.5, M and C)
 
 
@@ -267,10 +292,30 @@ def proximity_matrix(G: SegmentSet, L: SegmentSet, centre, geometry=None, theta_
     oriented Hough coordinates seen from ``centre`` (the robot).  Also returns
     the signed angle differences and the ``rho`` differences (|G|, |L'|).
     """
-    geometry = geometry or PlainGeometry()
+    f = "proximity_matrix"
+    G, L, centre, geometry = _inputs(f, G, L, centre, geometry)
+    theta_xi = checks.real(theta_xi, f, "theta_xi", low=0.0)
+    with np.errstate(over="ignore", invalid="ignore"):
+        out = proximity_unchecked(G, L, centre, geometry, theta_xi)
+    return checks.finite_result(out, f, "G, L, centre")
+
+
+def _inputs(func: str, G, L, centre, geometry):
+    """The checked segment sets, centre and geometry of :func:`proximity_matrix` and :func:`correspondences`."""
+    G = checks.instance(G, func, "G", SegmentSet, "a SegmentSet (SegmentSet.from_segments(list of Segment))")
+    L = checks.instance(L, func, "L", SegmentSet, "a SegmentSet (SegmentSet.from_segments(list of Segment))")
+    centre = squares_finite(array(centre, func, "centre", (2,)), func, "centre")
+    if geometry is None:
+        geometry = PlainGeometry()
+    what = "a PlainGeometry or a ConformalGeometry (or None)"
+    return G, L, centre, checks.instance(geometry, func, "geometry", PlainGeometry, what)
+
+
+def proximity_unchecked(G: SegmentSet, L: SegmentSet, centre, geometry, theta_xi: float):
+    """:func:`proximity_matrix` of checked arguments (the correspondence search's inner loop)."""
     rg, tg = geometry.hough(G, centre)
     rl, tl = geometry.hough(L, centre)
-    dth = diff_theta(tg[:, None], tl[None, :], theta_xi)
+    dth = diff_theta_unchecked(tg[:, None], tl[None, :], theta_xi)
     drho = rg[:, None] - rl[None, :]
     return np.sqrt(dth**2 + drho**2), dth, drho
 
@@ -301,11 +346,20 @@ def correspondences(G: SegmentSet, L: SegmentSet, centre, params, geometry=None)
     with the smaller angle difference keeps it (then the smaller ``rho``
     difference); the other gets none.
     """
-    geometry = geometry or PlainGeometry()
+    f = "correspondences"
+    G, L, centre, geometry = _inputs(f, G, L, centre, geometry)
+    params = checks.instance(params, f, "params", MapParams, "a MapParams")
+    with np.errstate(over="ignore", invalid="ignore"):
+        C, M, dth = correspondences_unchecked(G, L, centre, params, geometry)
+    return C, checks.finite_result(M, f, "G, L, centre"), dth
+
+
+def correspondences_unchecked(G: SegmentSet, L: SegmentSet, centre, params, geometry):
+    """:func:`correspondences` of checked arguments (the map builder's inner loop)."""
     C = np.full(len(G), -1, int)
     if len(G) == 0 or len(L) == 0:
         return C, np.zeros((len(G), len(L))), np.zeros((len(G), len(L)))
-    M, dth, drho = proximity_matrix(G, L, centre, geometry, params.theta_xi)
+    M, dth, drho = proximity_unchecked(G, L, centre, geometry, params.theta_xi)
     ok = M < params.delta
     if ok.any():
         ok &= geometry.overlap(G, L, params.overlap_margin)

@@ -10,20 +10,27 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
 
+from .inputs import array, broadcast, covariance, pose_array
 from .observations import Growing
+from .poses import wrap_unchecked
 
-__all__ = ["PoseGraph", "relative_pose", "chain_uncertainty"]
+__all__ = ["PoseGraph", "relative_pose", "relative_pose_unchecked", "chain_uncertainty"]
 
 
 def relative_pose(a, b):
-    """Pose ``b`` in the frame of pose ``a``: ``a^-1 b`` (arrays (3,) or (n, 3))."""
-    a = np.asarray(a, float)
-    b = np.asarray(b, float)
+    """Pose ``b`` in the frame of pose ``a``: ``a^-1 b`` (arrays (3,) or (n, 3), which broadcast)."""
+    a, b = pose_array(a, "relative_pose", "a"), pose_array(b, "relative_pose", "b")
+    broadcast("relative_pose", a=a, b=b)
+    return relative_pose_unchecked(a, b)
+
+
+def relative_pose_unchecked(a, b):
+    """:func:`relative_pose` of float arrays the caller made (the pose graph's and loop closure's inner loops)."""
     c, s = np.cos(a[..., 2]), np.sin(a[..., 2])
     dx, dy = b[..., 0] - a[..., 0], b[..., 1] - a[..., 1]
-    th = np.mod(b[..., 2] - a[..., 2] + np.pi, 2 * np.pi) - np.pi
+    th = wrap_unchecked(b[..., 2] - a[..., 2])
     return np.stack([c * dx + s * dy, -s * dx + c * dy, th], axis=-1)
 
 
@@ -49,16 +56,18 @@ class PoseGraph:
         return len(self.i)
 
     def add(self, i, j, z, cov, loop=False):
-        """Add the measurement ``x_i^-1 x_j = z`` with covariance ``cov`` (3, 3)."""
-        cov = np.asarray(cov, float).reshape(3, 3)
-        z = np.asarray(z, float).reshape(3)
-        if not (np.all(np.isfinite(cov)) and np.all(np.isfinite(z))):
-            raise InvalidInputError(f"PoseGraph.add: non-finite measurement for edge ({i}, {j})")
-        self.i.append(int(i))
-        self.j.append(int(j))
+        """Add the measurement ``x_i^-1 x_j = z`` with covariance ``cov`` (3, 3), symmetric positive definite."""
+        f = "PoseGraph.add"
+        i, j = checks.integer(i, f, "i", low=0), checks.integer(j, f, "j", low=0)
+        if i == j:
+            raise checks.fail(f, "j", f"an edge ties two different poses, got i = j = {i}")
+        z = array(z, f, "z", (3,))
+        info = covariance(cov, f, "cov")
+        self.i.append(i)
+        self.j.append(j)
         self.z.append(z)
-        self.info.append(np.linalg.inv(cov))
-        self.is_loop.append(bool(loop))
+        self.info.append(info)
+        self.is_loop.append(checks.flag(loop, f, "loop"))
 
     @property
     def loops(self):
@@ -79,9 +88,18 @@ class PoseGraph:
         return tuple(arr.view for arr in self._arrays)
 
     def errors(self, poses):
-        """Edge errors (E, 3) at ``poses``."""
-        x = np.asarray(poses, float)
-        return relative_pose(np.array(self.z), relative_pose(x[self.i], x[self.j]))
+        """Edge errors (E, 3) at ``poses`` (T, 3), T beyond every pose an edge ties."""
+        x = self._poses(poses, "PoseGraph.errors")
+        if len(self.i) == 0:
+            return np.zeros((0, 3))
+        return relative_pose_unchecked(np.array(self.z), relative_pose_unchecked(x[self.i], x[self.j]))
+
+    def _poses(self, poses, func: str) -> np.ndarray:
+        x = array(poses, func, "poses", (None, 3))
+        last = max(max(self.i, default=-1), max(self.j, default=-1))
+        if len(x) <= last:
+            raise checks.fail(func, "poses", f"{len(x)} poses, but an edge ties pose {last}")
+        return x
 
     def optimize(self, poses, iterations: int = 10, robust: float = 3.0, tol: float = 1e-4, first_free: int = 1):
         """Gauss-Newton relaxation of ``poses`` (T, 3); the poses before ``first_free`` stay fixed.
@@ -95,9 +113,13 @@ class PoseGraph:
         -------
         ndarray, shape (T, 3)
         """
-        x = np.array(poses, float)
+        func = "PoseGraph.optimize"
+        x = self._poses(poses, func).copy()
+        iterations = checks.integer(iterations, func, "iterations", low=0)
+        robust = np.float64(checks.real(robust, func, "robust", low=0.0))  # a NumPy float: robust**2 may be inf
+        tol = checks.real(tol, func, "tol", low=0.0)
         T = len(x)
-        f = max(int(first_free), 1)
+        f = max(checks.integer(first_free, func, "first_free", low=0), 1)
         if len(self.i) == 0 or T < 2 or f >= T:
             return x
         ei, ej, Z, Om, loop = self._edge_arrays()
@@ -111,7 +133,7 @@ class PoseGraph:
             dt = xj[:, :2] - xi[:, :2]
             RiT = np.stack([np.stack([ci, si], -1), np.stack([-si, ci], -1)], -2)
             dRiT = np.stack([np.stack([-si, ci], -1), np.stack([-ci, -si], -1)], -2)
-            e = relative_pose(Z, np.column_stack([np.einsum("nij,nj->ni", RiT, dt), xj[:, 2] - xi[:, 2]]))
+            e = relative_pose_unchecked(Z, np.column_stack([np.einsum("nij,nj->ni", RiT, dt), xj[:, 2] - xi[:, 2]]))
             A = np.zeros((len(ei), 3, 3))
             B = np.zeros((len(ei), 3, 3))
             A[:, :2, :2] = -np.einsum("nij,njk->nik", RzT, RiT)
@@ -138,8 +160,10 @@ class PoseGraph:
             g = np.zeros(n)
             np.add.at(g, idx.ravel()[free] - 3 * f, gb.ravel()[free])
             dx = spla.spsolve(H, -g, permc_spec=PERMUTATION)
+            if not np.all(np.isfinite(dx)):  # a singular system: a free pose no edge ties to the fixed ones
+                raise checks.degenerate(func, "poses", "the edges leave some free pose undetermined")
             x[f:] += dx.reshape(-1, 3)
-            x[:, 2] = np.mod(x[:, 2] + np.pi, 2 * np.pi) - np.pi
+            x[:, 2] = wrap_unchecked(x[:, 2])
             if np.max(np.abs(dx)) < tol:
                 break
         return x

@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .poses import wrap_unchecked
+
 __all__ = ["loop_hypotheses", "angle_density", "EXACT_DENSITY_MAX"]
 
 
@@ -36,7 +38,7 @@ def loop_hypotheses(geometry, Q, O, centre, max_angle, max_shift, params, n_rota
     centre = np.asarray(centre, float)
     rq, tq = geometry.hough(Q, centre)
     ro, to = geometry.hough(O, centre)
-    dth = np.mod(to[None, :] - tq[:, None] + np.pi, 2 * np.pi) - np.pi  # diffTheta (3.5), (|Q|, |O|)
+    dth = wrap_unchecked(to[None, :] - tq[:, None])  # diffTheta (3.5), (|Q|, |O|)
     lq, lo = Q.length, O.length
     w = np.minimum(lq[:, None], lo[None, :])
     cand = np.abs(dth) < max_angle

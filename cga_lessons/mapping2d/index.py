@@ -25,11 +25,9 @@ range, so a line that grows within its cells costs one comparison to update.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
 
 from .geometry import close_angle_pairs
 
@@ -67,9 +65,7 @@ class SegmentIndex:
     """
 
     def __init__(self, cell: float = 4.0):
-        if not (isinstance(cell, int | float) and math.isfinite(cell) and cell > 0):
-            raise InvalidInputError(f"SegmentIndex: cell must be a positive finite number (m), got {cell!r}")
-        self.cell = float(cell)
+        self.cell = checks.real(cell, "SegmentIndex", "cell", low=0.0, strict_low=True)
         self._buckets: dict[tuple[int, int], set[int]] = {}
         self._range: dict[int, tuple[int, int, int, int]] = {}  # id -> (ix0, iy0, ix1, iy1), inclusive
 
@@ -101,13 +97,13 @@ class SegmentIndex:
         lo = np.asarray(lo, float).reshape(-1, 2)
         hi = np.asarray(hi, float).reshape(-1, 2)
         if not (len(keys) == len(lo) == len(hi)):
-            raise InvalidInputError(
-                f"SegmentIndex.update: keys, lo and hi disagree in length ({len(keys)}, {len(lo)}, {len(hi)})"
+            raise checks.fail(
+                "SegmentIndex.update", "keys, lo and hi", f"disagree in length ({len(keys)}, {len(lo)}, {len(hi)})"
             )
         if len(keys) == 0:
             return
         if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi)) and np.all(lo <= hi)):
-            raise InvalidInputError("SegmentIndex.update: lo and hi must be finite boxes with lo <= hi")
+            raise checks.fail("SegmentIndex.update", "lo, hi", "must be finite boxes with lo <= hi")
         buckets, ranges = self._buckets, self._range
         for key, rng in zip(keys.tolist(), map(tuple, self._cells(lo, hi).tolist())):
             old = ranges.get(key)
@@ -154,7 +150,7 @@ class SegmentIndex:
         """
         lo, hi = np.asarray(lo, float).reshape(2), np.asarray(hi, float).reshape(2)
         if np.isnan(lo).any() or np.isnan(hi).any():
-            raise InvalidInputError(f"SegmentIndex.query: the box has NaN corners ({lo}, {hi})")
+            raise checks.fail("SegmentIndex.query", "lo, hi", f"the box has NaN corners ({lo}, {hi})")
         if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
             return self.keys()  # an unbounded box: every id
         ix0, iy0, ix1, iy1 = self._cells(lo[None], hi[None])[0].tolist()

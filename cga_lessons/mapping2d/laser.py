@@ -18,16 +18,18 @@ Conventions
 
 from __future__ import annotations
 
-import gzip
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
 
+from .carmen import CarmenLog, read_carmen_log
+from .inputs import array, batch, generator, numbers, pose, reach, scan, scan_list
 from .laser_facts import no_return_codes
+from .poses import compose, compose_unchecked, invert, relative, relative_unchecked, wrap_angle
 
 __all__ = [
     "Scene",
@@ -47,70 +49,6 @@ __all__ = [
     "read_carmen_log",
     "no_return_codes",
 ]
-
-
-# --------------------------------------------------------------------------- poses
-
-
-def wrap_angle(angle):
-    """Wrap angles to ``[-pi, pi)``.
-
-    >>> float(wrap_angle(3 * np.pi / 2))
-    -1.5707963267948966
-    """
-    return np.mod(np.asarray(angle, float) + np.pi, 2 * np.pi) - np.pi
-
-
-def _as_pose(pose, name="pose", func="compose"):
-    p = np.asarray(pose, float)
-    if p.shape[-1:] != (3,):
-        raise InvalidInputError(f"{func}: {name} must have shape (3,) or (N, 3) as (x, y, theta), got {p.shape}")
-    if not np.all(np.isfinite(p)):
-        raise InvalidInputError(f"{func}: {name} has non-finite values")
-    return p
-
-
-def compose(a, b):
-    """The pose ``b`` (given in the frame of pose ``a``) in the world frame.
-
-    This is the rigid motion of (3.4), ``v' = R(theta_a) v + T_a``, applied to
-    the position of ``b``, with the headings added.
-
-    Parameters
-    ----------
-    a, b : array_like, shape (3,) or (N, 3)
-        Poses ``(x, y, theta)``; they broadcast against each other.
-
-    Returns
-    -------
-    ndarray, shape (3,) or (N, 3)
-
-    >>> compose([1.0, 0.0, np.pi / 2], [1.0, 0.0, 0.0]).round(12)
-    array([1.        , 1.        , 1.57079633])
-    """
-    a, b = _as_pose(a, "a"), _as_pose(b, "b")
-    c, s = np.cos(a[..., 2]), np.sin(a[..., 2])
-    x = a[..., 0] + c * b[..., 0] - s * b[..., 1]
-    y = a[..., 1] + s * b[..., 0] + c * b[..., 1]
-    return np.stack([x, y, wrap_angle(a[..., 2] + b[..., 2])], axis=-1)
-
-
-def invert(a):
-    """The inverse pose: ``compose(a, invert(a))`` is the identity.
-
-    >>> compose([1.0, 2.0, 0.5], invert([1.0, 2.0, 0.5])).round(12) + 0.0
-    array([0., 0., 0.])
-    """
-    a = _as_pose(a, "a", "invert")
-    c, s = np.cos(a[..., 2]), np.sin(a[..., 2])
-    x = -(c * a[..., 0] + s * a[..., 1])
-    y = -(-s * a[..., 0] + c * a[..., 1])
-    return np.stack([x, y, wrap_angle(-a[..., 2])], axis=-1)
-
-
-def relative(a, b):
-    """The pose ``b`` seen from the frame of pose ``a`` (the odometry increment from ``a`` to ``b``)."""
-    return compose(invert(a), b)
 
 
 # --------------------------------------------------------------------------- scenes
@@ -139,19 +77,32 @@ class Scene:
     walls: np.ndarray = field(init=False, repr=False)
 
     def __post_init__(self):
-        self.polygons = [np.asarray(p, float) for p in self.polygons]
-        for i, p in enumerate(self.polygons):
-            if p.ndim != 2 or p.shape[1] != 2 or len(p) < 2 or not np.all(np.isfinite(p)):
-                raise InvalidInputError(f"Scene {self.name!r}: polygon {i} must be a finite (k >= 2, 2) array")
-        self.trajectory = _as_pose(self.trajectory, "trajectory", f"Scene {self.name!r}").reshape(-1, 3)
+        f = "Scene"
+        self.name = checks.text(self.name, f, "name", empty=True)
+        self.description = checks.text(self.description, f, "description", empty=True)
+        if isinstance(self.polygons, (str, bytes)) or not hasattr(self.polygons, "__iter__"):
+            raise checks.fail(f, "polygons", f"expected a list of (k, 2) arrays, got {type(self.polygons).__name__}")
+        self.polygons = [
+            array(p, f, f"polygons: polygon {i}", (None, 2), at_least=2) for i, p in enumerate(self.polygons)
+        ]
+        self.trajectory = batch(self.trajectory, f, "trajectory", (3,))[0]
         segs = [np.stack([p, np.roll(p, -1, axis=0)], axis=1) for p in self.polygons]
         self.walls = np.concatenate(segs) if segs else np.zeros((0, 2, 2))
 
     @classmethod
     def from_json(cls, path) -> Scene:
         """Read a scene written by ``data/scenes/make_scenes.py``."""
-        d = json.loads(Path(path).read_text())
-        return cls(d["name"], d["polygons"], np.asarray(d["trajectory"], float), d.get("description", ""))
+        return _read_scene(checks.existing_path(path, "Scene.from_json", "path"), "Scene.from_json", "path")
+
+
+def _read_scene(path: Path, func: str, name: str) -> Scene:
+    """The scene of a JSON file; any problem with the file is an error of ``func``'s argument ``name``."""
+    try:
+        d = json.loads(path.read_text(encoding="utf-8"))
+        return Scene(d["name"], d["polygons"], d["trajectory"], d.get("description", ""))
+    except (OSError, UnicodeDecodeError, ValueError, KeyError, TypeError, AttributeError) as exc:
+        why = f"missing field {exc}" if isinstance(exc, KeyError) else str(exc)
+        raise checks.fail(func, name, f"{str(path)!r} is not a scene file ({why})") from None
 
 
 def load_scene(name) -> Scene:
@@ -162,12 +113,16 @@ def load_scene(name) -> Scene:
     """
     from cga_lessons.paths import data_path
 
+    if not isinstance(name, Path):
+        name = checks.text(name, "load_scene", "name")
     p = Path(name)
     if not p.suffix:
-        p = data_path("scenes", f"{name}.json")
-    if not p.is_file():
-        raise InvalidInputError(f"load_scene: no scene file {str(p)!r}")
-    return Scene.from_json(p)
+        folder = data_path("scenes")
+        p = folder / f"{name}.json"
+        if not p.is_file():
+            known = sorted(q.stem for q in folder.glob("*.json"))
+            raise checks.fail("load_scene", "name", f"no bundled scene {str(name)!r} (there are {', '.join(known)})")
+    return _read_scene(checks.existing_path(p, "load_scene", "name"), "load_scene", "name")
 
 
 # --------------------------------------------------------------------------- the laser
@@ -181,9 +136,25 @@ def beam_angles(n_beams: int = 361, fov: float = np.pi) -> np.ndarray:
     >>> a = beam_angles(); a.shape, round(float(np.degrees(a[1] - a[0])), 9)
     ((361,), 0.5)
     """
-    if int(n_beams) < 2:
-        raise InvalidInputError(f"beam_angles: need at least 2 beams, got {n_beams}")
-    return np.linspace(-fov / 2, fov / 2, int(n_beams))
+    n_beams, fov = _beams("beam_angles", n_beams, fov)
+    return np.linspace(-fov / 2, fov / 2, n_beams)
+
+
+def _beams(func: str, n_beams, fov) -> tuple[int, float]:
+    """The checked beam count (>= 2) and field of view (in (0, 2 pi]) of a laser."""
+    n = checks.integer(n_beams, func, "n_beams", low=2)
+    return n, checks.real(fov, func, "fov", low=0.0, strict_low=True, high=2 * np.pi)
+
+
+def _walls(scene, func: str) -> np.ndarray:
+    """The wall segments (W, 2, 2) of a :class:`Scene` or of an array of segments (W, 2, 2) or (W, 4)."""
+    if isinstance(scene, Scene):
+        return scene.walls
+    if isinstance(scene, (str, bytes)) or scene is None or isinstance(scene, (int, float)):
+        raise checks.fail(func, "scene", f"expected a Scene or wall segments (W, 2, 2), got {type(scene).__name__}")
+    walls = numbers(scene, func, "scene")
+    walls = array(walls, func, "scene", (None, 4) if walls.ndim == 2 else (None, 2, 2))
+    return walls.reshape(-1, 2, 2)
 
 
 def _ray_cast(origin, directions, walls, max_range):
@@ -246,14 +217,23 @@ def simulate_scan(
     >>> float(r[180])  # straight ahead: the east wall at x = 6
     3.0
     """
-    walls = scene.walls if isinstance(scene, Scene) else np.asarray(scene, float).reshape(-1, 2, 2)
-    pose = _as_pose(pose, "pose", "simulate_scan")
-    if pose.shape != (3,):
-        raise InvalidInputError(f"simulate_scan: pose must have shape (3,), got {pose.shape}")
-    if not (max_range > 0 and range_noise >= 0):
-        raise InvalidInputError("simulate_scan: max_range must be > 0 and range_noise >= 0")
-    laser = compose(pose, _as_pose(mount, "mount", "simulate_scan"))
-    angles = beam_angles(n_beams, fov)
+    f = "simulate_scan"
+    walls, where = _walls(scene, f), array(pose, f, "pose", (3,))
+    settings = _settings(f, n_beams, fov, max_range, range_noise, mount)
+    return _simulate(walls, where, generator(rng, f, "rng", optional=True), *settings)
+
+
+def _settings(func: str, n_beams, fov, max_range, range_noise, mount) -> tuple:
+    """The checked laser settings: beam angles, max_range, range_noise, mount."""
+    n, fov = _beams(func, n_beams, fov)
+    max_range = reach(max_range, func, "max_range")
+    range_noise = checks.real(range_noise, func, "range_noise", low=0.0)
+    return np.linspace(-fov / 2, fov / 2, n), max_range, range_noise, pose(mount, func, "mount")
+
+
+def _simulate(walls, pose, rng, angles, max_range, range_noise, mount):
+    """:func:`simulate_scan` with checked arguments."""
+    laser = compose_unchecked(pose, mount)
     phi = laser[2] + angles
     ranges = _ray_cast(laser[:2], np.stack([np.cos(phi), np.sin(phi)], axis=1), walls, max_range)
     if rng is not None and range_noise > 0:
@@ -261,13 +241,34 @@ def simulate_scan(
         ranges[hit] += rng.normal(0.0, range_noise, hit.sum())
         ranges[hit & (ranges > max_range)] = np.inf
         ranges[hit] = np.maximum(ranges[hit], 1e-3)
-    return ranges, angles
+    return ranges, angles.copy()
 
 
-def simulate_scans(scene, poses=None, rng=None, **kwargs):
-    """Scans along a trajectory (default the scene's own): a list of ``(ranges, angles)``."""
-    poses = scene.trajectory if poses is None else np.asarray(poses, float).reshape(-1, 3)
-    return [simulate_scan(scene, p, rng, **kwargs) for p in poses]
+def simulate_scans(
+    scene,
+    poses=None,
+    rng=None,
+    *,
+    n_beams: int = 361,
+    fov: float = np.pi,
+    max_range: float = 5.0,
+    range_noise: float = 0.01,
+    mount=(0.0, 0.0, 0.0),
+):
+    """Scans along a trajectory (default the scene's own): a list of ``(ranges, angles)``.
+
+    The keyword arguments are those of :func:`simulate_scan`.
+    """
+    f = "simulate_scans"
+    walls = _walls(scene, f)
+    if poses is None:
+        if not isinstance(scene, Scene):
+            raise checks.fail(f, "poses", "wall segments have no trajectory of their own: pass poses")
+        poses = scene.trajectory
+    poses = batch(poses, f, "poses", (3,))[0]
+    rng = generator(rng, f, "rng", optional=True)
+    settings = _settings(f, n_beams, fov, max_range, range_noise, mount)
+    return [_simulate(walls, p, rng, *settings) for p in poses]
 
 
 def scan_points(ranges, angles):
@@ -279,10 +280,12 @@ def scan_points(ranges, angles):
     index : ndarray of int, shape (k,)
         Beam index of each point (beams with no return, inf or NaN, are dropped).
     """
-    r = np.asarray(ranges, float)
-    a = np.asarray(angles, float)
-    if r.shape != a.shape or r.ndim != 1:
-        raise InvalidInputError(f"scan_points: ranges and angles must be 1-D of equal length, got {r.shape}, {a.shape}")
+    r, a = scan(ranges, angles, "scan_points")
+    return scan_points_unchecked(r, a)
+
+
+def scan_points_unchecked(r, a):
+    """:func:`scan_points` of checked arrays."""
     ok = np.isfinite(r) & (r > 0)
     idx = np.flatnonzero(ok)
     return np.stack([r[ok] * np.cos(a[ok]), r[ok] * np.sin(a[ok])], axis=1), idx
@@ -306,15 +309,20 @@ def scans_to_world(scans, poses, max_range: float = np.inf, mount=(0.0, 0.0, 0.0
     -------
     ndarray, shape (k, 2)
     """
-    poses = np.asarray(poses, float).reshape(-1, 3)
+    f = "scans_to_world"
+    scans = scan_list(scans, f)
+    poses = batch(poses, f, "poses", (3,))[0]
+    checks.same_length(f, scans=scans, poses=poses)
+    max_range = reach(max_range, f, "max_range")
+    mount = pose(mount, f, "mount")
+    step = checks.integer(step, f, "step", low=1)
     out = []
-    for (r, a), pose in list(zip(scans, poses))[::step]:
-        r = np.asarray(r, float)
-        pts, _ = scan_points(np.where(r < max_range, r, np.inf), a)
-        lp = compose(pose, mount)
+    for (r, a), where in list(zip(scans, poses))[::step]:
+        pts, _ = scan_points_unchecked(np.where(r < max_range, r, np.inf), a)
+        lp = compose_unchecked(where, mount)
         c, s = np.cos(lp[2]), np.sin(lp[2])
         out.append(pts @ np.array([[c, s], [-s, c]]) + lp[:2])
-    return np.concatenate(out) if out else np.zeros((0, 2))
+    return checks.finite_result(np.concatenate(out) if out else np.zeros((0, 2)), f, "scans, poses")
 
 
 # --------------------------------------------------------------------------- odometry
@@ -352,10 +360,19 @@ class OdometryModel:
     sigma_turn: float = 0.03
     heading_bias: float = 0.005
 
+    def __post_init__(self):
+        for name in ("sigma_xy", "sigma_heading", "sigma_turn"):
+            checks.real(getattr(self, name), "OdometryModel", name, low=0.0)
+        checks.real(self.heading_bias, "OdometryModel", "heading_bias")
+
     def increments(self, trajectory, rng) -> np.ndarray:
         """Noisy increments ``(T - 1, 3)`` of a trajectory ``(T, 3)``."""
-        traj = _as_pose(trajectory, "trajectory", "OdometryModel.increments").reshape(-1, 3)
-        inc = relative(traj[:-1], traj[1:])
+        f = "OdometryModel.increments"
+        traj = batch(trajectory, f, "trajectory", (3,))[0]
+        return checks.finite_result(self._increments(traj, generator(rng, f, "rng")), f, "trajectory")
+
+    def _increments(self, traj, rng):
+        inc = relative_unchecked(traj[:-1], traj[1:])
         d = np.hypot(inc[:, 0], inc[:, 1])
         n = len(inc)
         noisy = inc.copy()
@@ -374,8 +391,14 @@ class OdometryModel:
         >>> np.round(np.diag(OdometryModel().step_covariance([1.0, 0.0, 0.0])), 6).tolist()
         [0.0004, 0.0004, 0.000125]
         """
-        inc = np.asarray(increment, float).reshape(3)
-        d = float(np.hypot(inc[0], inc[1]))
+        f = "OdometryModel.step_covariance"
+        with np.errstate(over="ignore"):
+            cov = self.step_covariance_unchecked(pose(increment, f, "increment"))
+        return checks.finite_result(cov, f, "increment")
+
+    def step_covariance_unchecked(self, inc) -> np.ndarray:
+        """:meth:`step_covariance` of a checked increment (the map builder's inner loop)."""
+        d = np.hypot(inc[0], inc[1])
         v_xy = self.sigma_xy**2 * d
         v_th = self.sigma_heading**2 * d + self.sigma_turn**2 * abs(inc[2]) + (self.heading_bias * d) ** 2
         return np.diag([v_xy, v_xy, v_th])
@@ -398,157 +421,15 @@ def simulate_odometry(trajectory, rng, model: OdometryModel | None = None) -> np
         Odometry poses; the first equals the first true pose (3.4, footnote: the
         robot starts at its own origin).
     """
+    f = "simulate_odometry"
+    traj = batch(trajectory, f, "trajectory", (3,), at_least=1)[0]
     if rng is None:
-        raise InvalidInputError("simulate_odometry: pass rng=numpy.random.default_rng(seed)")
-    traj = _as_pose(trajectory, "trajectory", "simulate_odometry").reshape(-1, 3)
-    model = model or OdometryModel()
-    inc = model.increments(traj, rng)
+        raise checks.fail(f, "rng", "pass rng=numpy.random.default_rng(seed)")
+    rng = generator(rng, f, "rng")
+    model = OdometryModel() if model is None else checks.instance(model, f, "model", OdometryModel, "an OdometryModel")
+    inc = model._increments(traj, rng)
     out = np.empty_like(traj)
     out[0] = traj[0]
     for k in range(len(inc)):
-        out[k + 1] = compose(out[k], inc[k])
-    return out
-
-
-# --------------------------------------------------------------------------- CARMEN logs
-
-
-@dataclass
-class CarmenLog:
-    """The laser scans and poses of a CARMEN log.
-
-    Attributes
-    ----------
-    ranges : ndarray, shape (T, n)
-        Metres; ``inf`` where the beam returned nothing.
-    angles : ndarray, shape (n,)
-        Beam angles in the laser frame, radians.
-    poses : ndarray, shape (T, 3)
-        The logged laser pose of each scan (in the "corrected" logs: the SLAM
-        solution, used as ground truth).
-    odometry : ndarray, shape (T, 3)
-        The logged odometry pose of each scan.
-    timestamps : ndarray, shape (T,)
-    laser_offset : float
-        ``robot_frontlaser_offset`` from the log's PARAM lines (m), 0 if absent.
-    no_return_codes : tuple of float
-        The values the log uses to say "no return" that :func:`no_return_codes` found (their readings, and all
-        readings above the smallest, are ``inf`` in ``ranges``).
-    """
-
-    ranges: np.ndarray
-    angles: np.ndarray
-    poses: np.ndarray
-    odometry: np.ndarray
-    timestamps: np.ndarray
-    laser_offset: float = 0.0
-    no_return_codes: tuple = ()
-
-    @property
-    def scans(self) -> list:
-        """The scans as a list of ``(ranges, angles)`` pairs."""
-        return [(r, self.angles) for r in self.ranges]
-
-    def __len__(self):
-        return len(self.ranges)
-
-
-def read_carmen_log(path, *, no_return_range: float = 80.0, fov: float = np.pi, detect_codes: bool = True) -> CarmenLog:
-    """Read the FLASER lines of a CARMEN log (plain text or gzip).
-
-    Each line ``FLASER n r_1 ... r_n x y theta odom_x odom_y odom_theta
-    timestamp host logger_timestamp`` is one scan of ``n`` beams from -90
-    degrees (right) counter-clockwise: 1 degree apart for 180 or 181 beams,
-    0.5 degree for 360 or 361 (as CARMEN's own reader assumes), otherwise
-    spread evenly over ``fov``.  Other messages (ODOM, PARAM, NEFF, comments)
-    are skipped.
-
-    Parameters
-    ----------
-    path : str or Path
-    no_return_range : float
-        Ranges at or beyond this (m) mean "no return" and become ``inf``
-        (SICK scanners in these logs report about 81.9 m).
-    fov : float
-        Field of view (radians) assumed for beam counts other than 180, 181, 360, 361.
-    detect_codes : bool
-        Also find the log's own "no return" values (:func:`no_return_codes`): their readings and any above the
-        smallest become ``inf`` (recorded in ``CarmenLog.no_return_codes``).
-
-    Returns
-    -------
-    CarmenLog
-
-    Raises
-    ------
-    InvalidInputError
-        On a malformed FLASER line (naming the file and line number), on scans
-        of different lengths, or when the file holds no FLASER line.
-    """
-    path = Path(path)
-    if not path.is_file():
-        raise InvalidInputError(f"read_carmen_log: no such file {str(path)!r}")
-    opener = gzip.open if path.suffix == ".gz" else open
-    ranges, poses, odom, stamps, offset = [], [], [], [], 0.0
-    n_beams = None
-    with opener(path, "rt") as f:
-        for lineno, line in enumerate(f, start=1):
-            tok = line.split()
-            if not tok or tok[0].startswith("#"):
-                continue
-            where = f"read_carmen_log: {path.name}, line {lineno}"
-            if tok[0] == "PARAM" and len(tok) >= 3 and tok[1] == "robot_frontlaser_offset":
-                try:
-                    offset = float(tok[2])
-                except ValueError as exc:
-                    raise InvalidInputError(f"{where}: bad robot_frontlaser_offset {tok[2]!r}") from exc
-            if tok[0] != "FLASER":
-                continue
-            try:
-                n = int(tok[1])
-            except (IndexError, ValueError) as exc:
-                raise InvalidInputError(f"{where}: FLASER without a beam count") from exc
-            if n < 2 or len(tok) < n + 9:
-                raise InvalidInputError(
-                    f"{where}: FLASER line truncated or malformed ({len(tok)} fields, expected {n + 11} for {n} beams)"
-                )
-            try:
-                vals = np.array(tok[2 : n + 9], float)
-            except ValueError as exc:
-                raise InvalidInputError(f"{where}: non-numeric value in the FLASER fields ({exc})") from exc
-            if not np.all(np.isfinite(vals)):
-                raise InvalidInputError(f"{where}: non-finite value in the FLASER fields")
-            if n_beams is None:
-                n_beams = n
-            elif n != n_beams:
-                raise InvalidInputError(f"{where}: {n} beams, but earlier scans had {n_beams}")
-            r = vals[:n].copy()
-            r[(r >= no_return_range) | (r <= 0)] = np.inf
-            ranges.append(r)
-            poses.append(vals[n : n + 3])
-            odom.append(vals[n + 3 : n + 6])
-            stamps.append(vals[n + 6])
-    if not ranges:
-        raise InvalidInputError(f"read_carmen_log: {path.name} holds no FLASER line")
-    poses = np.array(poses)
-    odom = np.array(odom)
-    poses[:, 2] = wrap_angle(poses[:, 2])
-    odom[:, 2] = wrap_angle(odom[:, 2])
-    ranges = np.array(ranges)
-    codes = no_return_codes(ranges) if detect_codes else ()
-    if codes:
-        ranges[ranges >= codes[0]] = np.inf
-    return CarmenLog(ranges, _carmen_angles(n_beams, fov), poses, odom, np.array(stamps), offset, codes)
-
-
-def _carmen_angles(n: int, fov: float) -> np.ndarray:
-    """Beam angles as CARMEN's own log reader guesses them for old FLASER lines.
-
-    180/181 beams are 1 degree apart and 360/361 beams 0.5 degree apart, from
-    -90 degrees (CARMEN's ``carmen_laser_guess_angle_increment``); other counts
-    are spread evenly over ``fov``.
-    """
-    step = {180: np.pi / 180, 181: np.pi / 180, 360: np.pi / 360, 361: np.pi / 360}.get(n)
-    if step is None:
-        return beam_angles(n, fov)
-    return -np.pi / 2 + step * np.arange(n)
+        out[k + 1] = compose_unchecked(out[k], inc[k])
+    return checks.finite_result(out, f, "trajectory")

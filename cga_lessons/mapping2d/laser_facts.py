@@ -7,11 +7,11 @@ laser actually returns (:func:`returns_reach`), the reach the relocalizer should
 
 from __future__ import annotations
 
-from numbers import Integral, Real
-
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
+
+from .inputs import numbers
 
 __all__ = ["no_return_codes", "returns_reach"]
 
@@ -44,11 +44,10 @@ def no_return_codes(ranges, *, min_beams: int = 10, band: float = 0.01) -> tuple
     >>> no_return_codes(np.array([1.0, 2.5, 50.0]))
     ()
     """
-    if isinstance(min_beams, bool) or not isinstance(min_beams, Integral) or min_beams < 2:
-        raise InvalidInputError(f"no_return_codes: min_beams must be an integer >= 2, got {min_beams!r}")
-    if isinstance(band, bool) or not isinstance(band, Real) or not 0.0 <= band < 1.0:
-        raise InvalidInputError(f"no_return_codes: band must lie in [0, 1), got {band!r}")
-    r = np.asarray(ranges, float).ravel()
+    f = "no_return_codes"
+    min_beams = checks.integer(min_beams, f, "min_beams", low=2)
+    band = checks.real(band, f, "band", low=0.0, high=1.0, strict_high=True)
+    r = numbers(ranges, f, "ranges", finite=False).ravel()
     r = r[np.isfinite(r)]
     if len(r) == 0:
         return ()
@@ -84,10 +83,10 @@ def returns_reach(ranges, coverage: float = 0.99) -> float:
     >>> returns_reach(np.r_[np.linspace(0.5, 10.0, 99), 40.0, np.inf])  # one far return in a hundred
     10.0
     """
-    if isinstance(coverage, bool) or not (isinstance(coverage, Real) and 0.0 < coverage <= 1.0):
-        raise InvalidInputError(f"returns_reach: coverage must lie in (0, 1], got {coverage!r}")
-    r = np.asarray(ranges, float).ravel()
+    f = "returns_reach"
+    coverage = checks.real(coverage, f, "coverage", low=0.0, high=1.0, strict_low=True)
+    r = numbers(ranges, f, "ranges", finite=False).ravel()
     r = r[np.isfinite(r) & (r > 0)]
     if len(r) == 0:
-        raise InvalidInputError("returns_reach: ranges holds no finite positive reading")
+        raise checks.fail(f, "ranges", "holds no finite positive reading")
     return float(np.quantile(r, coverage, method="inverted_cdf"))

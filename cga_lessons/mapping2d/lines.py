@@ -25,11 +25,12 @@ faces of a thin wall apart, and it is what the thesis's remark
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
+
+from .inputs import array, broadcast, numbers, reach, scan, squares_finite
+from .segment import TWO_PI, Segment, fit_line, fit_points, line_through, make_segment, point_line_distance, point_sums
 
 __all__ = [
     "Segment",
@@ -42,279 +43,6 @@ __all__ = [
     "extract_segments",
     "TWO_PI",
 ]
-
-TWO_PI = 2.0 * np.pi
-
-
-# --------------------------------------------------------------------------- lines (3.1-3.3)
-
-
-def line_through(p, q) -> np.ndarray:
-    """The line ``a x + b y + c = 0`` through two points, Eq. (3.1).
-
-    Parameters
-    ----------
-    p, q : array_like, shape (2,)
-
-    Returns
-    -------
-    ndarray, shape (3,)
-        ``(a, b, c)`` with ``(a, b)`` normal to ``q - p`` (not normalised).
-
-    >>> line_through([0.0, 1.0], [2.0, 1.0]).tolist() == [0.0, 2.0, -2.0]  # y = 1 (signs of zero aside)
-    True
-    """
-    p = np.asarray(p, float)
-    q = np.asarray(q, float)
-    return np.array([p[1] - q[1], q[0] - p[0], p[0] * q[1] - q[0] * p[1]])
-
-
-def point_line_distance(abc, points) -> np.ndarray:
-    """Signed distance of points to the line ``(a, b, c)``, Eq. (3.2).
-
-    ``d(l, p) = (a p_x + b p_y + c) / sqrt(a^2 + b^2)``.
-
-    Parameters
-    ----------
-    abc : array_like, shape (3,)
-    points : array_like, shape (..., 2)
-
-    Returns
-    -------
-    ndarray, shape (...)
-
-    >>> float(point_line_distance([0.0, 1.0, -1.0], [3.0, 4.0]))
-    3.0
-    """
-    a, b, c = np.asarray(abc, float)
-    norm = np.hypot(a, b)
-    if norm == 0:
-        raise InvalidInputError("point_line_distance: (a, b) is zero, not a line")
-    p = np.asarray(points, float)
-    return (a * p[..., 0] + b * p[..., 1] + c) / norm
-
-
-def fit_line(points):
-    """Orthogonal least-squares line through points (the refit of section 3.1.1).
-
-    Minimises the sum of squared perpendicular distances: the line passes
-    through the centroid along the principal axis of the scatter matrix.
-
-    Parameters
-    ----------
-    points : array_like, shape (n, 2), n >= 2
-
-    Returns
-    -------
-    centroid : ndarray, shape (2,)
-    direction : ndarray, shape (2,)
-        Unit vector, oriented from the first point towards the last.
-    residuals : ndarray, shape (n,)
-        Signed perpendicular distances of the points to the line.
-    """
-    p = np.asarray(points, float)
-    if p.ndim != 2 or p.shape[1] != 2 or len(p) < 2:
-        raise InvalidInputError(f"fit_line: need an (n >= 2, 2) array of points, got shape {p.shape}")
-    c = p.mean(axis=0)
-    q = p - c
-    d = _principal_direction(q.T @ q, p[-1] - p[0])
-    return c, d, q @ np.array([-d[1], d[0]])
-
-
-def _principal_direction(scatter, hint):
-    """Unit eigenvector of the largest eigenvalue of a 2x2 scatter, oriented along ``hint``."""
-    sxx, sxy, syy = scatter[0, 0], scatter[0, 1], scatter[1, 1]
-    angle = 0.5 * np.arctan2(2.0 * sxy, sxx - syy)
-    d = np.array([np.cos(angle), np.sin(angle)])
-    if d @ hint < 0:
-        d = -d
-    return d
-
-
-@dataclass(eq=False)
-class Segment:
-    """A line segment, the thesis's structure for ``l_k`` (section 3.1.1, Eq. 3.3).
-
-    The thesis's members are the initial point ``(x_i, y_i)`` (:attr:`start`),
-    the final point ``(x_f, y_f)`` (:attr:`end`), the Hesse distance
-    :attr:`rho`, the polar angle :attr:`theta` in ``[0, 2 pi)`` of the closest
-    point to the origin, the :attr:`closest_point` itself and the line
-    parameters :attr:`abc` with ``a x + b y + c = 0``; the normal form (3.3) is
-    ``x cos(theta) + y sin(theta) = rho``.  Beside them a segment keeps the
-    point count and the sums of its points (so a map line can be refitted from
-    all the points it gathered) and whether each end is a real *edge* of the
-    object (the next beam missed, or passed behind the line) rather than a cut
-    by an occlusion or the field of view.
-
-    Parameters
-    ----------
-    start, end : array_like, shape (2,)
-        End points, metres; the direction runs from ``start`` to ``end``.
-    n_points : int
-        How many laser points support the segment.
-    sums : array_like, shape (6,), optional
-        ``(n, sum x, sum y, sum x^2, sum x y, sum y^2)`` of the points; by
-        default those of ``n_points`` points spread evenly from start to end.
-    start_is_edge, end_is_edge : bool
-    """
-
-    start: np.ndarray
-    end: np.ndarray
-    n_points: int = 2
-    sums: np.ndarray | None = None
-    start_is_edge: bool = False
-    end_is_edge: bool = False
-    _dir: np.ndarray = field(init=False, repr=False)
-
-    def __post_init__(self):
-        self.start = np.asarray(self.start, float).reshape(2)
-        self.end = np.asarray(self.end, float).reshape(2)
-        if not (np.all(np.isfinite(self.start)) and np.all(np.isfinite(self.end))):
-            raise InvalidInputError("Segment: start and end must be finite 2-vectors")
-        v = self.end - self.start
-        length = np.hypot(*v)
-        if length == 0:
-            raise InvalidInputError(f"Segment: start and end coincide at {self.start.tolist()}")
-        self._dir = v / length
-        self.n_points = int(self.n_points)
-        if self.sums is None:
-            t = np.linspace(0.0, 1.0, max(self.n_points, 2))[:, None]
-            self.sums = _sums(self.start + t * v)
-        else:
-            self.sums = np.asarray(self.sums, float).reshape(6)
-
-    # -- construction
-    @classmethod
-    def from_points(cls, points, start_is_edge=False, end_is_edge=False) -> Segment:
-        """Least-squares segment of ordered points: the fitted line, limited by the
-        projections of the first and last points."""
-        c, d, _ = fit_line(points)
-        p = np.asarray(points, float)
-        start = c + d * ((p[0] - c) @ d)
-        end = c + d * ((p[-1] - c) @ d)
-        return cls(start, end, len(p), _sums(p), bool(start_is_edge), bool(end_is_edge))
-
-    # -- the thesis's members
-    @property
-    def direction(self) -> np.ndarray:
-        """Unit direction from start to end, shape (2,)."""
-        return self._dir
-
-    @property
-    def normal(self) -> np.ndarray:
-        """Unit normal to the right of the direction (away from the sensor that saw it), shape (2,)."""
-        return np.array([self._dir[1], -self._dir[0]])
-
-    @property
-    def rho(self) -> float:
-        """Hesse distance: distance from the origin to the (infinite) line, >= 0 (3.3)."""
-        return float(abs(self.normal @ self.start))
-
-    @property
-    def theta(self) -> float:
-        """Polar angle of the closest point of the line to the origin, in [0, 2 pi) (3.3).
-
-        When the line passes through the origin the angle of :attr:`normal` is used.
-        """
-        n = self.normal
-        s = n @ self.start
-        if s < 0:
-            n = -n
-        return float(np.mod(np.arctan2(n[1], n[0]), TWO_PI))
-
-    @property
-    def closest_point(self) -> np.ndarray:
-        """Point of the line closest to the origin, ``rho (cos theta, sin theta)``, shape (2,)."""
-        n = self.normal
-        return n * (n @ self.start)
-
-    @property
-    def abc(self) -> np.ndarray:
-        """``(a, b, c) = (cos theta, sin theta, -rho)``: the line ``a x + b y + c = 0`` (3.1, 3.3)."""
-        t = self.theta
-        return np.array([np.cos(t), np.sin(t), -self.rho])
-
-    @property
-    def length(self) -> float:
-        return float(np.hypot(*(self.end - self.start)))
-
-    @property
-    def midpoint(self) -> np.ndarray:
-        return 0.5 * (self.start + self.end)
-
-    @property
-    def inclination(self) -> float:
-        """Inclination angle of the line in [0, pi) (used by the merge step)."""
-        return float(np.mod(np.arctan2(self._dir[1], self._dir[0]), np.pi))
-
-    def hough(self, origin=(0.0, 0.0)):
-        """Oriented Hough coordinates ``(rho, theta)`` of the line seen from ``origin``.
-
-        ``theta`` is the angle of :attr:`normal` in ``[0, 2 pi)`` and ``rho`` the
-        signed distance ``normal . (p - origin)``.  For a segment in the frame
-        of the sensor that saw it this equals ``(rho, theta)`` of (3.3); the
-        orientation keeps ``(rho, theta)`` and ``(-rho, theta + pi)`` from
-        being told apart as two lines, and the two faces of a wall distinct.
-        """
-        n = self.normal
-        return float(n @ (self.start - np.asarray(origin, float))), float(np.mod(np.arctan2(n[1], n[0]), TWO_PI))
-
-    def transformed(self, pose) -> Segment:
-        """The segment moved by the rigid motion of pose ``(x, y, theta)``, Eq. (3.4).
-
-        ``v' = R(theta) v + T`` applied to the end points (and to the point sums).
-        """
-        x, y, th = np.asarray(pose, float).reshape(3)
-        R = np.array([[np.cos(th), -np.sin(th)], [np.sin(th), np.cos(th)]])
-        t = np.array([x, y])
-        return Segment(
-            R @ self.start + t,
-            R @ self.end + t,
-            self.n_points,
-            _transform_sums(self.sums, R, t),
-            self.start_is_edge,
-            self.end_is_edge,
-        )
-
-    def reversed(self) -> Segment:
-        """The same segment run the other way (end and start swapped)."""
-        return Segment(self.end, self.start, self.n_points, self.sums, self.end_is_edge, self.start_is_edge)
-
-    def __repr__(self):
-        s, e = np.round(self.start, 3).tolist(), np.round(self.end, 3).tolist()
-        return f"Segment(start={s}, end={e}, rho={self.rho:.3f}, theta={self.theta:.4f}, n_points={self.n_points})"
-
-
-def _sums(p):
-    p = np.asarray(p, float)
-    x, y = p[:, 0], p[:, 1]
-    return np.array([len(p), x.sum(), y.sum(), x @ x, x @ y, y @ y])
-
-
-def _transform_sums(s, R, t):
-    n = s[0]
-    s1 = s[1:3]
-    s2 = np.array([[s[3], s[4]], [s[4], s[5]]])
-    s1n = R @ s1 + n * t
-    s2n = R @ s2 @ R.T + np.outer(R @ s1, t) + np.outer(t, R @ s1) + n * np.outer(t, t)
-    return np.array([n, s1n[0], s1n[1], s2n[0, 0], s2n[0, 1], s2n[1, 1]])
-
-
-def line_from_sums(sums, hint):
-    """Orthogonal least-squares line from point sums: ``(centroid, direction)``.
-
-    Parameters
-    ----------
-    sums : array_like, shape (6,)
-        ``(n, sum x, sum y, sum x^2, sum x y, sum y^2)``.
-    hint : array_like, shape (2,)
-        The direction is oriented to have a positive component along it.
-    """
-    s = np.asarray(sums, float)
-    n = s[0]
-    c = s[1:3] / n
-    scatter = np.array([[s[3], s[4]], [s[4], s[5]]]) - n * np.outer(c, c)
-    return c, _principal_direction(scatter, np.asarray(hint, float))
 
 
 # --------------------------------------------------------------------------- splitting (3.1-3.2)
@@ -344,12 +72,8 @@ def split_points(points, xi: float) -> list[tuple[int, int]]:
     >>> split_points(pts, 0.1)
     [(0, 2), (3, 4)]
     """
-    p = np.asarray(points, float)
-    if p.ndim != 2 or p.shape[1] != 2:
-        raise InvalidInputError(f"split_points: points must have shape (n, 2), got {p.shape}")
-    if not xi > 0:
-        raise InvalidInputError(f"split_points: xi must be > 0, got {xi}")
-    return _split(p, xi)
+    p = squares_finite(array(points, "split_points", "points", (None, 2)), "split_points", "points")
+    return _split(p, checks.real(xi, "split_points", "xi", low=0.0, strict_low=True))
 
 
 def _split(p, xi):
@@ -417,24 +141,33 @@ def diff_theta(theta_a, theta_b, theta_xi: float = 2 * np.pi / 100):
     >>> round(float(diff_theta(199 * np.pi / 100, 2 * np.pi / 100) / np.pi * 100), 9)
     -3.0
     """
-    a = np.asarray(theta_a, float)
-    b = np.asarray(theta_b, float)
-    d = a - b
-    case1 = (a > b) & (a + theta_xi >= TWO_PI) & (b - theta_xi <= 0)
-    case2 = (a < b) & (b + theta_xi >= TWO_PI) & (a - theta_xi <= 0)
-    out = np.where(case1, d - TWO_PI, np.where(case2, d + TWO_PI, d))
+    out = diff_theta_unchecked(*_angles("diff_theta", theta_a, theta_b, theta_xi))
     return float(out) if out.ndim == 0 else out
 
 
 def diff_theta_as_printed(theta_a, theta_b, theta_xi: float = 2 * np.pi / 100):
     """Eq. (3.5) exactly as printed (``+ theta_xi <= 0``), kept to show the erratum."""
-    a = np.asarray(theta_a, float)
-    b = np.asarray(theta_b, float)
+    a, b, theta_xi = _angles("diff_theta_as_printed", theta_a, theta_b, theta_xi)
     d = a - b
     case1 = (a > b) & (a + theta_xi >= TWO_PI) & (b + theta_xi <= 0)
     case2 = (a < b) & (b + theta_xi >= TWO_PI) & (a + theta_xi <= 0)
     out = np.where(case1, d - TWO_PI, np.where(case2, d + TWO_PI, d))
     return float(out) if out.ndim == 0 else out
+
+
+def _angles(func: str, theta_a, theta_b, theta_xi):
+    """The checked arguments of :func:`diff_theta`: two finite angle arrays that broadcast, ``theta_xi >= 0``."""
+    a, b = numbers(theta_a, func, "theta_a"), numbers(theta_b, func, "theta_b")
+    broadcast(func, theta_a=a, theta_b=b)
+    return a, b, checks.real(theta_xi, func, "theta_xi", low=0.0)
+
+
+def diff_theta_unchecked(a, b, theta_xi):
+    """:func:`diff_theta` of checked arrays (the correspondence search's inner loop)."""
+    d = a - b
+    case1 = (a > b) & (a + theta_xi >= TWO_PI) & (b - theta_xi <= 0)
+    case2 = (a < b) & (b + theta_xi >= TWO_PI) & (a - theta_xi <= 0)
+    return np.where(case1, d - TWO_PI, np.where(case2, d + TWO_PI, d))
 
 
 # --------------------------------------------------------------------------- extraction
@@ -551,18 +284,61 @@ def extract_segments(
     InvalidInputError
         When ``ranges`` and ``angles`` do not match or the thresholds are invalid.
     """
-    r = np.asarray(ranges, float).copy()
-    a = np.asarray(angles, float)
-    if r.ndim != 1 or r.shape != a.shape:
-        raise InvalidInputError(f"extract_segments: ranges {r.shape} and angles {a.shape} must be equal 1-D shapes")
-    if len(a) < 2 or np.any(~np.isfinite(a)) or np.any(np.diff(a) <= 0):
-        raise InvalidInputError("extract_segments: angles must be finite and strictly increasing")
-    if not (xi > 0 and phi_xi > 0 and min_points >= 2 and max_gap > 0 and max_range > 0):
-        raise InvalidInputError("extract_segments: xi, phi_xi, max_gap, max_range must be > 0 and min_points >= 2")
+    f = "extract_segments"
+    r, a = scan(ranges, angles, f, increasing=True)
+    settings = {"xi": xi, "phi_xi": phi_xi, "min_points": min_points, "min_length": min_length, "max_gap": max_gap,
+                "jump_ratio": jump_ratio, "max_range": max_range, "edge_tolerance": edge_tolerance}  # fmt: skip
+    return extract_unchecked(r, a, **extraction_settings(settings, f))
+
+
+EXTRACTION = ("xi", "phi_xi", "min_points", "min_length", "max_gap", "jump_ratio", "max_range", "edge_tolerance")
+
+
+def extraction_settings(settings: dict, func: str, prefix: str = "") -> dict:
+    """The checked settings of :func:`extract_segments` (names from :data:`EXTRACTION`); an unknown name or a bad
+    value is an error of ``func``'s argument ``prefix + name``."""
+    out = {}
+    for name, value in settings.items():
+        arg = prefix + str(name)
+        if name in ("xi", "phi_xi", "max_gap"):
+            out[name] = checks.real(value, func, arg, low=0.0, strict_low=True)
+        elif name in ("min_length", "jump_ratio", "edge_tolerance"):
+            out[name] = checks.real(value, func, arg, low=0.0)
+        elif name == "min_points":
+            out[name] = checks.integer(value, func, arg, low=2)
+        elif name == "max_range":
+            out[name] = reach(value, func, arg)
+        else:
+            raise checks.fail(func, arg, f"unknown setting; the settings are {', '.join(EXTRACTION)}")
+    return out
+
+
+def extract_unchecked(
+    r,
+    a,
+    *,
+    xi: float = 0.03,
+    phi_xi: float = np.radians(5.0),
+    min_points: int = 6,
+    min_length: float = 0.15,
+    max_gap: float = 0.20,
+    jump_ratio: float = 5.0,
+    max_range: float = np.inf,
+    edge_tolerance: float = 0.15,
+    func: str = "extract_segments",
+    names: tuple = ("ranges", "angles"),
+):
+    """:func:`extract_segments` of checked arguments (a scan from :func:`~cga_lessons.mapping2d.inputs.scan` with
+    ``increasing=True``, settings from :func:`extraction_settings`); ``func`` and ``names`` name the caller and
+    its arguments in the error of a scan whose readings overflow."""
+    r = r.copy()
     r[~np.isfinite(r) | (r <= 0) | (r >= max_range)] = np.inf
     ok = np.isfinite(r)
     if not ok.any():
         return []
+    if r[ok].max() > 1e150 or np.abs(a).max() > 1e150:
+        bad = names[0] if r[ok].max() > 1e150 else names[1]
+        raise checks.fail(func, bad, "magnitudes beyond 1e150 overflow the line fits")
     index = np.flatnonzero(ok)
     pts = np.stack([r[ok] * np.cos(a[ok]), r[ok] * np.sin(a[ok])], axis=1)
     dphi = float(np.median(np.diff(a)))
@@ -579,14 +355,14 @@ def extract_segments(
             if j - i + 1 < min_points:
                 continue
             seg_pts = pts[i : j + 1]
-            c, d, _ = fit_line(seg_pts)
+            c, d, _ = fit_points(seg_pts, func, names[0])
             start = c + d * ((seg_pts[0] - c) @ d)
             end = c + d * ((seg_pts[-1] - c) @ d)
             if np.hypot(*(end - start)) < min_length:
                 continue
             s_edge, start = _edge_end(c, d, start, index[i] - 1, -1, r, a, max_range, edge_tolerance)
             e_edge, end = _edge_end(c, d, end, index[j] + 1, 1, r, a, max_range, edge_tolerance)
-            out.append(Segment(start, end, len(seg_pts), _sums(seg_pts), s_edge, e_edge))
+            out.append(make_segment(start, end, len(seg_pts), point_sums(seg_pts), s_edge, e_edge))
     return out
 
 

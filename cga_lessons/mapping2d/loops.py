@@ -32,9 +32,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .geometry import compose_unchecked
-from .graph import PoseGraph, chain_uncertainty, relative_pose
+from .graph import PoseGraph, chain_uncertainty, relative_pose_unchecked
 from .hypotheses import loop_hypotheses
+from .poses import compose_unchecked, wrap_unchecked
 
 __all__ = [
     "visible_lines",
@@ -64,7 +64,7 @@ def visible_lines(builder, pose, fov, idx):
     seen = np.zeros(len(idx), bool)
     for f in (0.0, 0.5, 1.0):
         q = G.start + f * (G.end - G.start) - lp[:2]
-        a = np.mod(np.arctan2(q[:, 1], q[:, 0]) - lp[2] + np.pi, 2 * np.pi) - np.pi
+        a = wrap_unchecked(np.arctan2(q[:, 1], q[:, 0]) - lp[2])
         seen |= (a >= fov[0]) & (a <= fov[1]) & (np.hypot(q[:, 0], q[:, 1]) < b.max_range)
     return idx[ok & seen]
 
@@ -82,7 +82,7 @@ def _verify(b, k, poses, points, old, results):
     if loose or np.sqrt(cov[2, 2]) > 0.5 * p.loop_angle_tol:
         return None  # a direction the old lines do not fix (a corridor)
     for other in results[1:]:
-        d = relative_pose(q, other[1])
+        d = relative_pose_unchecked(q, other[1])
         far = np.hypot(d[0], d[1]) > 2 * p.loop_shift_tol or abs(d[2]) > 2 * p.loop_angle_tol
         if far and other[0] > p.loop_ambiguity * sup:
             return None  # another place fits almost as well
@@ -203,11 +203,11 @@ def apply_loop(builder, graph, poses, k, loops):
     moved = False
     for s, loop in loops:
         j = loop["anchor"]
-        z = relative_pose(poses[j], loop["pose"])
+        z = relative_pose_unchecked(poses[j], loop["pose"])
         cov = loop["cov"] + np.diag([p.graph_sigma_xy**2, p.graph_sigma_xy**2, p.graph_sigma_theta**2])
         graph.add(j, s, z, cov, loop=True)
         builder.last[builder.rows_of(builder.resolve(loop["ids"]))] = k  # the old lines are seen again
-        d = relative_pose(poses[s], loop["pose"])
+        d = relative_pose_unchecked(poses[s], loop["pose"])
         moved |= bool(np.hypot(*d[:2]) > 0.5 * p.loop_shift_tol or abs(d[2]) > 0.5 * p.loop_angle_tol)
     if not moved:
         return poses[: k + 1]  # already in place: the edges wait for the next relaxation
@@ -220,12 +220,12 @@ def apply_loop(builder, graph, poses, k, loops):
 
 def chain_correction(new, old):
     """The rigid motion taking pose ``old`` to pose ``new`` in the world frame: ``new old^-1``."""
-    return compose_unchecked(new, relative_pose(old, np.zeros(3)))
+    return compose_unchecked(new, relative_pose_unchecked(old, np.zeros(3)))
 
 
 def corrections_agree(a, b, params) -> bool:
     """Do two corrections of the chain (world-frame rigid motions) agree within the revisit search's resolution?"""
-    d = relative_pose(a, b)
+    d = relative_pose_unchecked(a, b)
     return bool(np.hypot(d[0], d[1]) < 2 * params.loop_shift_tol and abs(d[2]) < 2 * params.loop_angle_tol)
 
 
@@ -251,7 +251,7 @@ class LoopCloser:
     def add_step(self, k, poses, cov):
         """Tie pose ``k`` to pose ``k - 1`` by their relative pose, with covariance ``cov`` (plus the model floor)."""
         cov = cov + self.floor
-        self.graph.add(k - 1, k, relative_pose(poses[k - 1], poses[k]), cov)
+        self.graph.add(k - 1, k, relative_pose_unchecked(poses[k - 1], poses[k]), cov)
         self.var_xy[k], self.var_theta[k] = max(cov[0, 0], cov[1, 1]), cov[2, 2]
 
     def plausible(self, loop, poses, k, window) -> bool:
@@ -265,7 +265,7 @@ class LoopCloser:
         the pose graph against any other (its robust cost alone cannot refuse
         a wrong revisit that the chain's floors make look possible).
         """
-        d = relative_pose(poses[k], loop["pose"])
+        d = relative_pose_unchecked(poses[k], loop["pose"])
         sigma_xy, sigma_theta = window(loop["anchor"])
         cov = loop["cov"]
         chi2 = (d[0] ** 2 + d[1] ** 2) / (sigma_xy**2 + max(cov[0, 0], cov[1, 1])) + d[2] ** 2 / (

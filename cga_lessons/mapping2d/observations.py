@@ -126,10 +126,14 @@ class Observations:
         return np.unique(self.scan.view[rows], return_counts=True)
 
     def take(self, rows) -> SegmentSet:
-        return SegmentSet(self.start.view[rows], self.end.view[rows], self.sums.view[rows], self.edge.view[rows])
+        return SegmentSet.trusted(
+            self.start.view[rows], self.end.view[rows], self.sums.view[rows], self.edge.view[rows]
+        )
 
     def all(self) -> SegmentSet:
-        return SegmentSet(self.start.view.copy(), self.end.view.copy(), self.sums.view.copy(), self.edge.view.copy())
+        return SegmentSet.trusted(
+            self.start.view.copy(), self.end.view.copy(), self.sums.view.copy(), self.edge.view.copy()
+        )
 
 
 def refit_lines(geometry, mount, G: SegmentSet, rows_of_line, W: SegmentSet, edge_match):
@@ -177,4 +181,4 @@ def refit_lines(geometry, mount, G: SegmentSet, rows_of_line, W: SegmentSet, edg
         ends[:, side] = sign * extreme
         ends[has, side] = tot[has] / cnt[has]
         counts[:, side] = cnt
-    return SegmentSet(c + d * ends[:, :1], c + d * ends[:, 1:], sums, counts)
+    return SegmentSet.trusted(c + d * ends[:, :1], c + d * ends[:, 1:], sums, counts)

@@ -2,11 +2,22 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
+from dataclasses import dataclass, fields
 
 import numpy as np
 
+from cga_lessons import checks
+
 __all__ = ["MapParams"]
+
+# The fields that are whole numbers (with their least value), flags, fractions in [0, 1], angles in [0, pi],
+# and those that may be infinite (no bound); every other field is a real number >= 0.
+_COUNTS = {"n_iterations": 1, "cleanup_every": 0, "loop_min_lines": 1, "learn_lag": 1}
+_FLAGS = {"estimate_odometry", "estimate_floors", "loop_closure", "adjust"}
+_FRACTIONS = {"significance", "loop_min_support", "loop_ambiguity"}
+_NO_BOUND = {"loop_max_shift"}
+_SIGNED = {"odo_heading_bias"}  # a drift either way
 
 
 @dataclass(frozen=True)
@@ -189,3 +200,24 @@ class MapParams:
     graph_sigma_theta: float = 0.005
     adjust: bool = True
     learn_lag: int = 4
+
+    def __post_init__(self):
+        f = "MapParams"
+        for field in fields(self):
+            name, value = field.name, getattr(self, field.name)
+            if name in _COUNTS:
+                checks.integer(value, f, name, low=_COUNTS[name])
+            elif name in _FLAGS:
+                checks.flag(value, f, name)
+            elif name in _FRACTIONS:
+                strict = name == "significance"  # a quantile: neither 0 nor 1
+                checks.real(value, f, name, low=0.0, high=1.0, strict_low=strict, strict_high=strict)
+            elif name == "range_noise":
+                if value is not None:
+                    checks.real(value, f, name, low=0.0, strict_low=True)
+            elif name in _SIGNED:
+                checks.real(value, f, name)
+            elif name == "loop_max_angle":
+                checks.real(value, f, name, low=0.0, high=math.pi)
+            elif not (name in _NO_BOUND and isinstance(value, (float, np.floating)) and value == math.inf):
+                checks.real(value, f, name, low=0.0)

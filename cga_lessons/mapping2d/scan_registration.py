@@ -30,8 +30,12 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
-from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector
+from cga_lessons import checks
+from cga_lessons.algebra import DegenerateGeometryError, Multivector
 from cga_lessons.conformal import apply_to_points, motor, motor_from_points, motor_to_matrix
+
+from .inputs import array, relabel, squares_finite
+from .poses import wrap_unchecked
 
 __all__ = ["IcpParams", "ScanRegistration", "register_scans"]
 
@@ -74,6 +78,14 @@ class IcpParams:
     link: float = 3.0
     tolerance: tuple = (1e-4, 1e-5)
 
+    def __post_init__(self):
+        f = "IcpParams"
+        checks.integer(self.max_iterations, f, "max_iterations", low=1)
+        for name in ("max_distance", "trim", "link"):
+            checks.real(getattr(self, name), f, name, low=0.0, strict_low=True)
+        if min(array(self.tolerance, f, "tolerance", (2,))) < 0:
+            raise checks.fail(f, "tolerance", f"must be two numbers >= 0 (m, rad), got {self.tolerance!r}")
+
 
 @dataclass(frozen=True)
 class ScanRegistration:
@@ -104,16 +116,11 @@ class ScanRegistration:
 
 
 def _planar(points, func: str, name: str) -> np.ndarray:
-    try:
-        arr = np.asarray(points, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise InvalidInputError(f"{func}: {name}: expected numbers of shape (N, 2), got {points!r}") from exc
-    if arr.ndim != 2 or arr.shape[1] != 2:
-        raise InvalidInputError(f"{func}: {name}: expected shape (N, 2), got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise InvalidInputError(f"{func}: {name}: contains NaN or inf (drop the beams with no return first)")
+    arr = squares_finite(array(points, func, name, (None, 2)), func, name)
     if len(arr) < 3:
-        raise DegenerateGeometryError(f"{func}: {name}: needs at least 3 points, got {len(arr)}")
+        raise checks.degenerate(func, name, f"needs at least 3 points, got {len(arr)}")
+    if np.all(arr == arr[0]):
+        raise checks.degenerate(func, name, "all its points coincide")
     return arr
 
 
@@ -178,11 +185,9 @@ def register_scans(source, target, initial=(0.0, 0.0, 0.0), params: IcpParams | 
         distance (the start is too far off, or the scans do not overlap).
     """
     func = "register_scans"
-    p = params or IcpParams()
+    p = IcpParams() if params is None else checks.instance(params, func, "params", IcpParams, "an IcpParams or None")
     src, tgt = _planar(source, func, "source"), _planar(target, func, "target")
-    x0 = np.asarray(initial, dtype=float).reshape(-1)
-    if x0.shape != (3,) or not np.all(np.isfinite(x0)):
-        raise InvalidInputError(f"{func}: initial: expected three finite numbers (x, y, theta), got {initial!r}")
+    x0 = squares_finite(array(initial, func, "initial", (3,)), func, "initial")
     tree = cKDTree(tgt)
     gaps = np.hypot(*np.diff(tgt, axis=0).T)
     link = gaps <= p.link * np.median(gaps)
@@ -201,10 +206,10 @@ def register_scans(source, target, initial=(0.0, 0.0, 0.0), params: IcpParams | 
                 f"{func}: source: only {kept} points lie within {limit:.3g} m of the target scan; "
                 "the starting pose is too far off or the scans do not overlap"
             )
-        M = motor_from_points(src[keep], near[keep])
+        M = relabel(func, "source, target", motor_from_points, src[keep], near[keep])
         new = _pose_of(M)
         step = new - pose
-        step[2] = (step[2] + np.pi) % (2 * np.pi) - np.pi
+        step[2] = wrap_unchecked(step[2])
         pose = new
         rms = float(np.sqrt(np.mean(d[keep] ** 2)))
         limit = min(p.max_distance, p.trim * float(np.median(d[keep])))

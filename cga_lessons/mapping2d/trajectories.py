@@ -21,9 +21,11 @@ from pathlib import Path
 
 import numpy as np
 
+from cga_lessons import checks
 from cga_lessons.algebra import InvalidInputError
 
-from .laser import relative, wrap_angle
+from .inputs import array
+from .poses import relative_unchecked, wrap_unchecked
 
 __all__ = [
     "TrajectoryFileExistsError",
@@ -48,40 +50,25 @@ class TrajectoryFileExistsError(InvalidInputError, FileExistsError):
 
 
 def _poses(value, func: str, name: str) -> np.ndarray:
-    try:
-        p = np.array(value, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise InvalidInputError(f"{func}: {name} must be an array of numbers, shape (T, 3) ({exc})") from None
-    if p.ndim != 2 or p.shape[1] != 3 or len(p) == 0:
-        raise InvalidInputError(f"{func}: {name} must have shape (T, 3) as (x, y, theta) with T >= 1, got {p.shape}")
-    if not np.all(np.isfinite(p)):
-        first = int(np.argmin(np.isfinite(p).all(axis=1)))
-        raise InvalidInputError(f"{func}: {name} holds NaN or inf (first at row {first})")
-    return p
+    return array(value, func, name, (None, 3), at_least=1)
 
 
 def _pair(poses, truth, func: str, names=("poses", "truth")):
     p, t = _poses(poses, func, names[0]), _poses(truth, func, names[1])
-    if len(p) != len(t):
-        raise InvalidInputError(f"{func}: {names[0]} and {names[1]} differ in length ({len(p)} and {len(t)} poses)")
+    checks.same_length(func, **{names[0]: p, names[1]: t})
     return p, t
 
 
 def _timestamps(value, n: int, func: str, name: str = "timestamps") -> np.ndarray:
-    try:
-        ts = np.array(value, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise InvalidInputError(f"{func}: {name} must be an array of numbers ({exc})") from None
-    if ts.shape != (n,):
-        raise InvalidInputError(f"{func}: {name} must have shape ({n},), one per pose, got {ts.shape}")
-    if not np.all(np.isfinite(ts)):
-        raise InvalidInputError(f"{func}: {name} holds NaN or inf")
+    ts = array(value, func, name, (n,))
     back = np.flatnonzero(np.diff(ts) <= 0)
     if len(back):
         k = int(back[0])
-        raise InvalidInputError(
-            f"{func}: {name} must increase strictly; {name}[{k + 1}] = {float(ts[k + 1])!r} follows {float(ts[k])!r} "
-            f"({len(back)} such steps)"
+        raise checks.fail(
+            func,
+            name,
+            f"must increase strictly; {name}[{k + 1}] = {float(ts[k + 1])!r} follows {float(ts[k])!r} "
+            f"({len(back)} such steps)",
         )
     return ts
 
@@ -132,20 +119,16 @@ def write_tum(path, poses, timestamps, *, overwrite: bool = False) -> Path:
     >>> write_tum(p, [[0, 0, 0]], [0.0])  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    cga_lessons.mapping2d.trajectories.TrajectoryFileExistsError: write_tum: path ... exists (pass overwrite=True ...)
+    cga_lessons.mapping2d.trajectories.TrajectoryFileExistsError: write_tum: path: ... exists (pass overwrite=True ...)
     """
     func = "write_tum"
-    if not isinstance(overwrite, (bool, np.bool_)):
-        raise InvalidInputError(f"{func}: overwrite must be True or False, got {overwrite!r}")
+    overwrite = checks.flag(overwrite, func, "overwrite")
     p = _poses(poses, func, "poses")
     ts = _timestamps(timestamps, len(p), func)
-    path = Path(path)
-    if not path.parent.is_dir():
-        raise InvalidInputError(f"{func}: path {str(path)!r}: no such folder {str(path.parent)!r}")
-    if path.is_dir():
-        raise InvalidInputError(f"{func}: path {str(path)!r} is a folder")
-    if path.exists() and not overwrite:
-        raise TrajectoryFileExistsError(f"{func}: path {str(path)!r} exists (pass overwrite=True to replace it)")
+    path = Path(path) if isinstance(path, (str, Path)) and str(path) else path
+    if isinstance(path, Path) and path.exists() and not path.is_dir() and not overwrite:
+        raise TrajectoryFileExistsError(f"{func}: path: {str(path)!r} exists (pass overwrite=True to replace it)")
+    path = checks.new_path(path, func, "path", overwrite=overwrite)
     half = p[:, 2] / 2
     rows = np.column_stack([ts, p[:, 0], p[:, 1], np.zeros(len(p)), np.zeros((len(p), 2)), np.sin(half), np.cos(half)])
     text = "".join(" ".join(repr(float(v)) for v in row) + "\n" for row in rows)
@@ -158,7 +141,7 @@ def write_tum(path, poses, timestamps, *, overwrite: bool = False) -> Path:
             f.write(text)
             f.flush()
             os.fsync(f.fileno())
-        exists = TrajectoryFileExistsError(f"{func}: path {str(path)!r} exists (pass overwrite=True to replace it)")
+        exists = TrajectoryFileExistsError(f"{func}: path: {str(path)!r} exists (pass overwrite=True to replace it)")
         if overwrite:
             os.replace(tmp, path)
         else:
@@ -213,46 +196,58 @@ def read_tum(path, *, planar_tol: float = 1e-6):
     ([[2.0, 3.0, -3.141593]], [1.0])
     """
     func = "read_tum"
-    if not (isinstance(planar_tol, (int, float)) and math.isfinite(planar_tol) and planar_tol >= 0):
-        raise InvalidInputError(f"{func}: planar_tol must be a finite number >= 0, got {planar_tol!r}")
-    path = Path(path)
-    if not path.is_file():
-        raise InvalidInputError(f"{func}: path: no such file {str(path)!r}")
+    planar_tol = checks.real(planar_tol, func, "planar_tol", low=0.0)
+    path = checks.existing_path(path, func, "path")
+    try:
+        rows, linenos = _tum_rows(path, planar_tol)
+    except (OSError, UnicodeDecodeError) as exc:
+        raise checks.fail(func, "path", f"cannot read {str(path)!r}: {exc}") from None
+    if not rows:
+        raise checks.fail(func, "path", f"{path.name} holds no pose")
+    arr = np.array(rows)
+    back = np.flatnonzero(np.diff(arr[:, 0]) <= 0)
+    if len(back):
+        raise checks.fail(
+            func,
+            "path",
+            f"{path.name}, line {linenos[back[0] + 1]}: timestamp {float(arr[back[0] + 1, 0])!r} does not "
+            f"increase (the one before is {float(arr[back[0], 0])!r})",
+        )
+    poses = arr[:, 1:].copy()
+    poses[:, 2] = wrap_unchecked(poses[:, 2])
+    return poses, arr[:, 0].copy()
+
+
+def _tum_rows(path: Path, planar_tol: float):
+    """The poses ``(t, x, y, theta)`` of a TUM file's lines and their line numbers."""
     rows, linenos = [], []
-    with open(path) as f:
+    with open(path, encoding="utf-8") as f:
         for lineno, line in enumerate(f, start=1):
             tok = line.split()
             if not tok or tok[0].startswith("#"):
                 continue
-            where = f"{func}: {path.name}, line {lineno}"
+            where = f"{path.name}, line {lineno}"
             if len(tok) != 8:
-                raise InvalidInputError(f"{where}: expected 8 numbers (timestamp tx ty tz qx qy qz qw), got {len(tok)}")
+                raise _bad(where, f"expected 8 numbers (timestamp tx ty tz qx qy qz qw), got {len(tok)}")
             try:
                 vals = [float(v) for v in tok]
             except ValueError as exc:
-                raise InvalidInputError(f"{where}: not a number ({exc})") from None
+                raise _bad(where, f"not a number ({exc})") from None
             if not all(math.isfinite(v) for v in vals):
-                raise InvalidInputError(f"{where}: NaN or inf")
+                raise _bad(where, "NaN or inf")
             t, x, y, z, qx, qy, qz, qw = vals
             norm = math.sqrt(qx * qx + qy * qy + qz * qz + qw * qw)
             if abs(norm - 1) > 1e-3:
-                raise InvalidInputError(f"{where}: the quaternion is not a unit quaternion (norm {norm:.6g})")
+                raise _bad(where, f"the quaternion is not a unit quaternion (norm {norm:.6g})")
             if abs(z) > planar_tol or max(abs(qx), abs(qy)) / norm > planar_tol:
-                raise InvalidInputError(f"{where}: not a planar pose (tz = {z:.3g}, qx = {qx:.3g}, qy = {qy:.3g})")
+                raise _bad(where, f"not a planar pose (tz = {z:.3g}, qx = {qx:.3g}, qy = {qy:.3g})")
             rows.append((t, x, y, 2 * math.atan2(qz, qw)))
             linenos.append(lineno)
-    if not rows:
-        raise InvalidInputError(f"{func}: {path.name} holds no pose")
-    arr = np.array(rows)
-    back = np.flatnonzero(np.diff(arr[:, 0]) <= 0)
-    if len(back):
-        raise InvalidInputError(
-            f"{func}: {path.name}, line {linenos[back[0] + 1]}: timestamp {float(arr[back[0] + 1, 0])!r} does not "
-            f"increase (the one before is {float(arr[back[0], 0])!r})"
-        )
-    poses = arr[:, 1:].copy()
-    poses[:, 2] = wrap_angle(poses[:, 2])
-    return poses, arr[:, 0].copy()
+    return rows, linenos
+
+
+def _bad(where: str, problem: str) -> InvalidInputError:
+    return checks.fail("read_tum", "path", f"{where}: {problem}")
 
 
 # --------------------------------------------------------------------------- absolute trajectory error
@@ -328,15 +323,16 @@ def absolute_trajectory_error(poses, truth, align: str = "none") -> AbsoluteTraj
     """
     func = "absolute_trajectory_error"
     p, t = _pair(poses, truth, func)
-    if align not in ("none", "se2"):
-        raise InvalidInputError(f"{func}: align must be 'none' or 'se2', got {align!r}")
+    align = checks.choice(align, func, "align", ("none", "se2"))
     motion = np.zeros(3)
     if align == "se2":
         motion = _align_se2(p, t)
         c, s = math.cos(motion[2]), math.sin(motion[2])
         p = np.column_stack([p[:, :2] @ np.array([[c, s], [-s, c]]) + motion[:2], p[:, 2] + motion[2]])
-    pos = math.sqrt(float(np.mean(np.sum((p[:, :2] - t[:, :2]) ** 2, axis=1))))
-    head = math.sqrt(float(np.mean(wrap_angle(p[:, 2] - t[:, 2]) ** 2)))
+    with np.errstate(over="ignore", invalid="ignore"):
+        pos = math.sqrt(float(np.mean(np.sum((p[:, :2] - t[:, :2]) ** 2, axis=1))))
+        head = math.sqrt(float(np.mean(wrap_unchecked(p[:, 2] - t[:, 2]) ** 2)))
+    checks.finite_result((pos, *motion), func, "poses, truth")
     return AbsoluteTrajectoryError(pos, head, align, tuple(float(v) for v in motion), len(p))
 
 
@@ -418,8 +414,7 @@ def relative_pose_error(poses, truth, delta: float = 1.0) -> RelativePoseError:
     """
     func = "relative_pose_error"
     p, t = _pair(poses, truth, func)
-    if not (isinstance(delta, (int, float, np.integer, np.floating)) and math.isfinite(delta) and delta > 0):
-        raise InvalidInputError(f"{func}: delta must be a positive finite number of metres, got {delta!r}")
+    delta = checks.real(delta, func, "delta", low=0.0, strict_low=True)
     steps = np.hypot(*np.diff(t[:, :2], axis=0).T) if len(t) > 1 else np.zeros(0)
     ids, travelled = [0], 0.0
     for k, d in enumerate(steps, start=1):
@@ -428,15 +423,20 @@ def relative_pose_error(poses, truth, delta: float = 1.0) -> RelativePoseError:
             ids.append(k)
             travelled = 0.0
     if len(ids) < 2:
-        raise InvalidInputError(
-            f"{func}: truth travels {float(steps.sum()):.3f} m, less than delta = {delta} m: no segment to compare"
+        raise checks.fail(
+            func,
+            "truth, delta",
+            f"truth travels {float(steps.sum()):.3f} m, less than delta = {delta} m: no segment to compare",
         )
     i, j = np.array(ids[:-1]), np.array(ids[1:])
     cum = np.concatenate([[0.0], np.cumsum(steps)])
     lengths = cum[j] - cum[i]
-    move_p, move_t = relative(p[i], p[j]), relative(t[i], t[j])
-    err_xy = np.hypot(move_p[:, 0] - move_t[:, 0], move_p[:, 1] - move_t[:, 1])  # |t(E)|: R(Q)^T is a rotation
-    err_th = np.abs(wrap_angle(move_p[:, 2] - move_t[:, 2]))
+    with np.errstate(over="ignore", invalid="ignore"):
+        move_p, move_t = relative_unchecked(p[i], p[j]), relative_unchecked(t[i], t[j])
+        err_xy = np.hypot(move_p[:, 0] - move_t[:, 0], move_p[:, 1] - move_t[:, 1])  # |t(E)|: R(Q)^T is a rotation
+        err_th = np.abs(wrap_unchecked(move_p[:, 2] - move_t[:, 2]))
+        square = np.concatenate([err_xy, err_xy / lengths]) ** 2
+    checks.finite_result(square, func, "poses, truth")
 
     def rms(x):
         return math.sqrt(float(np.mean(x**2)))
@@ -488,8 +488,7 @@ def odometry_repeats_poses(log, tol: float = 1e-6) -> bool:
     """
     func = "odometry_repeats_poses"
     if not (hasattr(log, "poses") and hasattr(log, "odometry")):
-        raise InvalidInputError(f"{func}: log must have poses and odometry (a CarmenLog), got {type(log).__name__}")
-    if not (isinstance(tol, (int, float, np.integer, np.floating)) and math.isfinite(tol) and tol >= 0):
-        raise InvalidInputError(f"{func}: tol must be a finite number >= 0, got {tol!r}")
+        raise checks.fail(func, "log", f"must have poses and odometry (a CarmenLog), got {type(log).__name__}")
+    tol = checks.real(tol, func, "tol", low=0.0)
     p, o = _pair(log.poses, log.odometry, func, ("log.poses", "log.odometry"))
-    return bool(np.all(np.abs(p[:, :2] - o[:, :2]) <= tol) and np.all(np.abs(wrap_angle(p[:, 2] - o[:, 2])) <= tol))
+    return bool(np.all(np.abs(p[:, :2] - o[:, :2]) <= tol) and np.all(np.abs(wrap_unchecked(p[:, 2] - o[:, 2])) <= tol))

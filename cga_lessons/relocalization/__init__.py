@@ -12,12 +12,16 @@ and widgets are in :mod:`cga_lessons.viz`).  This facade exports the names in ``
   they hit, as a coverage grid
 * :mod:`~cga_lessons.relocalization.eval`: Measuring the relocalization: random poses in a scene, and held-out scans
   of a real log
+* :mod:`~cga_lessons.relocalization.evaluation`: The terms of a measured relocalization: the tolerances, the per-pose
+  Evaluation, scan agreement
 * :mod:`~cga_lessons.relocalization.geometry`: Geometry for the relocalization: inputs, map and scan lines as
   arrays, ray casting against a line map
 * :mod:`~cga_lessons.relocalization.history`: What the last scans say of a pose the particle filter never held: the
   prior weight of new particles
 * :mod:`~cga_lessons.relocalization.hough`: Chapter 5 as printed: relocalization by voting in Hough space (Eqs.
   5.1-5.6, steps 1-10)
+* :mod:`~cga_lessons.relocalization.inputs`: Checks of the relocalization's arguments that the shared layer lacks,
+  composed from :mod:`cga_lessons.checks`
 * :mod:`~cga_lessons.relocalization.likelihood`: A likelihood field of a line map, and a laser beam model on it,
   vectorised over particles x beams
 * :mod:`~cga_lessons.relocalization.logmap`: A line map from scans at known poses, for measuring the relocalization
@@ -34,6 +38,8 @@ and widgets are in :mod:`cga_lessons.viz`).  This facade exports the names in ``
   global proposal of the particle filter
 * :mod:`~cga_lessons.relocalization.odometry`: Does a chain of relocalized poses move as the odometry says?  (Beyond
   chapter 5.)
+* :mod:`~cga_lessons.relocalization.params`: The thresholds of :func:`~cga_lessons.relocalization.relocalize`, each
+  field checked where it is set
 * :mod:`~cga_lessons.relocalization.relocalizer`: Relocalization in a known line map (thesis chapter 5, Eqs.
   5.1-5.6), made to work
 * :mod:`~cga_lessons.relocalization.sampling`: Resampling a particle set: low-variance resampling to a size chosen
@@ -73,7 +79,8 @@ from .likelihood import BeamModel
 from .lookaround import evaluate_look_around, look_around
 from .mcl import MCLEstimate, MonteCarloLocalizer
 from .mcl_config import MCLConfig
-from .relocalizer import Relocalization, RelocParams, combined_noise, relocalize
+from .params import RelocParams
+from .relocalizer import Relocalization, combined_noise, relocalize
 from .sampling import kld_bound
 from .sequence import Relocalizer, relocalize_sequence
 from .thesis import correspondences_from_votes, rotate_entities, thesis_relocalization, translate_entities

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
 
 __all__ = ["BeamModel", "beam_likelihood"]
 
@@ -86,18 +86,14 @@ class BeamModel:
     max_silent_beams: int = 12
 
     def __post_init__(self):
+        f = "BeamModel"
         for name in ("max_range", "sigma_hit", "resolution", "ray_step", "beam_weight"):
-            v = getattr(self, name)
-            if not (isinstance(v, (int, float)) and np.isfinite(v) and v > 0):
-                raise InvalidInputError(f"BeamModel: {name} must be a finite number > 0, got {v!r}")
+            object.__setattr__(self, name, checks.real(getattr(self, name), f, name, low=0.0, strict_low=True))
         for name in ("z_rand", "p_dropout"):
-            v = getattr(self, name)
-            if not (isinstance(v, (int, float)) and 0 < v < 1):
-                raise InvalidInputError(f"BeamModel: {name} must lie in (0, 1), got {v!r}")
+            v = checks.real(getattr(self, name), f, name, low=0.0, high=1.0, strict_low=True, strict_high=True)
+            object.__setattr__(self, name, v)
         for name in ("max_beams", "max_silent_beams"):
-            v = getattr(self, name)
-            if not (isinstance(v, (int, np.integer)) and v >= 1):
-                raise InvalidInputError(f"BeamModel: {name} must be an integer >= 1, got {v!r}")
+            object.__setattr__(self, name, checks.integer(getattr(self, name), f, name, low=1))
 
     @property
     def log_unknown(self) -> float:

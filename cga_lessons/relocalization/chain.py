@@ -35,10 +35,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
 from cga_lessons.mapping2d import OdometryModel, wrap_angle
 
 from .geometry import MapLines
+from .inputs import array
 from .verify import point_normal_equations
 
 __all__ = ["Chain", "SequenceRelocalization", "refine_chains", "CHAIN_GATES", "STILL_VARIANCE"]
@@ -148,21 +149,19 @@ def refine_chains(
     A step the scans and the odometry leave free (no point, no increment)
     stays where it is (a small damping on every pose).
     """
-    P = np.array(chains, float)
-    if P.ndim != 3 or P.shape[2] != 3 or not np.all(np.isfinite(P)):
-        raise InvalidInputError(f"refine_chains: chains must be a finite array (C, n, 3), got shape {P.shape}")
+    func = "refine_chains"
+    P = array(chains, func, "chains", (None, None, 3)).copy()
     C, n, _ = P.shape
     obs = list(observations)
-    sig = np.asarray(sigmas, float).reshape(-1)
-    U = np.asarray(increments, float).reshape(-1, 3)
-    A = None if anchor is None else np.asarray(anchor, float).reshape(C, 3)
-    if len(obs) != n or sig.shape != (n,) or not np.all(sig > 0) or len(U) != n - (A is None):
-        raise InvalidInputError(
-            f"refine_chains: need {n} observations and sigmas > 0 and {n - (A is None)} increments, "
-            f"got {len(obs)}, {sig.shape} and {len(U)}"
-        )
-    if not (np.all(np.isfinite(sig)) and np.all(np.isfinite(U)) and (A is None or np.all(np.isfinite(A)))):
-        raise InvalidInputError("refine_chains: sigmas, increments and anchor must be finite")
+    sig = array(sigmas, func, "sigmas", (n,))
+    U = array(increments, func, "increments", (3,) if np.ndim(increments) == 1 else (None, 3)).reshape(-1, 3)
+    if len(U) != n - (anchor is None):
+        raise checks.fail(func, "increments", f"need {n - (anchor is None)} (one per step), got {len(U)}")
+    A = None if anchor is None else array(anchor, func, "anchor", (C, 3))
+    if len(obs) != n:
+        raise checks.fail(func, "observations", f"need {n} (one per pose of a chain), got {len(obs)}")
+    if np.any(sig <= 0):
+        raise checks.fail(func, "sigmas", f"must be > 0, got {sig.tolist()}")
     m = OdometryModel() if model is None else model
     inv_var = [1.0 / np.maximum(np.diag(m.step_covariance(u)), STILL_VARIANCE) for u in U]
     N = 3 * n

@@ -27,13 +27,25 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
 
-from .geometry import check_scan
+from .inputs import check_scans_at_poses, grid_shape
 
-__all__ = ["UNKNOWN", "FREE", "WALL", "Coverage", "build_coverage", "map_noise"]
+__all__ = [
+    "UNKNOWN",
+    "FREE",
+    "WALL",
+    "GRID_RESOLUTION",
+    "GRID_CLEARANCE",
+    "Coverage",
+    "build_coverage",
+    "coverage_grid",
+    "map_noise",
+]
 
 UNKNOWN, FREE, WALL = 0, 1, 2
+#: :func:`build_coverage`'s cell size and clearance (m), explained there.
+GRID_RESOLUTION, GRID_CLEARANCE = 0.05, 0.1
 
 
 @dataclass
@@ -88,8 +100,8 @@ def build_coverage(
     poses,
     *,
     max_range: float,
-    resolution: float = 0.05,
-    clearance: float = 0.1,
+    resolution: float = GRID_RESOLUTION,
+    clearance: float = GRID_CLEARANCE,
     segments=None,
 ) -> Coverage:
     """The coverage grid of scans ``[(ranges, angles), ...]`` taken at laser poses ``poses`` (n, 3).
@@ -123,25 +135,22 @@ def build_coverage(
     Raises
     ------
     InvalidInputError
-        For mismatched scans and poses, non-finite poses or a non-positive ``max_range``/``resolution``.
+        For malformed scans, mismatched scans and poses, non-finite poses, or a non-positive ``max_range`` or
+        ``resolution``.
     """
-    poses = np.asarray(poses, float)
-    scans = list(scans)
-    if poses.ndim != 2 or poses.shape[1] != 3 or len(poses) != len(scans) or not len(scans):
-        raise InvalidInputError(
-            f"build_coverage: poses must have shape (n, 3), one per scan; got {poses.shape} for {len(scans)} scan(s)"
-        )
-    if not np.all(np.isfinite(poses)):
-        raise InvalidInputError("build_coverage: poses contain NaN or inf")
-    if not (max_range > 0 and np.isfinite(max_range)) or not (resolution > 0) or not (clearance >= 0):
-        raise InvalidInputError(
-            f"build_coverage: need finite max_range > 0, resolution > 0, clearance >= 0; "
-            f"got {max_range}, {resolution}, {clearance}"
-        )
-    checked = [check_scan(s, "build_coverage") for s in scans]
+    func = "build_coverage"
+    checked, poses = check_scans_at_poses(scans, poses, func)
+    max_range = checks.real(max_range, func, "max_range", low=0.0, strict_low=True)
+    resolution = checks.real(resolution, func, "resolution", low=0.0, strict_low=True)
+    clearance = checks.real(clearance, func, "clearance", low=0.0)
+    return coverage_grid(checked, poses, max_range, resolution, clearance, segments, func)
+
+
+def coverage_grid(checked, poses, max_range, resolution, clearance, segments, func) -> Coverage:
+    """:func:`build_coverage` of checked scans and settings, in the name of ``func``."""
     lo = poses[:, :2].min(axis=0) - max_range - 2 * resolution
     hi = poses[:, :2].max(axis=0) + max_range + 2 * resolution
-    W, H = (np.ceil((hi - lo) / resolution).astype(int) + 1).tolist()
+    W, H = grid_shape(lo, hi, resolution, func, "max_range, resolution")
     cov = Coverage(lo, float(resolution), np.zeros((H, W), np.uint8))
     free = np.zeros(H * W, bool)
     wall = np.zeros(H * W, bool)

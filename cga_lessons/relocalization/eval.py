@@ -12,22 +12,33 @@
 
 A relocalization is a *success* when it is confident (``status == "ok"``)
 and within 10 cm and 2 degrees of the truth; *confidently wrong* when it is
-confident and not within them.
+confident and not within them (:mod:`~cga_lessons.relocalization.evaluation`).
 """
 
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
 
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
 from cga_lessons.mapping2d import Scene, returns_reach, simulate_scan
 
-from .coverage import build_coverage
-from .geometry import ReferenceMap, pose_error, prepare_map
+from .coverage import GRID_CLEARANCE, GRID_RESOLUTION, coverage_grid
+from .evaluation import HEADING_TOLERANCE, POSITION_TOLERANCE, Evaluation, record_results, scan_agreement
+from .geometry import ReferenceMap, reference_map
+from .inputs import (
+    batch,
+    check_indices,
+    check_laser,
+    check_log,
+    check_rng,
+    check_scans_at_poses,
+    check_scene,
+    coordinates,
+)
 from .logmap import line_map_from_scans
+from .params import check_relocalize_kw
 from .relocalizer import relocalize
 
 __all__ = [
@@ -42,10 +53,6 @@ __all__ = [
     "held_out_map_indices",
     "evaluate_log",
 ]
-
-#: A relocalization within this distance (m) and heading (radians) of the truth is right.
-POSITION_TOLERANCE = 0.10
-HEADING_TOLERANCE = np.radians(2.0)
 
 
 def _inside_polygon(points, poly) -> np.ndarray:
@@ -69,10 +76,16 @@ def random_free_poses(scene: Scene, n: int, rng, clearance: float = 0.3) -> np.n
     -------
     ndarray, shape (n, 3)
     """
-    if rng is None:
-        raise InvalidInputError("random_free_poses: pass rng=numpy.random.default_rng(seed)")
+    func = "random_free_poses"
+    check_scene(scene, func)
+    n = checks.integer(n, func, "n", low=1)
+    check_rng(rng, func)
+    clearance = checks.real(clearance, func, "clearance", low=0.0)
     walls = scene.walls
     lo, hi = walls.reshape(-1, 2).min(axis=0), walls.reshape(-1, 2).max(axis=0)
+    if clearance >= np.hypot(*(hi - lo)) / 2:  # no point inside the walls is that far from all of them
+        problem = f"{clearance} m: no place in scene {scene.name!r} is that far from every wall"
+        raise checks.fail(func, "clearance", problem)
     out = []
     for _ in range(1000):
         p = rng.uniform(lo, hi, size=(4 * n, 2))
@@ -90,135 +103,7 @@ def random_free_poses(scene: Scene, n: int, rng, clearance: float = 0.3) -> np.n
             if len(out) == n:
                 heading = rng.uniform(-np.pi, np.pi, n)
                 return np.column_stack([np.array(out), heading])
-    raise InvalidInputError(f"random_free_poses: scene {scene.name!r} has too little free space")
-
-
-def scan_agreement(walls, pose_a, pose_b, tolerance: float = 0.03, **scan_kw):
-    """Fraction of beams on which the noise-free scans from two poses agree.
-
-    A beam agrees when both scans have no return there or their ranges differ
-    by less than ``tolerance``.  ``pose_b`` may be one pose (3,) (a float is
-    returned) or several (k, 3) (a list of k fractions).
-    """
-    ra, _ = simulate_scan(walls, pose_a, **scan_kw)
-    many = np.ndim(pose_b) == 2
-    out = []
-    for pb in np.atleast_2d(pose_b):
-        rb, _ = simulate_scan(walls, pb, **scan_kw)
-        both_none = ~np.isfinite(ra) & ~np.isfinite(rb)
-        with np.errstate(invalid="ignore"):
-            close = np.abs(ra - rb) < tolerance
-        out.append(float(np.mean(both_none | close)))
-    return out if many else out[0]
-
-
-@dataclass
-class Evaluation:
-    """Per-pose results of :func:`evaluate_poses` or :func:`evaluate_log` (arrays of length n).
-
-    Attributes
-    ----------
-    truth, pose : ndarray, shape (n, 3)
-        ``pose`` is NaN where no pose was returned (a failure).
-    status : ndarray of str
-    position_error, heading_error : ndarray
-        m and radians; ``inf`` without a pose.
-    n_lines : ndarray of int
-        Segments extracted from the scan.
-    score : ndarray
-    witness : ndarray
-        For ambiguous results: the largest scan agreement between the true
-        pose and a tied, clearly different candidate (NaN when not computed).
-    seconds : ndarray
-        Time of each relocalization.
-    """
-
-    truth: np.ndarray
-    pose: np.ndarray
-    status: np.ndarray
-    position_error: np.ndarray
-    heading_error: np.ndarray
-    n_lines: np.ndarray
-    score: np.ndarray
-    witness: np.ndarray
-    seconds: np.ndarray
-    results: list = field(default_factory=list, repr=False)
-
-    def take(self, index) -> Evaluation:
-        """The evaluation of some of the poses only (``index``: integer array or boolean mask)."""
-        idx = np.arange(len(self.status))[index]
-        return Evaluation(
-            self.truth[idx],
-            self.pose[idx],
-            self.status[idx],
-            self.position_error[idx],
-            self.heading_error[idx],
-            self.n_lines[idx],
-            self.score[idx],
-            self.witness[idx],
-            self.seconds[idx],
-            [self.results[i] for i in idx] if self.results else [],
-        )
-
-    @property
-    def right(self) -> np.ndarray:
-        """The returned pose is within the tolerances (whatever the status)."""
-        return (self.position_error < POSITION_TOLERANCE) & (self.heading_error < HEADING_TOLERANCE)
-
-    @property
-    def success(self) -> np.ndarray:
-        """Confident and right."""
-        return (self.status == "ok") & self.right
-
-    @property
-    def confidently_wrong(self) -> np.ndarray:
-        return (self.status == "ok") & ~self.right
-
-    def indistinguishable(self, agreement: float = 0.98) -> np.ndarray:
-        """Ambiguous with a witness: a clearly different pose whose scan agrees on at least ``agreement`` of beams."""
-        return (self.status == "ambiguous") & (np.nan_to_num(self.witness, nan=0.0) >= agreement)
-
-    def summary(self, agreement: float = 0.98) -> dict:
-        """Counts and rates: ``n``, ``success``, ``confidently_wrong``, ``ambiguous``, ``indistinguishable``,
-        ``failed``, ``success_rate``, ``success_rate_distinguishable`` and ``median_ms``."""
-        n = len(self.status)
-        ind = int(self.indistinguishable(agreement).sum())
-        ok = int(self.success.sum())
-        return {
-            "n": n,
-            "success": ok,
-            "confidently_wrong": int(self.confidently_wrong.sum()),
-            "ambiguous": int((self.status == "ambiguous").sum()),
-            "indistinguishable": ind,
-            "failed": int((self.status == "failed").sum()),
-            "success_rate": ok / n if n else float("nan"),
-            "success_rate_distinguishable": ok / (n - ind) if n > ind else float("nan"),
-            "median_ms": float(np.median(self.seconds) * 1000) if n else float("nan"),
-        }
-
-
-def _record(results, truths, walls, scan_kw, witness, ratio):
-    n = len(results)
-    pose = np.full((n, 3), np.nan)
-    perr = np.full(n, np.inf)
-    herr = np.full(n, np.inf)
-    wit = np.full(n, np.nan)
-    for i, (r, t) in enumerate(zip(results, truths)):
-        if r.pose is not None:
-            pose[i] = r.pose
-            perr[i], herr[i] = pose_error(r.pose, t)
-        if witness and r.status == "ambiguous" and walls is not None:
-            tied = [
-                c.pose
-                for c in r.candidates
-                if c.score >= ratio * r.score
-                and (
-                    pose_error(c.pose, t)[0] > 2 * POSITION_TOLERANCE
-                    or pose_error(c.pose, t)[1] > 2 * HEADING_TOLERANCE
-                )
-            ]
-            wit[i] = max(scan_agreement(walls, t, np.array(tied), **scan_kw)) if tied else 0.0
-    return pose, perr, herr, wit
+    raise checks.fail(func, "scene, clearance", f"scene {scene.name!r} has too little free space {clearance} m clear")
 
 
 def evaluate_poses(
@@ -253,9 +138,17 @@ def evaluate_poses(
     **relocalize_kw
         Passed to :func:`cga_lessons.relocalization.relocalize`.
     """
-    poses = np.asarray(poses, float).reshape(-1, 3)
-    ref = prepare_map(map_segments)
-    scan_kw = dict(n_beams=n_beams, fov=fov, max_range=max_range)
+    func = "evaluate_poses"
+    check_scene(scene, func)
+    ref = reference_map(map_segments, func)
+    poses, _ = batch(poses, func, "poses", (3,))
+    coordinates(poses[:, :2], func, "poses")
+    check_rng(rng, func)
+    laser = check_laser(func, range_noise=range_noise, max_range=max_range, n_beams=n_beams, fov=fov)
+    range_noise, max_range = laser.pop("range_noise"), laser["max_range"]
+    witness = checks.flag(witness, func, "witness")
+    relocalize_kw = check_relocalize_kw(relocalize_kw, func)
+    scan_kw = laser
     results, secs, n_lines, scores = [], [], [], []
     for p in poses:
         scan = simulate_scan(scene, p, rng, range_noise=range_noise, **scan_kw)
@@ -266,7 +159,7 @@ def evaluate_poses(
         n_lines.append(len(r.scan_segments))
         scores.append(r.score)
     ratio = relocalize_kw.get("ambiguity_ratio", 0.98)
-    pose, perr, herr, wit = _record(results, poses, scene.walls, scan_kw, witness, ratio)
+    pose, perr, herr, wit = record_results(results, poses, scene.walls, scan_kw, witness, ratio)
     status = np.array([r.status for r in results])
     return Evaluation(
         poses, pose, status, perr, herr, np.array(n_lines), np.array(scores), wit, np.array(secs), results
@@ -297,7 +190,7 @@ def map_from_log(log, indices, *, max_range: float = 8.0) -> list:
         adjust=False,
     )
     if not np.allclose(res.poses, log.poses[idx], atol=1e-6):
-        raise InvalidInputError("map_from_log: build_map moved the logged poses; the map would not match the truth")
+        raise checks.fail("map_from_log", "log", "build_map moved the logged poses; the map would not match the truth")
     return res.segments
 
 
@@ -313,23 +206,44 @@ def reference_from_log(
     (:func:`cga_lessons.relocalization.coverage.build_coverage`), so that
     beams ending where those scans never looked do not count.
     """
-    idx = np.asarray(indices, int)
-    if idx.size == 0 or idx.min() < 0 or idx.max() >= len(log):
-        raise InvalidInputError(f"reference_from_log: indices must be non-empty and within 0..{len(log) - 1}")
+    func = "reference_from_log"
+    idx = check_indices(indices, func, "indices", len(check_log(log, func)))
+    max_range = checks.real(max_range, func, "max_range", low=0.0, strict_low=True)
+    coverage = checks.flag(coverage, func, "coverage")
+    builder = checks.flag(builder, func, "builder")
+    return log_reference(log, idx, max_range, coverage, builder, func)
+
+
+def log_reference(log, idx, max_range: float, coverage: bool, builder: bool, func: str) -> ReferenceMap:
+    """:func:`reference_from_log` of checked arguments, in the name of ``func``."""
     scans, poses = [log.scans[i] for i in idx], log.poses[idx]
     if builder:
         segs = np.array([[s.start, s.end] for s in map_from_log(log, idx, max_range=max_range)], float)
     else:
         segs = line_map_from_scans(scans, poses, max_range=max_range)
-    cov = build_coverage(scans, poses, max_range=max_range, segments=segs) if coverage else None
-    return prepare_map(segs.reshape(-1, 2, 2), cov)
+    if not len(segs):
+        raise checks.fail(func, "log", f"its scans {idx.tolist()} make no map line (a wall seen twice)")
+    cov = None
+    if coverage:
+        checked, poses = check_scans_at_poses(scans, poses, func)
+        cov = coverage_grid(checked, poses, max_range, GRID_RESOLUTION, GRID_CLEARANCE, segs, func)
+    return reference_map(segs.reshape(-1, 2, 2), func, "log", cov)
 
 
 def held_out_map_indices(n: int, test_indices, exclude: int, map_step: int) -> np.ndarray:
     """The scans of a log of ``n`` scans the map is built from: every ``map_step``-th of those more than
     ``exclude`` scans away from every test scan."""
+    func = "held_out_map_indices"
+    n = checks.integer(n, func, "n", low=0)
+    test = check_indices(test_indices, func, "test_indices", n, at_least=0)
+    exclude = checks.integer(exclude, func, "exclude", low=0)
+    return held_out(n, test, exclude, checks.integer(map_step, func, "map_step", low=1))
+
+
+def held_out(n: int, test: np.ndarray, exclude: int, map_step: int) -> np.ndarray:
+    """:func:`held_out_map_indices` of checked arguments."""
     keep = np.ones(n, bool)
-    for k in np.asarray(test_indices, int).ravel():
+    for k in test:
         keep[max(0, k - exclude) : k + exclude + 1] = False
     return np.flatnonzero(keep)[::map_step]
 
@@ -360,13 +274,19 @@ def evaluate_log(
         (``witness`` is not computed: there is no simulator.)
     map_segments : ndarray, shape (M, 2, 2)
     """
-    test = np.asarray(test_indices, int)
-    if test.size == 0 or test.min() < 0 or test.max() >= len(log):
-        raise InvalidInputError(f"evaluate_log: test_indices must be non-empty and within 0..{len(log) - 1}")
+    func = "evaluate_log"
+    test = check_indices(test_indices, func, "test_indices", len(check_log(log, func)))
+    exclude = checks.integer(exclude, func, "exclude", low=0)
+    map_step = checks.integer(map_step, func, "map_step", low=1)
+    if max_range is not None:
+        max_range = checks.real(max_range, func, "max_range", low=0.0, strict_low=True)
+    coverage = checks.flag(coverage, func, "coverage")
+    relocalize_kw = check_relocalize_kw(relocalize_kw, func)
     max_range = returns_reach(log.ranges) if max_range is None else max_range
-    ref = reference_from_log(
-        log, held_out_map_indices(len(log), test, exclude, map_step), max_range=max_range, coverage=coverage
-    )
+    idx = held_out(len(log), test, exclude, map_step)
+    if not len(idx):
+        raise checks.fail(func, "test_indices, exclude", "leave no scan of the log to build the map from")
+    ref = log_reference(log, idx, max_range, coverage, False, func)
     segs = ref.segments
     results, secs = [], []
     for k in test:
@@ -374,7 +294,7 @@ def evaluate_log(
         results.append(relocalize(ref, scan=log.scans[k], max_range=max_range, **relocalize_kw))
         secs.append(time.perf_counter() - t0)
     truths = log.poses[test]
-    pose, perr, herr, wit = _record(results, truths, None, {}, False, 0.98)
+    pose, perr, herr, wit = record_results(results, truths, None, {}, False, 0.98)
     ev = Evaluation(
         truths,
         pose,

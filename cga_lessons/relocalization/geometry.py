@@ -15,15 +15,21 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d import Segment, wrap_angle
+from cga_lessons import checks
+from cga_lessons.mapping2d import wrap_angle
+
+from .inputs import array, as_segment_array, check_pose, check_scan, coordinates
 
 __all__ = [
-    "as_segment_array",
+    "as_segment_array",  # the checks of inputs.py, re-exported
+    "check_pose",
     "ReferenceMap",
     "prepare_map",
+    "reference_map",
     "check_scan",
     "pose_error",
+    "pose_errors",
+    "range_noise",
     "estimate_range_noise",
     "rotation_matrix",
     "transform_points",
@@ -36,45 +42,23 @@ __all__ = [
 ]
 
 
-def as_segment_array(segments, func: str = "relocalize", name: str = "segments", allow_empty=False) -> np.ndarray:
-    """Segments as a (K, 2, 2) float array of end points.
-
-    Accepts a list of :class:`cga_lessons.mapping2d.lines.Segment` or anything array-like
-    of shape (K, 2, 2).  Raises :class:`InvalidInputError` for a wrong shape,
-    NaN or inf, a segment of zero length, or (unless ``allow_empty``) no segment.
-
-    >>> as_segment_array([Segment([0, 0], [1, 0])]).tolist()
-    [[[0.0, 0.0], [1.0, 0.0]]]
-    """
-    if isinstance(segments, Segment):
-        segments = [segments]
-    if isinstance(segments, (list, tuple)) and segments and all(isinstance(s, Segment) for s in segments):
-        arr = np.array([[s.start, s.end] for s in segments], float)
-    else:
-        try:
-            arr = np.asarray(segments, float)
-        except (TypeError, ValueError) as exc:
-            raise InvalidInputError(f"{func}: {name} must be Segments or an array of shape (K, 2, 2) ({exc})") from exc
-        if arr.size == 0:
-            arr = arr.reshape(0, 2, 2)
-    if arr.ndim != 3 or arr.shape[1:] != (2, 2):
-        raise InvalidInputError(f"{func}: {name} must have shape (K, 2, 2), got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise InvalidInputError(f"{func}: {name} contains NaN or inf")
-    if len(arr) == 0 and not allow_empty:
-        raise InvalidInputError(f"{func}: {name} is empty")
-    lengths = np.hypot(*(arr[:, 1] - arr[:, 0]).T)
-    if np.any(lengths <= 1e-9):
-        raise InvalidInputError(f"{func}: {name} {int(np.argmin(lengths))} has zero length")
-    return arr
-
-
 @dataclass
 class ReferenceMap:
-    """A map prepared once for many relocalizations: :func:`prepare_map`."""
+    """A map prepared once for many relocalizations: :func:`prepare_map`.
+
+    ``segments`` (K, 2, 2) and their :class:`MapLines` (with the coverage grid, if any).
+    """
 
     segments: np.ndarray
     lines: MapLines
+
+    def __post_init__(self):
+        self.segments = as_segment_array(self.segments, "ReferenceMap", "segments")
+        checks.instance(self.lines, "ReferenceMap", "lines", MapLines, "the MapLines of the segments")
+        if len(self.lines) != len(self.segments):
+            raise checks.fail(
+                "ReferenceMap", "lines", f"hold {len(self.lines)} segments, segments {len(self.segments)}"
+            )
 
     def __len__(self):
         return len(self.segments)
@@ -92,30 +76,21 @@ def prepare_map(map_segments, coverage=None) -> ReferenceMap:
     the scans the map was built from) makes the beam check count only beams
     that end where the map knows something; without it every beam counts.
     """
+    return reference_map(map_segments, "prepare_map", coverage=coverage)
+
+
+def reference_map(map_segments, func: str, name: str = "map_segments", coverage=None) -> ReferenceMap:
+    """:func:`prepare_map` for the public function ``func`` (its argument ``name``): the errors name them."""
     if isinstance(map_segments, ReferenceMap) and coverage is None:
         return map_segments
     if isinstance(map_segments, ReferenceMap):
         map_segments = map_segments.segments
-    if coverage is not None and not hasattr(coverage, "classify"):
-        raise InvalidInputError(f"prepare_map: coverage must be a Coverage, got {type(coverage).__name__}")
-    arr = as_segment_array(map_segments, "relocalize", "map_segments")
+    if coverage is not None:
+        from .coverage import Coverage  # the coverage grid reads scans with this module's check_scan
+
+        checks.instance(coverage, func, "coverage", Coverage, "a Coverage (build_coverage) or None")
+    arr = as_segment_array(map_segments, func, name)
     return ReferenceMap(arr, MapLines(arr, coverage))
-
-
-def check_scan(scan, func="relocalize"):
-    try:
-        ranges, angles = scan
-    except (TypeError, ValueError) as exc:
-        raise InvalidInputError(f"{func}: scan must be a pair (ranges, angles)") from exc
-    r = np.asarray(ranges, float)
-    a = np.asarray(angles, float)
-    if r.ndim != 1 or r.shape != a.shape or len(r) < 2:
-        raise InvalidInputError(f"{func}: scan ranges {r.shape} and angles {a.shape} must be equal 1-D shapes (n >= 2)")
-    if not np.all(np.isfinite(a)) or np.any(np.diff(a) <= 0):
-        raise InvalidInputError(f"{func}: scan angles must be finite and strictly increasing")
-    if np.any(r <= 0):
-        raise InvalidInputError(f"{func}: scan ranges must be > 0 (inf or NaN for no return)")
-    return r, a
 
 
 def estimate_range_noise(ranges) -> float:
@@ -124,14 +99,18 @@ def estimate_range_noise(ranges) -> float:
     On a smooth surface ``r[i-1] - 2 r[i] + r[i+1]`` is noise with standard
     deviation ``sqrt(6) sigma``; the median absolute value (times 1.4826) over
     triples without a jump (neighbours within 0.2 m) estimates it robustly.
-    Returns 0 with fewer than ten such triples.
+    Returns 0 with fewer than ten such triples.  ``inf`` or NaN: no return.
 
     >>> r = 3.0 + np.random.default_rng(0).normal(0.0, 0.02, 2000)
     >>> round(estimate_range_noise(r), 2)
     0.02
     """
-    r = np.asarray(ranges, float)
-    with np.errstate(invalid="ignore"):
+    return range_noise(array(ranges, "estimate_range_noise", "ranges", (None,), finite=False))
+
+
+def range_noise(r: np.ndarray) -> float:
+    """:func:`estimate_range_noise` of checked ranges (n,)."""
+    with np.errstate(invalid="ignore", over="ignore"):
         d1a, d1b = r[1:-1] - r[:-2], r[2:] - r[1:-1]
         d2 = d1b - d1a
         ok = np.isfinite(d2) & (np.abs(d1a) < 0.2) & (np.abs(d1b) < 0.2)
@@ -142,7 +121,15 @@ def estimate_range_noise(ranges) -> float:
 
 def pose_error(pose, truth):
     """Position error (m) and absolute heading error (radians) of a pose against the truth."""
-    p, t = np.asarray(pose, float).reshape(3), np.asarray(truth, float).reshape(3)
+    p, t = check_pose(pose, "pose_error"), check_pose(truth, "pose_error", "truth")
+    out = pose_errors(p, t)
+    checks.finite_result(out[0], "pose_error", "pose, truth: the position error")
+    return out
+
+
+def pose_errors(p, t):
+    """:func:`pose_error` of checked poses."""
+    p, t = np.asarray(p, float), np.asarray(t, float)
     return float(np.hypot(*(p[:2] - t[:2]))), float(abs(wrap_angle(p[2] - t[2])))
 
 
@@ -154,8 +141,10 @@ def rotation_matrix(theta) -> np.ndarray:
 
 def transform_points(points, pose) -> np.ndarray:
     """Points ``(n, 2)`` of the laser frame in the map frame: ``R(theta) p + (x, y)`` (3.4)."""
-    x, y, th = pose
-    return np.asarray(points, float) @ rotation_matrix(th).T + np.array([x, y])
+    p = coordinates(array(points, "transform_points", "points", (None, 2)), "transform_points", "points")
+    x, y, th = check_pose(pose, "transform_points")
+    out = p @ rotation_matrix(th).T + np.array([x, y])
+    return checks.finite_result(out, "transform_points", "points, pose: the result")
 
 
 @dataclass

@@ -42,8 +42,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
 from cga_lessons.mapping2d import TWO_PI, diff_theta
+
+from .inputs import array, coordinates
 
 __all__ = [
     "THETA_XI",
@@ -62,12 +64,17 @@ THETA_XI = TWO_PI / 100
 
 def endpoint_array(segments, func="hough_set", name="segments") -> np.ndarray:
     """Segments as a finite (K, 2, 2) endpoint array (no checks of length)."""
-    arr = np.asarray(segments, float)
-    if arr.ndim != 3 or arr.shape[1:] != (2, 2):
-        raise InvalidInputError(f"{func}: {name} must have shape (K, 2, 2), got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise InvalidInputError(f"{func}: {name} contains NaN or inf")
-    return arr
+    return coordinates(array(segments, func, name, (None, 2, 2)), func, name)
+
+
+def hough_array(value, func: str, name: str, *, lead: int = 1) -> np.ndarray:
+    """Hough points ``(rho, theta)`` as a finite float array of shape (N, 2) (``lead`` leading axes: (..., 2))."""
+    return array(value, func, name, (None,) * lead + (2,))
+
+
+def check_theta_xi(theta_xi, func: str) -> float:
+    """diffTheta's threshold (3.5): a finite angle in (0, pi)."""
+    return checks.real(theta_xi, func, "theta_xi", low=0.0, high=np.pi, strict_low=True, strict_high=True)
 
 
 # --------------------------------------------------------------------------- figure 5.1
@@ -97,12 +104,18 @@ def hough_set(segments, origin=(0.0, 0.0)) -> np.ndarray:
     [[1.0, 0.0], [2.0, 4.712389]]
     """
     s = endpoint_array(segments)
+    origin = array(origin, "hough_set", "origin", (2,))
+    return checks.finite_result(hough_points(s, origin), "hough_set", "segments, origin: the result")
+
+
+def hough_points(s: np.ndarray, origin=(0.0, 0.0), func: str = "hough_set", name: str = "segments") -> np.ndarray:
+    """:func:`hough_set` of checked segments (K, 2, 2); a segment with coincident end points is degenerate."""
     v = s[:, 1] - s[:, 0]
     length = np.hypot(v[:, 0], v[:, 1])
     if np.any(length == 0):
-        raise InvalidInputError("hough_set: a segment has coincident end points")
+        raise checks.degenerate(func, name, f"segment {int(np.argmin(length))} has coincident end points")
     n = np.column_stack([v[:, 1], -v[:, 0]]) / length[:, None]
-    off = np.einsum("ij,ij->i", n, s[:, 0] - np.asarray(origin, float))
+    off = np.einsum("ij,ij->i", n, s[:, 0] - np.asarray(origin))
     n = np.where((off < 0)[:, None], -n, n)
     return np.column_stack([np.abs(off), np.mod(np.arctan2(n[:, 1], n[:, 0]), TWO_PI)])
 
@@ -134,8 +147,15 @@ def hough_differences(m, L_h, theta_xi: float = THETA_XI) -> np.ndarray:
     >>> hough_differences([2.0, 0.03], [[1.5, 0.01], [1.0, 6.25]]).round(6).tolist()
     [[0.5, 0.02], [1.0, 0.063185]]
     """
-    m = np.asarray(m, float).reshape(2)
-    L_h = np.asarray(L_h, float).reshape(-1, 2)
+    func = "hough_differences"
+    m = array(m, func, "m", (2,))
+    L_h = hough_array(L_h, func, "L_h")
+    theta_xi = check_theta_xi(theta_xi, func)
+    return checks.finite_result(_differences(m, L_h, theta_xi), func, "m, L_h: the result")
+
+
+def _differences(m, L_h, theta_xi):
+    """:func:`hough_differences` of checked arrays."""
     d_theta = np.atleast_1d(diff_theta(m[1], L_h[:, 1], theta_xi))  # (5.1)
     d_rho = m[0] - L_h[:, 0]  # (5.2)
     return np.column_stack([d_rho, d_theta])  # (5.3)
@@ -160,8 +180,13 @@ def shifted_set(L_h, phi) -> np.ndarray:
     -------
     ndarray, shape (p, n, 2)
     """
-    L_h = np.asarray(L_h, float).reshape(-1, 2)
-    phi = np.asarray(phi, float).reshape(-1, 2)
+    L_h = hough_array(L_h, "shifted_set", "L_h")
+    phi = hough_array(phi, "shifted_set", "phi")
+    return checks.finite_result(_shifted(L_h, phi), "shifted_set", "L_h, phi: the result")
+
+
+def _shifted(L_h, phi):
+    """:func:`shifted_set` of checked arrays."""
     rho = L_h[None, :, 0] + phi[:, None, 0]
     theta = np.mod(L_h[None, :, 1] + phi[:, None, 1], TWO_PI)
     return np.stack([rho, theta], axis=-1)
@@ -190,12 +215,14 @@ def shifted_set_corrected(L_h, rotation, translation) -> np.ndarray:
     >>> shifted_set_corrected([[1.0, 0.0], [1.0, np.pi / 2]], 0.0, [0.5, 0.0]).round(6).tolist()
     [[1.5, 0.0], [1.0, 1.570796]]
     """
-    L_h = np.asarray(L_h, float).reshape(-1, 2)
-    t = np.asarray(translation, float).reshape(2)
-    theta = L_h[:, 1] + float(rotation)
+    func = "shifted_set_corrected"
+    L_h = hough_array(L_h, func, "L_h")
+    t = array(translation, func, "translation", (2,))
+    theta = L_h[:, 1] + checks.real(rotation, func, "rotation")
     rho = L_h[:, 0] + t[0] * np.cos(theta) + t[1] * np.sin(theta)
     theta = np.where(rho < 0, theta + np.pi, theta)
-    return np.column_stack([np.abs(rho), np.mod(theta, TWO_PI)])
+    out = np.column_stack([np.abs(rho), np.mod(theta, TWO_PI)])
+    return checks.finite_result(out, func, "L_h, rotation, translation: the result")
 
 
 def hough_comparison(M_h, psi, theta_xi: float = THETA_XI) -> np.ndarray:
@@ -214,16 +241,33 @@ def hough_comparison(M_h, psi, theta_xi: float = THETA_XI) -> np.ndarray:
     ndarray, shape (..., M, 2)
         ``(M_rho - psi_rho, diffTheta(M_theta, psi_theta))``.
     """
-    M_h = np.asarray(M_h, float).reshape(-1, 2)
-    psi = np.asarray(psi, float)
+    func = "hough_comparison"
+    M_h = hough_array(M_h, func, "M_h")
+    try:
+        lead = max(np.ndim(psi) - 1, 1)
+    except ValueError:  # ragged: the check says so
+        lead = 1
+    psi = hough_array(psi, func, "psi", lead=lead)
+    theta_xi = check_theta_xi(theta_xi, func)
+    return checks.finite_result(_comparison(M_h, psi, theta_xi), func, "M_h, psi: the comparison")
+
+
+def _comparison(M_h, psi, theta_xi):
+    """:func:`hough_comparison` of checked arrays."""
     d_rho = M_h[:, 0] - psi[..., None, 0]
     d_theta = diff_theta(M_h[:, 1], psi[..., None, 1], theta_xi)
     return np.stack([d_rho, np.asarray(d_theta, float)], axis=-1)
 
 
-def _check_thresholds(xi_theta, xi_rho, func):
-    if not (xi_theta > 0 and xi_rho > 0):
-        raise InvalidInputError(f"{func}: xi_theta and xi_rho must be > 0, got {xi_theta}, {xi_rho}")
+def check_votes(M_h, L_h, xi_theta, xi_rho, theta_xi, func):
+    """The checked arguments of the vote matrix (5.6): Hough sets (N, 2), ``xi_theta`` in (0, pi],
+    ``xi_rho`` > 0 (``inf``: the angles alone), ``theta_xi`` in (0, pi)."""
+    M_h = hough_array(M_h, func, "M_h")
+    L_h = hough_array(L_h, func, "L_h")
+    xi_theta = checks.real(xi_theta, func, "xi_theta", low=0.0, high=np.pi, strict_low=True)
+    if not (isinstance(xi_rho, (float, np.floating)) and xi_rho == np.inf):
+        xi_rho = checks.real(xi_rho, func, "xi_rho", low=0.0, strict_low=True)
+    return M_h, L_h, xi_theta, float(xi_rho), check_theta_xi(theta_xi, func)
 
 
 def vote_matrix(M_h, L_h, xi_theta: float, xi_rho: float, theta_xi: float = THETA_XI) -> np.ndarray:
@@ -251,14 +295,12 @@ def vote_matrix(M_h, L_h, xi_theta: float, xi_rho: float, theta_xi: float = THET
     -------
     ndarray of int, shape (M, L)
     """
-    _check_thresholds(xi_theta, xi_rho, "vote_matrix")
-    M_h = np.asarray(M_h, float).reshape(-1, 2)
-    L_h = np.asarray(L_h, float).reshape(-1, 2)
+    M_h, L_h, xi_theta, xi_rho, theta_xi = check_votes(M_h, L_h, xi_theta, xi_rho, theta_xi, "vote_matrix")
     V = np.zeros((len(M_h), len(L_h)), int)
     for i, m in enumerate(M_h):
-        phi = hough_differences(m, L_h, theta_xi)  # (5.1)-(5.3)
-        psi = shifted_set(L_h, phi)  # (5.4): (j, k)
-        xi = hough_comparison(M_h, psi, theta_xi)  # (5.5): (j, k, m)
+        phi = _differences(m, L_h, theta_xi)  # (5.1)-(5.3)
+        psi = _shifted(L_h, phi)  # (5.4): (j, k)
+        xi = _comparison(M_h, psi, theta_xi)  # (5.5): (j, k, m)
         close = (np.abs(xi[..., 0]) < xi_rho) & (np.abs(xi[..., 1]) < xi_theta)
         V[i] += close.sum(axis=(1, 2))  # (5.6)
     return V
@@ -273,9 +315,12 @@ def vote_matrix_indexed(M_h, L_h, xi_theta: float, xi_rho: float, theta_xi: floa
     the map lines in a ``rho`` window (few when ``xi_rho`` is small; all of
     them for ``xi_rho = inf``, which is then the dense count again).
     """
-    _check_thresholds(xi_theta, xi_rho, "vote_matrix_indexed")
-    M_h = np.asarray(M_h, float).reshape(-1, 2)
-    L_h = np.asarray(L_h, float).reshape(-1, 2)
+    M_h, L_h, xi_theta, xi_rho, theta_xi = check_votes(M_h, L_h, xi_theta, xi_rho, theta_xi, "vote_matrix_indexed")
+    return votes_indexed(M_h, L_h, xi_theta, xi_rho, theta_xi)
+
+
+def votes_indexed(M_h, L_h, xi_theta: float, xi_rho: float, theta_xi: float) -> np.ndarray:
+    """:func:`vote_matrix_indexed` of checked arguments."""
     nM, nL = len(M_h), len(L_h)
     V = np.zeros((nM, nL), int)
     if nM == 0 or nL == 0:

@@ -34,11 +34,12 @@ from __future__ import annotations
 import numpy as np
 from scipy import ndimage
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
 
 from .beam import BeamModel, beam_likelihood
-from .coverage import UNKNOWN, WALL
+from .coverage import UNKNOWN, WALL, Coverage
 from .geometry import as_segment_array, check_scan
+from .inputs import array, grid_shape
 
 __all__ = ["BeamModel", "LikelihoodField", "beam_likelihood", "check_particles"]  # the model re-exported
 
@@ -53,15 +54,7 @@ def _point_segment(points, segments) -> np.ndarray:
 
 def check_particles(particles, func: str, name: str = "particles") -> np.ndarray:
     """Particles as a finite (N, 3) float array, N >= 1, or :class:`InvalidInputError`."""
-    try:
-        p = np.asarray(particles, float)
-    except (TypeError, ValueError) as exc:
-        raise InvalidInputError(f"{func}: {name} must be an array of shape (N, 3) ({exc})") from exc
-    if p.ndim != 2 or p.shape[1] != 3 or len(p) == 0:
-        raise InvalidInputError(f"{func}: {name} must have shape (N, 3) with N >= 1, got {p.shape}")
-    if not np.all(np.isfinite(p)):
-        raise InvalidInputError(f"{func}: {name} contains NaN or inf")
-    return p
+    return array(particles, func, name, (None, 3), at_least=1)
 
 
 class LikelihoodField:
@@ -89,21 +82,23 @@ class LikelihoodField:
         Where the map knows something (everywhere without a coverage grid).
     """
 
-    def __init__(self, map_segments, coverage=None, model: BeamModel | None = None):
+    def __init__(self, map_segments, coverage=None, model: BeamModel | None = None, *, func: str = "LikelihoodField"):
         if coverage is None and hasattr(map_segments, "coverage"):
             coverage = map_segments.coverage
         if hasattr(map_segments, "segments") and not isinstance(map_segments, np.ndarray):
             map_segments = map_segments.segments
-        self.segments = as_segment_array(map_segments, "LikelihoodField", "map_segments")
-        if coverage is not None and not hasattr(coverage, "classify"):
-            raise InvalidInputError(f"LikelihoodField: coverage must be a Coverage, got {type(coverage).__name__}")
+        self.segments = as_segment_array(map_segments, func, "map_segments")
+        if coverage is not None:
+            checks.instance(coverage, func, "coverage", Coverage, "a Coverage or None")
+        if model is not None:
+            checks.instance(model, func, "model", BeamModel, "a BeamModel or None")
         self.model = m = model or BeamModel()
         self.coverage = coverage
         res = m.resolution
         pts = self.segments.reshape(-1, 2)
         margin = 3 * m.sigma_hit + 3 * res  # beyond it the Gaussian has died: a far cell's value
         self.origin = pts.min(axis=0) - margin
-        W, H = (np.ceil((pts.max(axis=0) + margin - self.origin) / res).astype(int) + 1).tolist()
+        W, H = grid_shape(self.origin, pts.max(axis=0) + margin, res, func, "map_segments")
         self.shape = (H, W)
         self.distance = self._distances()
         centres = self.centres()

@@ -19,10 +19,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
 from cga_lessons.mapping2d import extract_segments
 
-from .geometry import check_scan, estimate_range_noise, transform_points
+from .geometry import range_noise, transform_points
+from .inputs import as_segment_array, check_scans_at_poses
 
 __all__ = ["scan_segments_at_poses", "merge_segments", "robust_end", "line_map_from_scans"]
 
@@ -34,19 +35,12 @@ def scan_segments_at_poses(scans, poses, *, max_range: float) -> tuple[np.ndarra
     :func:`cga_lessons.relocalization.relocalize` (3 cm, or three times the
     scan's range noise if larger), so map and scans are made alike.
     """
-    poses = np.asarray(poses, float)
-    scans = list(scans)
-    if poses.ndim != 2 or poses.shape[1] != 3 or len(poses) != len(scans) or not len(scans):
-        raise InvalidInputError(
-            f"scan_segments_at_poses: poses must have shape (n, 3), one per scan; got {poses.shape} "
-            f"for {len(scans)} scan(s)"
-        )
-    if not np.all(np.isfinite(poses)):
-        raise InvalidInputError("scan_segments_at_poses: poses contain NaN or inf")
+    func = "scan_segments_at_poses"
+    scans, poses = check_scans_at_poses(scans, poses, func)
+    max_range = checks.real(max_range, func, "max_range", low=0.0, strict_low=True)
     segs, counts = [], []
-    for scan, pose in zip(scans, poses):
-        r, a = check_scan(scan, "scan_segments_at_poses")
-        noise = estimate_range_noise(np.where(r < max_range, r, np.inf))
+    for (r, a), pose in zip(scans, poses):
+        noise = range_noise(np.where(r < max_range, r, np.inf))
         for s in extract_segments(r, a, max_range=max_range, xi=max(0.03, 3 * noise)):
             segs.append(transform_points(np.array([s.start, s.end]), pose))
             counts.append(s.n_points)
@@ -78,14 +72,12 @@ def merge_segments(
         door, 0.7 m or more, is never bridged); 0.3 m is the extractor's
         ``max_gap`` at the longest beams' spacing.
     """
-    S = np.asarray(segments, float).reshape(-1, 2, 2)
+    S = as_segment_array(segments, "merge_segments", allow_empty=True)
     sup = np.ones(len(S), int) if support is None else np.asarray(support, int).reshape(len(S))
     if not len(S):
         return S, sup
     v = S[:, 1] - S[:, 0]
     length = np.hypot(v[:, 0], v[:, 1])
-    if np.any(length <= 0) or not np.all(np.isfinite(S)):
-        raise InvalidInputError("merge_segments: segments must be finite and of positive length")
     ang = np.mod(np.arctan2(v[:, 1], v[:, 0]), np.pi)
     free = np.ones(len(S), bool)
     out, count = [], []

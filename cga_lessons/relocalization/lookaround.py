@@ -23,7 +23,7 @@ import time
 
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
 from cga_lessons.mapping2d import (
     OdometryModel,
     Scene,
@@ -35,16 +35,11 @@ from cga_lessons.mapping2d import (
     wrap_angle,
 )
 
-from .eval import (
-    HEADING_TOLERANCE,
-    POSITION_TOLERANCE,
-    Evaluation,
-    held_out_map_indices,
-    reference_from_log,
-    scan_agreement,
-)
-from .geometry import pose_error, prepare_map
-from .sequence import relocalize_sequence
+from .eval import held_out, log_reference
+from .evaluation import HEADING_TOLERANCE, POSITION_TOLERANCE, Evaluation, scan_agreement
+from .geometry import check_pose, pose_errors, reference_map
+from .inputs import array, batch, check_indices, check_laser, check_log, check_rng, check_scene, coordinates
+from .sequence import relocalize_sequence, relocalizer_for
 
 __all__ = ["look_around", "evaluate_look_around", "evaluate_log_sequences"]
 
@@ -72,16 +67,28 @@ def look_around(
         What the odometer reports (its first pose is the true one; only the
         increments are used by the relocalization).
     """
-    if int(looks) < 1:
-        raise InvalidInputError(f"look_around: looks must be >= 1, got {looks}")
-    pose = np.asarray(pose, float).reshape(3)
-    turns = 2 * np.pi * np.arange(int(looks)) / int(looks)
+    func = "look_around"
+    check_scene(scene, func)
+    pose = check_pose(pose, func)
+    check_rng(rng, func)
+    looks = checks.integer(looks, func, "looks", low=1)
+    laser = check_laser(func, range_noise=range_noise, max_range=max_range, n_beams=n_beams, fov=fov)
+    check_odometry_model(odometry_model, func)
+    return turn_on_the_spot(scene, pose, rng, looks, laser, odometry_model)
+
+
+def check_odometry_model(model, func: str) -> None:
+    """An :class:`~cga_lessons.mapping2d.laser.OdometryModel` or None."""
+    if model is not None:
+        checks.instance(model, func, "odometry_model", OdometryModel, "an OdometryModel or None")
+
+
+def turn_on_the_spot(scene, pose, rng, looks: int, laser: dict, odometry_model):
+    """:func:`look_around` of checked arguments (``laser``: the settings of the simulated scans)."""
+    turns = 2 * np.pi * np.arange(looks) / looks
     truth = np.column_stack([np.full(len(turns), pose[0]), np.full(len(turns), pose[1]), pose[2] + turns])
     truth[:, 2] = wrap_angle(truth[:, 2])
-    scans = [
-        simulate_scan(scene, t, rng, range_noise=range_noise, max_range=max_range, n_beams=n_beams, fov=fov)
-        for t in truth
-    ]
+    scans = [simulate_scan(scene, t, rng, **laser) for t in truth]
     odo = simulate_odometry(truth, rng, odometry_model) if len(truth) > 1 else truth.copy()
     return truth, scans, odo
 
@@ -111,18 +118,26 @@ def evaluate_look_around(
     n_scans : ndarray of int
         Scans used from each pose (fewer than ``looks`` only with ``stop_when_confident``).
     """
-    poses = np.asarray(poses, float).reshape(-1, 3)
-    ref = prepare_map(map_segments)
-    scan_kw = dict(n_beams=n_beams, fov=fov, max_range=max_range)
+    func = "evaluate_look_around"
+    check_scene(scene, func)
+    ref = reference_map(map_segments, func)
+    poses, _ = batch(poses, func, "poses", (3,), at_least=1)
+    coordinates(poses[:, :2], func, "poses")
+    check_rng(rng, func)
+    looks = checks.integer(looks, func, "looks", low=1)
+    stop_when_confident = checks.flag(stop_when_confident, func, "stop_when_confident")
+    laser = check_laser(func, range_noise=range_noise, max_range=max_range, n_beams=n_beams, fov=fov)
+    check_odometry_model(odometry_model, func)
+    witness = checks.flag(witness, func, "witness")
+    relocalizer_for(func, ref, laser["max_range"], relocalizer_kw)  # the keywords checked in this function's name
     ratio = relocalizer_kw.get("ambiguity_ratio", 0.98)
+    scan_kw = {k: laser[k] for k in ("n_beams", "fov", "max_range")}
     rows = []
     for p in poses:
-        truth, scans, odo = look_around(
-            scene, p, rng, looks=looks, range_noise=range_noise, odometry_model=odometry_model, **scan_kw
-        )
+        truth, scans, odo = turn_on_the_spot(scene, p, rng, looks, laser, odometry_model)
         t0 = time.perf_counter()
         r = relocalize_sequence(
-            ref, scans, odo, max_range=max_range, stop_when_confident=stop_when_confident, **relocalizer_kw
+            ref, scans, odo, max_range=laser["max_range"], stop_when_confident=stop_when_confident, **relocalizer_kw
         )
         secs = time.perf_counter() - t0
         wit = np.nan
@@ -134,7 +149,7 @@ def evaluate_look_around(
 
 def _row(r, last, wit, secs):
     est = np.full(3, np.nan) if r.pose is None else r.pose
-    perr, herr = pose_error(r.pose, last) if r.pose is not None else (np.inf, np.inf)
+    perr, herr = pose_errors(r.pose, last) if r.pose is not None else (np.inf, np.inf)
     n_lines = int(np.mean([len(s.scan_segments) for s in r.single]))
     return (last, est, r.status, perr, herr, n_lines, r.score, wit, secs, r)
 
@@ -163,7 +178,7 @@ def _witness(walls, truth, result, ratio, scan_kw) -> float:
     for c in result.candidates:
         if c.score < ratio * result.score:
             continue
-        pe, he = pose_error(c.pose, last)
+        pe, he = pose_errors(c.pose, last)
         if pe <= 2 * POSITION_TOLERANCE and he <= 2 * HEADING_TOLERANCE:
             continue
         # the candidate's chain moved along the true turn
@@ -207,20 +222,27 @@ def evaluate_log_sequences(
     n_scans : ndarray of int
     map_segments : ndarray, shape (M, 2, 2)
     """
-    starts = np.asarray(starts, int)
-    if int(length) < 1 or int(stride) < 1:
-        raise InvalidInputError(f"evaluate_log_sequences: length and stride must be >= 1, got {length}, {stride}")
-    runs = starts[:, None] + int(stride) * np.arange(int(length))[None, :]
-    if starts.size == 0 or runs.min() < 0 or runs.max() >= len(log):
-        raise InvalidInputError(
-            f"evaluate_log_sequences: runs {runs.min()}..{runs.max()} outside the log (0..{len(log) - 1})"
+    func = "evaluate_log_sequences"
+    starts = check_indices(starts, func, "starts", len(check_log(log, func)))
+    length = checks.integer(length, func, "length", low=1)
+    stride = checks.integer(stride, func, "stride", low=1)
+    runs = starts[:, None] + stride * np.arange(length)[None, :]
+    if runs.max() >= len(log):
+        raise checks.fail(
+            func, "starts, length, stride", f"runs reach scan {runs.max()}, past the log (0..{len(log) - 1})"
         )
-    odo = log.odometry if odometry is None else np.asarray(odometry, float)
-    if odo.shape != (len(log), 3):
-        raise InvalidInputError(f"evaluate_log_sequences: odometry must have shape ({len(log)}, 3), got {odo.shape}")
-    idx = held_out_map_indices(len(log), runs, exclude, map_step)
+    odo = log.odometry if odometry is None else array(odometry, func, "odometry", (len(log), 3))
+    exclude = checks.integer(exclude, func, "exclude", low=0)
+    map_step = checks.integer(map_step, func, "map_step", low=1)
+    coverage = checks.flag(coverage, func, "coverage")
+    if max_range is not None:
+        max_range = checks.real(max_range, func, "max_range", low=0.0, strict_low=True)
     max_range = returns_reach(log.ranges) if max_range is None else max_range
-    ref = reference_from_log(log, idx, max_range=max_range, coverage=coverage)
+    idx = held_out(len(log), runs.ravel(), exclude, map_step)
+    if not len(idx):
+        raise checks.fail(func, "starts, exclude", "leave no scan of the log to build the map from")
+    ref = log_reference(log, idx, max_range, coverage, False, func)
+    relocalizer_for(func, ref, max_range, relocalizer_kw)  # the keywords checked
     segs = ref.segments
     rows = []
     for run in runs:

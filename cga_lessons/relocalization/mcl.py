@@ -53,15 +53,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
 from cga_lessons.mapping2d import compose, wrap_angle
 
-from .geometry import as_segment_array, check_scan, prepare_map
+from .coverage import Coverage
+from .geometry import ReferenceMap, as_segment_array, check_pose, check_scan, prepare_map
 from .history import ScanHistory, merge, normalise
-from .likelihood import LikelihoodField, check_particles
+from .inputs import array, generator, spread
+from .likelihood import LikelihoodField
 from .mcl_config import MCLConfig
 from .mcl_proposal import confirms, propose
 from .mcl_search import CoarseSearch
+from .params import STATUSES
 from .sampling import kld_resample, mode_estimate, tempering
 
 __all__ = ["MCLConfig", "MCLEstimate", "MonteCarloLocalizer"]
@@ -114,6 +117,21 @@ class MCLEstimate:
     anchored: bool = False
     confirmations: int = 0
 
+    def __post_init__(self):
+        f = "MCLEstimate"
+        self.pose = array(self.pose, f, "pose", (3,))
+        self.covariance = array(self.covariance, f, "covariance", (3, 3))
+        self.converged = checks.flag(self.converged, f, "converged")
+        self.mass = checks.real(self.mass, f, "mass", low=0.0, high=1.0 + 1e-9)
+        self.n_particles = checks.integer(self.n_particles, f, "n_particles", low=1)
+        self.ess = checks.real(self.ess, f, "ess", low=0.0)
+        self.hough_status = checks.choice(self.hough_status, f, "hough_status", ("", *STATUSES))
+        if not (isinstance(self.fit, (float, np.floating)) and np.isnan(self.fit)):  # NaN: no beam counted
+            self.fit = checks.real(self.fit, f, "fit", low=0.0, high=1.0)
+        self.streak = checks.integer(self.streak, f, "streak", low=0)
+        self.anchored = checks.flag(self.anchored, f, "anchored")
+        self.confirmations = checks.integer(self.confirmations, f, "confirmations", low=0)
+
 
 class MonteCarloLocalizer:
     """A particle filter over laser poses in a line map.
@@ -153,26 +171,29 @@ class MonteCarloLocalizer:
         initial_sd=None,
     ):
         func = "MonteCarloLocalizer"
-        if coverage is None and hasattr(map_segments, "coverage"):
-            coverage = map_segments.coverage
-        segs = map_segments.segments if hasattr(map_segments, "lines") else map_segments
-        segs = as_segment_array(segs, func, "map_segments")
-        if config is not None and not isinstance(config, MCLConfig):
-            raise InvalidInputError(f"{func}: config must be an MCLConfig, got {type(config).__name__}")
+        if isinstance(map_segments, ReferenceMap):
+            coverage = map_segments.coverage if coverage is None else coverage
+            map_segments = map_segments.segments
+        segs = as_segment_array(map_segments, func, "map_segments")
+        if config is not None:
+            checks.instance(config, func, "config", MCLConfig, "an MCLConfig or None")
+        if coverage is not None:
+            checks.instance(coverage, func, "coverage", Coverage, "a Coverage (build_coverage) or None")
         self.config = cfg = config or MCLConfig()
-        if isinstance(rng, (int, np.integer)) and not isinstance(rng, bool):
-            rng = np.random.default_rng(int(rng))
-        if not isinstance(rng, np.random.Generator):
-            raise InvalidInputError(f"{func}: rng must be a numpy.random.Generator or an int seed, got {rng!r}")
-        self.rng = rng
-        if coverage is not None and not hasattr(coverage, "classify"):
-            raise InvalidInputError(f"{func}: coverage must be a Coverage, got {type(coverage).__name__}")
-        self.field = LikelihoodField(segs, coverage, cfg.beam)
+        self.rng = generator(rng, func)
+        start = None
+        if initial_pose is not None:
+            start = check_pose(initial_pose, func, "initial_pose"), spread(initial_sd, func, "initial_sd")
+        elif initial_sd is not None:
+            raise checks.fail(
+                func, "initial_sd, initial_pose", "initial_sd given without an initial_pose to spread around"
+            )
+        self.field = LikelihoodField(segs, coverage, cfg.beam, func=func)
         self.reference = prepare_map(segs, coverage)
         free_mask = self.field.free_space(cfg.clearance)
         free = np.flatnonzero(free_mask.ravel())
         if not len(free):
-            raise InvalidInputError(f"{func}: map_segments leave no free space {cfg.clearance} m from the walls")
+            raise checks.fail(func, "map_segments", f"leave no free space {cfg.clearance} m from the walls")
         self._free = free
         self.search = CoarseSearch(self.field, free_mask, cfg.search) if cfg.search is not None else None
         self.pending_global = False
@@ -180,10 +201,10 @@ class MonteCarloLocalizer:
         self.n_updates = 0
         self._estimate = None
         self.history = ScanHistory(self.field, cfg.history)
-        if initial_pose is None:
+        if start is None:
             self.reset_global()
         else:
-            self.reset_local(initial_pose, initial_sd)
+            self._start_at(*start)
 
     # ----------------------------------------------------------------- initialisation
 
@@ -206,10 +227,10 @@ class MonteCarloLocalizer:
 
     def reset_local(self, pose, sd=None):
         """Start around a known pose: ``n_min`` particles drawn with standard deviations ``sd`` (m, m, rad)."""
-        pose = check_particles(np.reshape(np.asarray(pose, float), (1, -1)), "MonteCarloLocalizer", "initial_pose")[0]
-        sd = np.array([0.1, 0.1, np.radians(2.0)]) if sd is None else np.asarray(sd, float)
-        if sd.shape != (3,) or not np.all(np.isfinite(sd)) or np.any(sd < 0):
-            raise InvalidInputError(f"MonteCarloLocalizer: initial_sd must be 3 finite numbers >= 0, got {sd}")
+        func = "MonteCarloLocalizer.reset_local"
+        self._start_at(check_pose(pose, func), spread(sd, func, "sd"))
+
+    def _start_at(self, pose, sd):
         self.particles = self._around(pose, sd, self.config.kld.n_min)
         self.log_w = np.zeros(len(self.particles))
         self.pending_global = False
@@ -224,14 +245,18 @@ class MonteCarloLocalizer:
 
     # ----------------------------------------------------------------- the filter
 
-    def move(self, increment):
-        """Move every particle by the odometry increment with its own draw of the drift model."""
-        u = np.asarray(increment, float)
-        n, m = len(self.particles), self.config.odometry
+    def drift(self, increment) -> np.ndarray:
+        """Standard deviations (m, m, rad) of the drift model's noise on an odometry increment (3,)."""
+        u, m = np.asarray(increment, float), self.config.odometry
         d = float(np.hypot(u[0], u[1]))
         sd_xy = m.sigma_xy * np.sqrt(d)
         sd_th = np.sqrt(m.sigma_heading**2 * d + m.sigma_turn**2 * abs(u[2]) + (m.heading_bias * d) ** 2)
-        inc = u + self.rng.normal(size=(n, 3)) * np.array([sd_xy, sd_xy, sd_th])
+        return np.array([sd_xy, sd_xy, sd_th])
+
+    def move(self, increment):
+        """Move every particle by the odometry increment with its own draw of the drift model."""
+        u = np.asarray(increment, float)
+        inc = u + self.rng.normal(size=(len(self.particles), 3)) * self.drift(u)
         self.particles = compose(self.particles, inc)
 
     def update(self, odometry_increment, scan) -> MCLEstimate:
@@ -252,12 +277,9 @@ class MonteCarloLocalizer:
             For an increment that is not 3 finite numbers or a malformed scan.
         """
         func = "MonteCarloLocalizer.update"
-        try:
-            u = np.asarray(odometry_increment, float)
-        except (TypeError, ValueError) as exc:
-            raise InvalidInputError(f"{func}: odometry_increment must be 3 numbers ({exc})") from exc
-        if u.shape != (3,) or not np.all(np.isfinite(u)):
-            raise InvalidInputError(f"{func}: odometry_increment must be 3 finite numbers, got {u.tolist()}")
+        u = check_pose(odometry_increment, func, "odometry_increment")
+        with np.errstate(over="ignore"):
+            checks.finite_result(self.drift(u), func, "odometry_increment: the drift of the motion")
         scan = check_scan(scan, func)
         beams = self.field.select_beams(scan, func)
         cfg = self.config

@@ -6,10 +6,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
 from cga_lessons.mapping2d import OdometryModel
 
 from .beam import BeamModel
+from .inputs import array, coordinates
 from .mcl_search import SearchConfig
 from .sampling import KLDConfig
 
@@ -136,29 +137,23 @@ class MCLConfig:
     confirmations: int = 2
 
     def __post_init__(self):
-        def bad(name, what):
-            raise InvalidInputError(f"MCLConfig: {name} must be {what}, got {getattr(self, name)!r}")
-
-        if self.search is not None and not isinstance(self.search, SearchConfig):
-            bad("search", "a SearchConfig or None")
+        f = "MCLConfig"
+        if self.search is not None:
+            checks.instance(self.search, f, "search", SearchConfig, "a SearchConfig or None")
         for name, cls in (("beam", BeamModel), ("odometry", OdometryModel), ("kld", KLDConfig)):
-            if not isinstance(getattr(self, name), cls):
-                bad(name, f"a {cls.__name__}")
+            checks.instance(getattr(self, name), f, name, cls, f"a {cls.__name__}")
         for name in ("ess_fraction", "ess_floor", "alpha_slow", "alpha_fast", "converged_mass"):
-            v = getattr(self, name)
-            if not (isinstance(v, (int, float)) and 0 < v <= 1):
-                bad(name, "in (0, 1]")
+            self._set(name, checks.real(getattr(self, name), f, name, low=0.0, high=1.0, strict_low=True))
         for name in ("random_threshold", "max_random_fraction", "proposal_fraction"):
-            v = getattr(self, name)
-            if not (isinstance(v, (int, float)) and 0 <= v < 1):
-                bad(name, "in [0, 1)")
+            self._set(name, checks.real(getattr(self, name), f, name, low=0.0, high=1.0, strict_high=True))
         for name, n in (("proposal_sd", 3), ("gate", 2), ("converged_sd", 2)):
-            v = np.asarray(getattr(self, name), float)
-            if v.shape != (n,) or not np.all(np.isfinite(v)) or np.any(v <= 0):
-                bad(name, f"{n} finite numbers > 0")
+            v = coordinates(array(getattr(self, name), f, name, (n,)), f, name)
+            if np.any(v <= 0):
+                raise checks.fail(f, name, f"must be {n} numbers > 0, got {v.tolist()}")
         for name in ("proposal_candidates", "history", "converged_updates", "confirmations"):
-            v = getattr(self, name)
-            if not (isinstance(v, (int, np.integer)) and not isinstance(v, bool) and v >= 0):
-                bad(name, "an integer >= 0")
-        if not (isinstance(self.clearance, (int, float)) and np.isfinite(self.clearance) and self.clearance >= 0):
-            bad("clearance", "a finite number >= 0")
+            self._set(name, checks.integer(getattr(self, name), f, name, low=0))
+        self._set("clearance", checks.real(self.clearance, f, "clearance", low=0.0))
+        self._set("hough", checks.flag(self.hough, f, "hough"))
+
+    def _set(self, name, value):
+        object.__setattr__(self, name, value)

@@ -76,7 +76,8 @@ class Proposal:
 
 def propose(mcl, scan, inject: bool = True) -> Proposal:
     """Relocalize ``scan`` by chapter 5 and, if ``inject``, draw particles of ``mcl`` around its answer."""
-    from .relocalizer import RelocParams, relocalize
+    from .params import RelocParams
+    from .relocalizer import relocalize
     from .verify import tie_bar
 
     cfg = mcl.config

@@ -29,7 +29,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy import ndimage
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
 
 from .beam import beam_likelihood
 from .sampling import tempering
@@ -70,12 +70,10 @@ class SearchConfig:
     ess: float = 0.05
 
     def __post_init__(self):
-        if not (isinstance(self.cell, (int, float)) and np.isfinite(self.cell) and self.cell > 0):
-            raise InvalidInputError(f"SearchConfig: cell must be a finite number > 0, got {self.cell!r}")
-        if not (isinstance(self.pool, (int, np.integer)) and not isinstance(self.pool, bool) and self.pool >= 0):
-            raise InvalidInputError(f"SearchConfig: pool must be an integer >= 0, got {self.pool!r}")
-        if not (isinstance(self.ess, (int, float)) and 0 < self.ess <= 1):
-            raise InvalidInputError(f"SearchConfig: ess must lie in (0, 1], got {self.ess!r}")
+        f = "SearchConfig"
+        object.__setattr__(self, "cell", checks.real(self.cell, f, "cell", low=0.0, strict_low=True))
+        object.__setattr__(self, "pool", checks.integer(self.pool, f, "pool", low=0))
+        object.__setattr__(self, "ess", checks.real(self.ess, f, "ess", low=0.0, high=1.0, strict_low=True))
 
 
 class CoarseSearch:
@@ -103,10 +101,10 @@ class CoarseSearch:
 
     def __init__(self, field, free, config: SearchConfig | None = None):
         self.config = cfg = config or SearchConfig()
-        if config is not None and not isinstance(config, SearchConfig):
-            raise InvalidInputError(f"CoarseSearch: config must be a SearchConfig, got {type(config).__name__}")
+        if config is not None:
+            checks.instance(config, "CoarseSearch", "config", SearchConfig, "a SearchConfig or None")
         if np.shape(free) != tuple(field.shape):
-            raise InvalidInputError(f"CoarseSearch: free must have shape {field.shape}, got {np.shape(free)}")
+            raise checks.fail("CoarseSearch", "free", f"must have shape {field.shape}, got {np.shape(free)}")
         self.field = field
         m = field.model
         k = max(1, int(round(cfg.cell / m.resolution)))

@@ -16,8 +16,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
 from cga_lessons.mapping2d import OdometryModel, compose, relative, wrap_angle
+
+from .inputs import array
 
 __all__ = ["REGISTRATION_XY", "REGISTRATION_THETA", "ODOMETRY_GATE", "odometry_misfit"]
 
@@ -53,13 +55,10 @@ def odometry_misfit(poses, odometry, model: OdometryModel | None = None) -> int 
     >>> odometry_misfit(np.array([[0.0, 0, 0], [1.0, 0, 0], [3.0, 0, 0]]), odo)  # a 1 m jump at the second step
     2
     """
-    P = np.asarray(poses, float)
-    O = np.asarray(odometry, float)
-    if P.ndim != 2 or P.shape[1] != 3 or P.shape != O.shape or not (np.all(np.isfinite(P)) and np.all(np.isfinite(O))):
-        raise InvalidInputError(
-            "odometry_misfit: poses and odometry must be finite arrays of the same shape (n, 3), "
-            f"got {P.shape} and {O.shape}"
-        )
+    func = "odometry_misfit"
+    P = array(poses, func, "poses", (None, 3))
+    O = array(odometry, func, "odometry", (None, 3))
+    checks.same_length(func, poses=P, odometry=O)
     m = OdometryModel() if model is None else model
     for j in range(1, len(P)):
         u = relative(O[j - 1], O[j])

@@ -54,11 +54,11 @@ them and keeps every candidate until the scans tell them apart.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
 from cga_lessons.mapping2d import extract_segments
 
 from .geometry import (
@@ -67,12 +67,14 @@ from .geometry import (
     ScanLines,
     as_segment_array,
     check_scan,
-    estimate_range_noise,
-    prepare_map,
+    range_noise,
+    reference_map,
 )
+from .inputs import array
+from .params import STATUSES, RelocParams, check_extraction, check_score, noise_scaled, resolve_params
 from .search import pose_hypotheses, propose_rotations
 from .thesis import thesis_relocalization
-from .verify import decide, match_lines, pose_covariance, screen_hypotheses, verify_hypotheses
+from .verify import Candidate, decide, match_lines, pose_covariance, screen_hypotheses, verify_hypotheses
 
 __all__ = [
     "RelocParams",
@@ -80,117 +82,6 @@ __all__ = [
     "relocalize",
     "combined_noise",
 ]
-
-
-@dataclass(frozen=True)
-class RelocParams:
-    """Every threshold of :func:`relocalize`.
-
-    Attributes
-    ----------
-    xi_theta : float
-        Angle threshold (radians) of the votes (5.6) and of the rotation votes.
-    xi_rho : float
-        Offset threshold (m) of the votes (5.6) (the literal method only).
-    n_rotations : int
-        Rotation proposals taken from the angle votes (each gives two rotations).
-    parallel_tol : float
-        A scan line and a map line are parallel under a rotation within this (radians).
-    n_anchor_pairs : int
-        Pairs of non-parallel scan lines used to make translation hypotheses, per rotation.
-    min_anchor_angle : float
-        Smallest angle (radians) between the two lines of an anchor pair.
-    overlap_margin : float
-        A map segment's extent is widened by this (m) when a scan segment must lie on it.
-    min_overlap : float
-        Fraction of a scan segment that must lie within its map segment's extent.
-    line_tolerance : float
-        Midpoint-to-line distance (m) for a scan line to count as on a map line
-        (quick score, correspondences; grows to 5 times the scan's range noise).
-    slide_step, slide_below : float
-        When the scan lines across the longest one add up to less than
-        ``slide_below`` (m), positions ``slide_step`` (m) apart along its map
-        partners are tried as well (``slide_step`` 0 disables).  ``inf``: always.
-        The lines across may be there and still fix nothing: door frames,
-        cupboards and people that the map does not hold.  Measured on held-out
-        scans of the six CARMEN logs (every 7th, map from the rest): in
-        corridors no hypothesis came within 30 cm of the true pose because
-        every scan line matching the map there was parallel to the corridor
-        (ACES, the run ending at scan 276: 9 such lines, and 2.9 m of lines
-        across without any map partner, so the 1 m bar of old kept the slide
-        off); always sliding located 5 more of the 361 scans (ACES 3, CSAIL 1,
-        Orebro 1) and made none more confidently wrong.
-    rotation_vote_ratio : float
-        Rotations whose vote is below this fraction of the best are dropped.
-    quick_ratio : float
-        Hypotheses whose quick score (scan length on map segments) is below
-        this fraction of the best are dropped before the screening.
-    n_screen : int
-        At most this many hypotheses (one per 3 cm x 0.5 degree cell) are
-        screened against a subset of the beams.
-    screen_beams : int
-        About this many returned beams are used in the screening.
-    n_verify : int
-        Clearly different hypotheses refined and checked against the whole
-        scan: all within 90 % of the best screening score (up to four times
-        this), at least this many.
-    inlier_distance : float
-        A returned beam whose point lies within this (m) of the first map wall
-        along it supports the pose (grows to 4 times the scan's range noise).
-    ray_margin : float
-        A beam may end this far (m) behind a map wall before it counts against
-        the pose (grows to 5 times the scan's range noise).
-    ambiguity_ratio : float
-        A clearly different pose scoring at least this fraction of the best makes the answer ambiguous.
-    deficit_ratio : float
-        ... or one whose deficit ``1 - score`` is at most ``1 + deficit_ratio``
-        times the best's (:func:`~cga_lessons.relocalization.verify.tie_bar`).
-        1: measured on held-out scans of the Intel and ACES logs (every 7th,
-        map from the rest by chapter 3's builder, with its coverage grid), the
-        second-best pose of a confident wrong answer scored 0.43-0.96 of the
-        best (18 of 22 above 0.7), of a confident right one mostly below 0.7
-        (112 of 131); a rival failing to explain at most twice what the best
-        fails to explain (a deficit of 10 % against 5 %) is too close to call
-        on a map with holes.  0 gives the ratio rule alone.
-    distinct_position, distinct_heading : float
-        Poses further apart than this (m) or turned more than this (radians)
-        are clearly different; the best pose moved by these along its least
-        constrained direction is checked as a rival too.
-    min_score : float
-        Below this score (see :func:`~cga_lessons.relocalization.verify.score_poses`)
-        the result is a failure.  0: a pose that contradicts more beams than it
-        explains is no answer; above that the tie rule decides (a best pose
-        scoring ``s`` must leave its rivals below ``2 s - 1``).  A fixed bar of
-        0.5 refused right poses with no rival near them whose beams mostly
-        returned nothing (Freiburg: up to 78 % of the beams, a fifth of those
-        crossing a map wall), and scans of cluttered rooms: with 0, 3 more
-        of the 361 held-out scans and 5 more runs of three were located, none
-        more confidently wrong.
-    """
-
-    xi_theta: float = np.radians(3.0)
-    xi_rho: float = 0.2
-    n_rotations: int = 8
-    parallel_tol: float = np.radians(4.0)
-    n_anchor_pairs: int = 4
-    min_anchor_angle: float = np.radians(30.0)
-    overlap_margin: float = 0.3
-    min_overlap: float = 0.5
-    line_tolerance: float = 0.1
-    slide_step: float = 0.2
-    slide_below: float = np.inf
-    rotation_vote_ratio: float = 0.25
-    quick_ratio: float = 0.8
-    n_screen: int = 600
-    screen_beams: int = 24
-    n_verify: int = 12
-    inlier_distance: float = 0.06
-    ray_margin: float = 0.08
-    ambiguity_ratio: float = 0.98
-    deficit_ratio: float = 1.0
-    distinct_position: float = 0.2
-    distinct_heading: float = np.radians(4.0)
-    min_score: float = 0.0
 
 
 @dataclass
@@ -250,6 +141,30 @@ class Relocalization:
     _thesis_input: tuple | None = field(default=None, repr=False)
     _thesis: dict | None = field(default=None, repr=False)
 
+    def __post_init__(self):
+        f = "Relocalization"
+        self.status = checks.choice(self.status, f, "status", STATUSES)
+        if self.pose is None and self.status != "failed":
+            raise checks.fail(f, "pose", f"None only for a failed result, not one with status {self.status!r}")
+        self.pose = None if self.pose is None else array(self.pose, f, "pose", (3,))
+        self.score = check_score(self.score, f, failed=self.status == "failed")
+        self.ambiguous = checks.flag(self.ambiguous, f, "ambiguous")
+        checks.instance(self.candidates, f, "candidates", list, "a list of Candidate")
+        for c in self.candidates:
+            checks.instance(c, f, "candidates", Candidate, "a list of Candidate")
+        pairs = array(self.correspondences, f, "correspondences", (None, 2))
+        if np.any(pairs < 0) or np.any(pairs != np.round(pairs)):
+            raise checks.fail(f, "correspondences", "must be whole numbers >= 0 (map index, scan index)")
+        self.correspondences = pairs.astype(int)
+        self.scan_segments = array(self.scan_segments, f, "scan_segments", (None, 2, 2))
+        self.rotations = array(self.rotations, f, "rotations", (None,))
+        self.n_hypotheses = checks.integer(self.n_hypotheses, f, "n_hypotheses", low=0)
+        self.covariance = array(self.covariance, f, "covariance", (3, 3), finite=False)
+        if np.any(np.isnan(self.covariance)) or np.any(self.covariance == -np.inf):
+            raise checks.fail(f, "covariance", "contains NaN or -inf (inf only along a direction not fixed)")
+        self.range_noise = checks.real(self.range_noise, f, "range_noise", low=0.0)
+        self.message = checks.text(self.message, f, "message", empty=True)
+
     @property
     def thesis(self) -> dict:
         """The literal method's output (:func:`~cga_lessons.relocalization.thesis.thesis_relocalization`)."""
@@ -271,19 +186,6 @@ class Relocalization:
         return self.thesis["C"]
 
 
-def noise_scaled(params: RelocParams, noise: float) -> RelocParams:
-    """The thresholds that are distances grown with the noise (they are set for about 1 cm).
-
-    ``noise``: the scan's range noise, or :func:`combined_noise` with the map's blur.
-    """
-    return replace(
-        params,
-        inlier_distance=max(params.inlier_distance, 4 * noise),
-        ray_margin=max(params.ray_margin, 5 * noise),
-        line_tolerance=max(params.line_tolerance, 5 * noise),
-    )
-
-
 def combined_noise(scan_noise: float, ref: ReferenceMap) -> float:
     """The spread (m) a scan's points show about the map's walls: its range noise and the map's blur together.
 
@@ -291,17 +193,9 @@ def combined_noise(scan_noise: float, ref: ReferenceMap) -> float:
     measured on its own scans (:func:`~cga_lessons.relocalization.coverage.map_noise`,
     0 without a coverage model).
     """
-    cov = ref.coverage
+    scan_noise = checks.real(scan_noise, "combined_noise", "scan_noise", low=0.0)
+    cov = checks.instance(ref, "combined_noise", "ref", ReferenceMap, "a ReferenceMap (prepare_map)").coverage
     return float(np.hypot(scan_noise, cov.noise if cov is not None else 0.0))
-
-
-def resolve_params(params: RelocParams | None, overrides: dict, func: str = "relocalize") -> RelocParams:
-    """``params`` (default :class:`RelocParams`) with single fields replaced by ``overrides``; unknown names raise."""
-    params = params or RelocParams()
-    bad = set(overrides) - set(RelocParams.__dataclass_fields__)
-    if bad:
-        raise InvalidInputError(f"{func}: unknown parameter(s) {sorted(bad)}")
-    return RelocParams(**{**params.__dict__, **overrides}) if overrides else params
 
 
 # --------------------------------------------------------------------------- the search
@@ -346,40 +240,29 @@ def relocalize(
     Raises
     ------
     InvalidInputError
-        For an empty or malformed map, malformed segments or scan, NaN in the
-        geometry, or an unknown parameter.  A scan with too few lines is not an
-        error: the result says ``status="failed"``.
-    """
-    params = resolve_params(params, overrides)
-    if not (max_range > 0):
-        raise InvalidInputError(f"relocalize: max_range must be > 0, got {max_range}")
-    ref = prepare_map(map_segments)
-    if scan is None and scan_segments is None:
-        raise InvalidInputError("relocalize: give scan_segments, scan=(ranges, angles), or both")
-    noise = 0.0
-    if scan is not None:
-        ranges, angles = check_scan(scan)
-        obs = Observation.from_scan(ranges, angles, max_range)
-        noise = estimate_range_noise(np.where(ranges < max_range, ranges, np.inf))
-        params = noise_scaled(params, combined_noise(noise, ref))
-    if scan_segments is None:
-        ext = {"max_range": max_range, "xi": max(0.03, 3 * noise), **(extraction or {})}
-        segs = extract_segments(ranges, angles, **ext)
-        L = as_segment_array(segs, allow_empty=True) if segs else np.zeros((0, 2, 2))
-    else:
-        L = as_segment_array(scan_segments, "relocalize", "scan_segments", allow_empty=True)
-    if scan is None:
-        obs = Observation.from_segments(L)
+        For an empty or malformed map, malformed segments or scan, NaN or
+        inf in the geometry, an unknown parameter or a threshold of the wrong
+        type or out of its range (:class:`RelocParams`).
+    DegenerateGeometryError
+        For a segment of zero length.
 
+    A scan with too few lines, or without a returned beam, is not an error:
+    the result says ``status="failed"`` (``score`` ``-inf``, no ``pose``).
+    """
+    ref, L, obs, noise, params = _inputs(map_segments, scan_segments, scan, max_range, params, extraction, overrides)
     base = dict(scan_segments=L, range_noise=noise, _thesis_input=(ref.segments, L, params))
     if len(L) < 2:
         return Relocalization(
-            None,
-            -np.inf,
-            True,
-            "failed",
+            pose=None,
+            score=-np.inf,
+            ambiguous=True,
+            status="failed",
             message=f"too few lines in the scan ({len(L)}); need two non-parallel",
             **base,
+        )
+    if not len(obs.points):
+        return Relocalization(
+            pose=None, score=-np.inf, ambiguous=True, status="failed", message="no returned beam in the scan", **base
         )
     S, M = ScanLines(L), ref.lines
     rotations, poses, quick = _hypotheses(M, S, params)
@@ -387,10 +270,10 @@ def relocalize(
     chosen = screen_hypotheses(M, obs, poses, quick, params)
     if not len(chosen):
         return Relocalization(
-            None,
-            -np.inf,
-            True,
-            "failed",
+            pose=None,
+            score=-np.inf,
+            ambiguous=True,
+            status="failed",
             message="no pose hypothesis (no two non-parallel lines match the map)",
             **base,
         )
@@ -402,8 +285,42 @@ def relocalize(
     cov = pose_covariance(M, obs, best.pose, params.inlier_distance)
     status, msg = decide(M, obs, ranked, params)
     return Relocalization(
-        best.pose, best.score, status != "ok", status, ranked, pairs, covariance=cov, message=msg, **base
+        pose=best.pose,
+        score=best.score,
+        ambiguous=status != "ok",
+        status=status,
+        candidates=ranked,
+        correspondences=pairs,
+        covariance=cov,
+        message=msg,
+        **base,
     )
+
+
+def _inputs(map_segments, scan_segments, scan, max_range, params, extraction, overrides):
+    """The checked inputs of :func:`relocalize`: the map, the scan's lines, the observation, the scan's range
+    noise and the thresholds (grown with the noise)."""
+    func = "relocalize"
+    params = resolve_params(params, overrides, func)
+    max_range = checks.real(max_range, func, "max_range", low=0.0, strict_low=True)
+    extraction = check_extraction(extraction, func)
+    ref = reference_map(map_segments, func)
+    if scan is None and scan_segments is None:
+        raise checks.fail(func, "scan_segments, scan", "give scan_segments, scan=(ranges, angles), or both")
+    noise = 0.0
+    if scan is not None:
+        ranges, angles = check_scan(scan, func)
+        obs = Observation.from_scan(ranges, angles, max_range)
+        noise = range_noise(np.where(ranges < max_range, ranges, np.inf))
+        params = noise_scaled(params, combined_noise(noise, ref))
+    if scan_segments is None:
+        segs = extract_segments(ranges, angles, **{"max_range": max_range, "xi": max(0.03, 3 * noise), **extraction})
+        L = as_segment_array(segs, func, "scan", allow_empty=True) if segs else np.zeros((0, 2, 2))
+    else:
+        L = as_segment_array(scan_segments, func, "scan_segments", allow_empty=True)
+    if scan is None:
+        obs = Observation.from_segments(L)
+    return ref, L, obs, noise, params
 
 
 def _hypotheses(M, S, params):

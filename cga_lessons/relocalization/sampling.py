@@ -25,8 +25,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
 from cga_lessons.mapping2d import wrap_angle
+
+from .inputs import array
 
 __all__ = ["KLDConfig", "kld_bound", "low_variance_indices", "kld_resample", "mode_estimate", "tempering"]
 
@@ -70,16 +72,13 @@ class KLDConfig:
     bin_theta: float = np.radians(10.0)
 
     def __post_init__(self):
+        f = "KLDConfig"
         for name in ("n_min", "n_max"):
-            v = getattr(self, name)
-            if not (isinstance(v, (int, np.integer)) and not isinstance(v, bool) and v >= 1):
-                raise InvalidInputError(f"KLDConfig: {name} must be an integer >= 1, got {v!r}")
+            object.__setattr__(self, name, checks.integer(getattr(self, name), f, name, low=1))
         if self.n_min > self.n_max:
-            raise InvalidInputError(f"KLDConfig: n_min ({self.n_min}) must not exceed n_max ({self.n_max})")
+            raise checks.fail(f, "n_min, n_max", f"n_min ({self.n_min}) must not exceed n_max ({self.n_max})")
         for name in ("epsilon", "z", "bin_xy", "bin_theta"):
-            v = getattr(self, name)
-            if not (isinstance(v, (int, float)) and np.isfinite(v) and v > 0):
-                raise InvalidInputError(f"KLDConfig: {name} must be a finite number > 0, got {v!r}")
+            object.__setattr__(self, name, checks.real(getattr(self, name), f, name, low=0.0, strict_low=True))
 
 
 def kld_bound(k, epsilon: float = 0.05, z: float = 2.326):
@@ -88,7 +87,21 @@ def kld_bound(k, epsilon: float = 0.05, z: float = 2.326):
     >>> [int(kld_bound(k)) for k in (1, 2, 10, 100)]
     [1, 66, 217, 1347]
     """
-    k = np.asarray(k, float)
+    func = "kld_bound"
+    try:
+        nd = np.ndim(k)
+    except ValueError:  # ragged: the check says so
+        nd = 1
+    k = array(k, func, "k", (None,) * nd)
+    if np.any(k < 0):
+        raise checks.fail(func, "k", "must be >= 0 (a count of occupied bins)")
+    epsilon = checks.real(epsilon, func, "epsilon", low=0.0, strict_low=True)
+    z = checks.real(z, func, "z", low=0.0)
+    return checks.finite_result(bound(k, epsilon, z), func, "k, epsilon, z: the sample count")
+
+
+def bound(k, epsilon: float, z: float):
+    """:func:`kld_bound` of checked arguments."""
     km1 = np.maximum(k - 1, 1e-12)
     a = 2.0 / (9.0 * km1)
     n = km1 / (2 * epsilon) * (1 - a + np.sqrt(a) * z) ** 3
@@ -127,7 +140,7 @@ def kld_resample(particles, weights, cfg: KLDConfig, rng) -> np.ndarray:
     new_bin[first] = True
     k = np.cumsum(new_bin)
     m = np.arange(1, len(keys) + 1)
-    enough = np.flatnonzero((m >= kld_bound(k, cfg.epsilon, cfg.z)) & (m >= cfg.n_min))
+    enough = np.flatnonzero((m >= bound(k, cfg.epsilon, cfg.z)) & (m >= cfg.n_min))
     n = int(m[enough[0]]) if len(enough) else cfg.n_max
     return low_variance_indices(w, n, rng)
 

@@ -37,16 +37,18 @@ from __future__ import annotations
 
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
 from cga_lessons.mapping2d import OdometryModel, compose, relative
 
 from .chain import Chain, SequenceRelocalization, refine_chains
-from .geometry import Observation, check_scan, estimate_range_noise, prepare_map
+from .geometry import Observation, check_pose, check_scan, range_noise, reference_map
+from .inputs import array, coordinates
 from .odometry import odometry_misfit
-from .relocalizer import RelocParams, combined_noise, noise_scaled, relocalize, resolve_params
+from .params import RelocParams, noise_scaled, resolve_params
+from .relocalizer import combined_noise, relocalize
 from .verify import Candidate, distinct, pose_information, refine_if_better, score_poses, tie_bar
 
-__all__ = ["Relocalizer", "SequenceRelocalization", "relocalize_sequence"]
+__all__ = ["Relocalizer", "SequenceRelocalization", "relocalize_sequence", "relocalizer_for"]
 
 
 class Relocalizer:
@@ -109,20 +111,22 @@ class Relocalizer:
         window: int = 5,
         **overrides,
     ):
+        self._setup("Relocalizer", map_segments, max_range, max_chains, keep_ratio, odometry_model, joint, window)
         self.params = resolve_params(params, overrides, "Relocalizer")
-        if not (max_range > 0):
-            raise InvalidInputError(f"Relocalizer: max_range must be > 0, got {max_range}")
-        if int(max_chains) < 1 or not (0 < keep_ratio <= 1):
-            raise InvalidInputError(
-                f"Relocalizer: need max_chains >= 1 and 0 < keep_ratio <= 1, got {max_chains}, {keep_ratio}"
-            )
-        if int(window) < 1:
-            raise InvalidInputError(f"Relocalizer: window must be >= 1 (poses the joint fit moves), got {window}")
-        self.ref = prepare_map(map_segments)
-        self.max_range = float(max_range)
-        self.max_chains = int(max_chains)
-        self.keep_ratio = float(keep_ratio)
+
+    def _setup(
+        self, func, map_segments, max_range, max_chains=64, keep_ratio=0.7, odometry_model=None, joint=True, window=5
+    ):
+        """Check the settings in the name of ``func`` (the public function called) and start with no scan."""
+        self.max_range = checks.real(max_range, func, "max_range", low=0.0, strict_low=True)
+        self.max_chains = checks.integer(max_chains, func, "max_chains", low=1)
+        self.keep_ratio = checks.real(keep_ratio, func, "keep_ratio", low=0.0, high=1.0, strict_low=True)
+        if odometry_model is not None:
+            checks.instance(odometry_model, func, "odometry_model", OdometryModel, "an OdometryModel or None")
         self.odometry_model = OdometryModel() if odometry_model is None else odometry_model
+        self.joint = checks.flag(joint, func, "joint")
+        self.window = checks.integer(window, func, "window", low=1)
+        self.ref = reference_map(map_segments, func)
         self.obs: list[Observation] = []
         self.odometry: list[np.ndarray] = []
         self.returned = np.zeros(0, int)
@@ -130,8 +134,6 @@ class Relocalizer:
         self.single: list = []
         self._scan_params: list[RelocParams] = []
         self._sigmas: list[float] = []
-        self.joint = bool(joint)
-        self.window = int(window)
 
     # ------------------------------------------------------------------ public
 
@@ -142,10 +144,11 @@ class Relocalizer:
         frame is arbitrary.
         """
         ranges, angles = check_scan(scan, "Relocalizer.add")
-        odo = np.asarray(odometry, float)
-        if odo.shape != (3,) or not np.all(np.isfinite(odo)):
-            raise InvalidInputError(f"Relocalizer.add: odometry must be a finite (x, y, theta), got {odo!r}")
-        noise = estimate_range_noise(np.where(ranges < self.max_range, ranges, np.inf))
+        odo = check_pose(odometry, "Relocalizer.add", "odometry")
+        if self.odometry:
+            step = relative(self.odometry[-1], odo)
+            checks.finite_result(step, "Relocalizer.add", "odometry: the increment from the last scan")
+        noise = range_noise(np.where(ranges < self.max_range, ranges, np.inf))
         spread = combined_noise(noise, self.ref)  # of the scan's points about the map's walls
         params = noise_scaled(self.params, spread)
         obs = Observation.from_scan(ranges, angles, self.max_range)
@@ -173,7 +176,9 @@ class Relocalizer:
         n = len(self.obs)
         if not self.chains:
             msg = self.single[-1].message if self.single else "no scan yet"
-            return SequenceRelocalization(None, -np.inf, True, "failed", n_scans=n, message=msg, single=self.single)
+            return SequenceRelocalization(
+                pose=None, score=-np.inf, ambiguous=True, status="failed", n_scans=n, message=msg, single=self.single
+            )
         ranked = self._ranked()
         best = self.chains[ranked[0]]
         self._polish(best)
@@ -182,15 +187,15 @@ class Relocalizer:
         if probe is not None:
             cands.insert(1, probe)
         return SequenceRelocalization(
-            np.array(best.poses[-1]),
-            cands[0].score,
-            status != "ok",
-            status,
-            cands,
-            np.array(best.poses),
-            n,
-            msg,
-            self.single,
+            pose=np.array(best.poses[-1]),
+            score=cands[0].score,
+            ambiguous=status != "ok",
+            status=status,
+            candidates=cands,
+            trajectory=np.array(best.poses),
+            n_scans=n,
+            message=msg,
+            single=self.single,
         )
 
     # ------------------------------------------------------------------ internals
@@ -383,6 +388,18 @@ class Relocalizer:
         return "ok", "", None
 
 
+def relocalizer_for(func: str, map_segments, max_range, kw: dict) -> Relocalizer:
+    """A :class:`Relocalizer` made with keywords ``kw`` (its settings and thresholds), checked in the name of
+    ``func``, the public function called."""
+    kw = dict(kw)
+    settings = {k: kw.pop(k) for k in ("max_chains", "keep_ratio", "odometry_model", "joint", "window") if k in kw}
+    params = kw.pop("params", None)
+    loc = Relocalizer.__new__(Relocalizer)
+    loc._setup(func, map_segments, max_range, **settings)
+    loc.params = resolve_params(params, kw, func)
+    return loc
+
+
 def _rigid(pose, centre, mx, my, ma):
     """A pose moved by the rigid motion: turn by ``ma`` about ``centre``, then shift by ``(mx, my)``."""
     c, s = np.cos(ma), np.sin(ma)
@@ -402,14 +419,18 @@ def relocalize_sequence(map_segments, scans, odometry, *, max_range: float = 5.0
     SequenceRelocalization
         The answer after the last scan used; ``pose`` is the laser's pose at that scan.
     """
-    odo = np.asarray(odometry, float)
-    scans = list(scans)
-    if odo.ndim != 2 or odo.shape[1] != 3 or len(odo) != len(scans) or not len(scans):
-        raise InvalidInputError(
-            f"relocalize_sequence: odometry must have shape (n, 3) with one row per scan; "
-            f"got {odo.shape} for {len(scans)} scan(s)"
-        )
-    loc = Relocalizer(map_segments, max_range=max_range, **kw)
+    func = "relocalize_sequence"
+    if scans is None or isinstance(scans, (str, bytes)) or not hasattr(scans, "__iter__"):
+        raise checks.fail(func, "scans", f"expected a list of scans (ranges, angles), got {type(scans).__name__}")
+    scans = [check_scan(s, func, f"scans[{i}]") for i, s in enumerate(scans)]
+    if not scans:
+        raise checks.fail(func, "scans", "expected at least one scan, got none")
+    odo = coordinates(array(odometry, func, "odometry", (None, 3)), func, "odometry")
+    if len(odo) != len(scans):
+        raise checks.fail(func, "odometry", f"must have one row per scan; got {len(odo)} for {len(scans)} scan(s)")
+    checks.finite_result(relative(odo[:-1], odo[1:]), func, "odometry: a step between scans")
+    stop_when_confident = checks.flag(stop_when_confident, func, "stop_when_confident")
+    loc = relocalizer_for(func, map_segments, max_range, kw)
     for scan, o in zip(scans, odo):
         res = loc.add(scan, o)
         if stop_when_confident and res.status == "ok":

@@ -20,11 +20,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from cga_lessons import checks
 from cga_lessons import conformal as cga
-from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
+from cga_lessons.algebra import DegenerateGeometryError, GeometryError
 from cga_lessons.mapping2d import TWO_PI, diff_theta, theta_correction, translation_correction
 
-from .hough import THETA_XI, endpoint_array, hough_set, vote_matrix_indexed
+from .hough import THETA_XI, check_votes, endpoint_array, hough_points, votes_indexed
+from .inputs import array
 
 __all__ = [
     "correspondences_from_votes",
@@ -59,9 +61,13 @@ def correspondences_from_votes(V, min_votes: int = 2) -> np.ndarray:
     >>> correspondences_from_votes([[1, 5], [3, 1], [1, 1]]).tolist()
     [1, 0, -1]
     """
-    V = np.asarray(V)
-    if V.ndim != 2:
-        raise InvalidInputError(f"correspondences_from_votes: V must be 2-D, got shape {V.shape}")
+    func = "correspondences_from_votes"
+    V = array(V, func, "V", (None, None))
+    return correspondences(V, checks.integer(min_votes, func, "min_votes", low=0))
+
+
+def correspondences(V: np.ndarray, min_votes: int) -> np.ndarray:
+    """:func:`correspondences_from_votes` of a checked vote matrix."""
     C = np.full(V.shape[0], -1, int)
     if V.size == 0:
         return C
@@ -82,7 +88,7 @@ def mean_angle(M_h, L_h, C, theta_xi: float = THETA_XI) -> float:
     L_h = np.asarray(L_h, float).reshape(-1, 2)
     i = np.flatnonzero(np.asarray(C) >= 0)
     if len(i) == 0:
-        raise InvalidInputError("mean_angle: no correspondences in C")
+        raise checks.fail("mean_angle", "C", "holds no correspondence")
     d = np.atleast_1d(diff_theta(M_h[i, 1], L_h[np.asarray(C)[i], 1], theta_xi))
     return theta_correction(d)
 
@@ -98,7 +104,7 @@ def segments_from_point_pairs(PP) -> np.ndarray:
     return np.stack([np.atleast_2d(p1)[:, :2], np.atleast_2d(p2)[:, :2]], axis=1)
 
 
-def _move_point_pairs(V, s):
+def _move_point_pairs(V, s, func, name):
     """``V PP* ~V`` for the point pairs of segments ``s`` (K, 2, 2), end points read back by (2.131).
 
     (2.131) loses accuracy when the points are far from the origin compared
@@ -106,12 +112,15 @@ def _move_point_pairs(V, s):
     there.  Then the same versor moves the two conformal points that span the
     pair (``V (P1 ^ P2) ~V = (V P1 ~V) ^ (V P2 ~V)``), which is exact.
     """
-    PP = cga.point_pair(_xyz(s[:, 0]), _xyz(s[:, 1]))  # (2.68)
     try:
-        return segments_from_point_pairs(cga.apply(V, PP))
-    except DegenerateGeometryError:
-        ends = cga.apply_to_points(V, _xyz(s.reshape(-1, 2)))[:, :2]
-        return ends.reshape(-1, 2, 2)
+        PP = cga.point_pair(_xyz(s[:, 0]), _xyz(s[:, 1]))  # (2.68)
+        try:
+            out = segments_from_point_pairs(cga.apply(V, PP))
+        except DegenerateGeometryError:
+            out = cga.apply_to_points(V, _xyz(s.reshape(-1, 2)))[:, :2].reshape(-1, 2, 2)
+    except GeometryError as exc:  # finite, but too large for the conformal model's squares
+        raise checks.fail(func, name, f"cannot be moved as point pairs ({exc})") from None
+    return checks.finite_result(out, func, f"{name}: the result")
 
 
 def rotate_entities(segments, angle) -> np.ndarray:
@@ -125,10 +134,15 @@ def rotate_entities(segments, angle) -> np.ndarray:
     ndarray, shape (K, 2, 2)
     """
     s = endpoint_array(segments, "rotate_entities")
+    return rotated(s, checks.real(angle, "rotate_entities", "angle"), "rotate_entities", "segments")
+
+
+def rotated(s: np.ndarray, angle: float, func: str, name: str) -> np.ndarray:
+    """:func:`rotate_entities` of checked segments, in the name of ``func`` and its argument ``name``."""
     if len(s) == 0:
         return s.copy()
-    R = cga.rotor([0.0, 0.0, 1.0], float(angle))  # (2.96)
-    return _move_point_pairs(R, s)
+    R = cga.rotor([0.0, 0.0, 1.0], angle)  # (2.96)
+    return _move_point_pairs(R, s, func, name)
 
 
 def translate_entities(segments, translation) -> np.ndarray:
@@ -139,11 +153,16 @@ def translate_entities(segments, translation) -> np.ndarray:
     ndarray, shape (K, 2, 2)
     """
     s = endpoint_array(segments, "translate_entities")
+    t = array(translation, "translate_entities", "translation", (2,))
+    return translated(s, t, "translate_entities", "segments, translation")
+
+
+def translated(s: np.ndarray, t: np.ndarray, func: str, name: str) -> np.ndarray:
+    """:func:`translate_entities` of checked segments and translation (2,), in the name of ``func``."""
     if len(s) == 0:
         return s.copy()
-    t = np.asarray(translation, float).reshape(2)
     T = cga.translator([t[0], t[1], 0.0])  # (2.100)
-    return _move_point_pairs(T, s)
+    return _move_point_pairs(T, s, func, name)
 
 
 def translation_from_lines(M_h, L_h_rotated, C) -> np.ndarray:
@@ -158,7 +177,7 @@ def translation_from_lines(M_h, L_h_rotated, C) -> np.ndarray:
     L_h_rotated = np.asarray(L_h_rotated, float).reshape(-1, 2)
     i = np.flatnonzero(np.asarray(C) >= 0)
     if len(i) == 0:
-        raise InvalidInputError("translation_from_lines: no correspondences in C")
+        raise checks.fail("translation_from_lines", "C", "holds no correspondence")
     j = np.asarray(C)[i]
     return translation_correction(M_h[i, 0], L_h_rotated[j, 0], L_h_rotated[j, 1])
 
@@ -200,22 +219,30 @@ def thesis_relocalization(
         no correspondence was found, ``rotated`` and ``placed`` local segments
         (K, 2, 2) after steps 8 and 10 (None without ``entities``), ``M_h`` and ``L_h``.
     """
-    M = endpoint_array(map_segments, "thesis_relocalization", "map_segments")
-    L = endpoint_array(scan_segments, "thesis_relocalization", "scan_segments")
-    M_h, L_h = hough_set(M), hough_set(L)
-    V = vote_matrix_indexed(M_h, L_h, xi_theta, xi_rho, theta_xi)  # steps 1-5, (5.1)-(5.6)
-    C = correspondences_from_votes(V, min_votes)  # step 6
+    func = "thesis_relocalization"
+    M = endpoint_array(map_segments, func, "map_segments")
+    L = endpoint_array(scan_segments, func, "scan_segments")
+    M_h, L_h = hough_points(M, func=func, name="map_segments"), hough_points(L, func=func, name="scan_segments")
+    checks.finite_result(M_h, func, "map_segments: the Hough set")
+    checks.finite_result(L_h, func, "scan_segments: the Hough set")
+    M_h, L_h, xi_theta, xi_rho, theta_xi = check_votes(M_h, L_h, xi_theta, xi_rho, theta_xi, func)
+    min_votes = checks.integer(min_votes, func, "min_votes", low=0)
+    entities = checks.flag(entities, func, "entities")
+    V = votes_indexed(M_h, L_h, xi_theta, xi_rho, theta_xi)  # steps 1-5, (5.1)-(5.6)
+    C = correspondences(V, min_votes)  # step 6
     out = {"votes": V, "C": C, "M_h": M_h, "L_h": L_h, "pose": None, "rotated": None, "placed": None}
     if not np.any(C >= 0):
         return out
     Theta = mean_angle(M_h, L_h, C, theta_xi)  # step 7
     if entities:
-        rotated = rotate_entities(L, Theta)  # step 8
-        t = translation_from_lines(M_h, hough_set(rotated), C)  # step 9, (3.12)
-        placed = translate_entities(rotated, t)  # step 10
+        turned = rotated(L, Theta, func, "scan_segments")  # step 8
+        t = translation_from_lines(M_h, hough_points(turned, func=func, name="scan_segments"), C)  # step 9, (3.12)
+        checks.finite_result(t, func, "map_segments, scan_segments: the translation")
+        placed = translated(turned, t, func, "scan_segments")  # step 10
     else:
-        rotated = placed = None
+        turned = placed = None
         t = translation_from_lines(M_h, np.column_stack([L_h[:, 0], np.mod(L_h[:, 1] + Theta, TWO_PI)]), C)
+        checks.finite_result(t, func, "map_segments, scan_segments: the translation")
     theta = float(np.mod(Theta + np.pi, TWO_PI) - np.pi)
-    out.update(pose=np.array([t[0], t[1], theta]), rotated=rotated, placed=placed, Theta=Theta, translation=t)
+    out.update(pose=np.array([t[0], t[1], theta]), rotated=turned, placed=placed, Theta=Theta, translation=t)
     return out

@@ -23,10 +23,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from cga_lessons import checks
 from cga_lessons.mapping2d import wrap_angle
 
 from .coverage import FREE, UNKNOWN, WALL
-from .geometry import MapLines, Observation, ScanLines, first_hits, pose_error, rotation_matrix
+from .geometry import MapLines, Observation, ScanLines, first_hits, pose_errors, rotation_matrix
+from .inputs import array
 from .search import overlap_fraction
 
 __all__ = [
@@ -306,11 +308,18 @@ class Candidate:
     inliers: float
     violations: float
 
+    def __post_init__(self):
+        f = "Candidate"
+        self.pose = array(self.pose, f, "pose", (3,))
+        self.score = checks.real(self.score, f, "score")
+        self.inliers = checks.real(self.inliers, f, "inliers", low=0.0)
+        self.violations = checks.real(self.violations, f, "violations", low=0.0)
+
 
 def distinct(p, q, params) -> bool:
     """Are two poses clearly different (further apart than ``params.distinct_position`` or turned more than
     ``params.distinct_heading``)?"""
-    dp, dh = pose_error(p, q)
+    dp, dh = pose_errors(p, q)
     return dp > params.distinct_position or dh > params.distinct_heading
 
 

@@ -5,6 +5,8 @@ Layer 3 of the package: imports layers 0-2 (errors, algebra, conformal) only (``
 Nothing here draws (figures and widgets are in :mod:`cga_lessons.viz`).  This facade exports the names in
 ``__all__``; its modules:
 
+* :mod:`~cga_lessons.stereo.accuracy`: The accuracy of reconstructed entities: their errors against the truth
+  (section 4.1)
 * :mod:`~cga_lessons.stereo.camera`: Pinhole cameras and triangulation (appendix A of the thesis, Eqs. A.1-A.5 and
   A.14)
 * :mod:`~cga_lessons.stereo.detect`: Automatic registration of conformal entities in a 3D point cloud (the thesis's
@@ -25,28 +27,29 @@ Nothing here draws (figures and widgets are in :mod:`cga_lessons.viz`).  This fa
   4.1), seeded and repeatable
 * :mod:`~cga_lessons.stereo.head`: A synthetic stereo head, its scene, and conformal entities from two views
   (section 4.1)
+* :mod:`~cga_lessons.stereo.polylines`: Drawing the entities of section 4.1: the segment of a line, a circle and a
+  plane's square as polylines
 * :mod:`~cga_lessons.stereo.real`: Real stereo data: the Middlebury 2014 motorcycle pair shipped with scikit-image
 * :mod:`~cga_lessons.stereo.render`: What the stereo head's two cameras see, drawn with OpenCV (for the notebook of
   section 4.1)
 * :mod:`~cga_lessons.stereo.rig`: The robot's stereo head: two calibrated pinhole cameras (appendix A, used by
   section 4.1)
+* :mod:`~cga_lessons.stereo.validate`: The stereo package's argument checks, composed from the shared checking layer
+  (:mod:`cga_lessons.checks`)
 """
 
-from .camera import (
-    camera_center,
-    cameras_from_fundamental,
-    closest_points_on_rays,
-    epipolar_distance,
-    fundamental_8point,
-    optical_planes,
-    project,
-    projection_matrix_rt,
-    triangulate,
-)
+from .camera import camera_center, closest_points_on_rays, optical_planes, project, projection_matrix_rt, triangulate
 from .detect import DetectConfig, detect_entities
 from .detect_noise import triangulation_covariance
 from .detect_scenes import KINDS, SceneConfig, evaluate, scene_rig, stereo_scene
-from .epipolar import eight_point_matrix, epipolar_lines, epipoles
+from .epipolar import (
+    cameras_from_fundamental,
+    eight_point_matrix,
+    epipolar_distance,
+    epipolar_lines,
+    epipoles,
+    fundamental_8point,
+)
 from .experiments import (
     entity_error_table,
     format_table,

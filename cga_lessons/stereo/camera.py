@@ -1,8 +1,8 @@
 """Pinhole cameras and triangulation (appendix A of the thesis, Eqs. A.1-A.5 and A.14).
 
 Two-view geometry (A.6-A.13: the fundamental matrix, the 8-point algorithm,
-cameras from F) lives in :mod:`cga_lessons.stereo.epipolar` and is re-exported here,
-so ``from cga_lessons.stereo.camera import fundamental_8point`` works.
+cameras from F) lives in :mod:`cga_lessons.stereo.epipolar`, which builds on this
+module (this one does not import it).
 
 Conventions
 -----------
@@ -24,7 +24,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
+from cga_lessons import checks
+from cga_lessons.checks import degenerate
+
+from . import validate as vd
 
 __all__ = [
     "calibration_matrix",
@@ -41,50 +44,6 @@ __all__ = [
     "closest_points_on_rays",
     "triangulate",
 ]
-
-
-# Two-view geometry is defined in :mod:`cga_lessons.stereo.epipolar` (A.6-A.13) and
-# reachable from here as ``camera.fundamental_8point`` etc.
-def __getattr__(name):
-    """Lazy re-export of :mod:`cga_lessons.stereo.epipolar` (which imports this module)."""
-    from . import epipolar
-
-    if name in epipolar.__all__:
-        return getattr(epipolar, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-# ----------------------------------------------------------------- validation
-def as_batch(a, shape_tail: tuple, func: str, name: str) -> np.ndarray:
-    """``a`` as a float array of shape ``(N,) + shape_tail`` (a single item is promoted)."""
-    try:
-        arr = np.asarray(a, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise InvalidInputError(f"{func}: {name} is not numeric ({exc})") from None
-    if arr.shape == shape_tail:
-        arr = arr[None]
-    if arr.ndim != len(shape_tail) + 1 or arr.shape[1:] != shape_tail:
-        want = "(N, " + ", ".join(map(str, shape_tail)) + ")"
-        raise InvalidInputError(f"{func}: {name} must have shape {want}, got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise InvalidInputError(f"{func}: {name} contains NaN or inf")
-    return arr
-
-
-def as_matrix(a, shape: tuple, func: str, name: str) -> np.ndarray:
-    arr = np.asarray(a, dtype=float)
-    if arr.shape != shape:
-        raise InvalidInputError(f"{func}: {name} must have shape {shape}, got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise InvalidInputError(f"{func}: {name} contains NaN or inf")
-    return arr
-
-
-def _check_rotation(R, func: str) -> np.ndarray:
-    R = as_matrix(R, (3, 3), func, "R")
-    if not np.allclose(R @ R.T, np.eye(3), atol=1e-9) or np.linalg.det(R) < 0:
-        raise InvalidInputError(f"{func}: R is not a rotation matrix (R R^T != I or det R < 0)")
-    return R
 
 
 # ------------------------------------------------------------ camera model
@@ -111,12 +70,11 @@ def calibration_matrix(alpha_x: float, alpha_y: float, x0: float, y0: float, ske
            [  0., 500., 240.],
            [  0.,   0.,   1.]])
     """
-    vals = np.array([alpha_x, alpha_y, x0, y0, skew], dtype=float)
-    if not np.all(np.isfinite(vals)):
-        raise InvalidInputError("calibration_matrix: parameters contain NaN or inf")
-    if alpha_x <= 0 or alpha_y <= 0:
-        raise InvalidInputError(f"calibration_matrix: focal lengths must be positive, got {alpha_x}, {alpha_y}")
-    return np.array([[alpha_x, skew, x0], [0.0, alpha_y, y0], [0.0, 0.0, 1.0]])
+    f = "calibration_matrix"
+    alpha_x, alpha_y = (vd.positive(a, f, n) for a, n in ((alpha_x, "alpha_x"), (alpha_y, "alpha_y")))
+    x0, y0, skew = (checks.real(a, f, n) for a, n in ((x0, "x0"), (y0, "y0"), (skew, "skew")))
+    K = np.array([[alpha_x, skew, x0], [0.0, alpha_y, y0], [0.0, 0.0, 1.0]])
+    return vd.bounded(K, f, "alpha_x, alpha_y, x0, y0, skew")
 
 
 def projection_matrix(K, R, C) -> np.ndarray:
@@ -135,11 +93,8 @@ def projection_matrix(K, R, C) -> np.ndarray:
     -------
     P : ndarray, shape (3, 4)
     """
-    K = as_matrix(K, (3, 3), "projection_matrix", "K")
-    R = _check_rotation(R, "projection_matrix")
-    C = as_matrix(C, (3,), "projection_matrix", "C")
-    if abs(np.linalg.det(K)) < 1e-300:
-        raise DegenerateGeometryError("projection_matrix: K is singular")
+    f = "projection_matrix"
+    K, R, C = vd.calibration(K, f), vd.rotation(R, f), vd.array(C, f, "C", (3,))
     return K @ R @ np.hstack([np.eye(3), -C[:, None]])
 
 
@@ -156,9 +111,8 @@ def projection_matrix_rt(K, R, t) -> np.ndarray:
     -------
     P : ndarray, shape (3, 4)
     """
-    K = as_matrix(K, (3, 3), "projection_matrix_rt", "K")
-    R = _check_rotation(R, "projection_matrix_rt")
-    t = as_matrix(t, (3,), "projection_matrix_rt", "t")
+    f = "projection_matrix_rt"
+    K, R, t = vd.calibration(K, f), vd.rotation(R, f), vd.array(t, f, "t", (3,))
     return K @ np.hstack([R, t[:, None]])
 
 
@@ -178,10 +132,11 @@ def decompose_projection(P):
     R : ndarray, shape (3, 3)
     C : ndarray, shape (3,)
     """
-    P = as_matrix(P, (3, 4), "decompose_projection", "P")
+    f = "decompose_projection"
+    P = vd.camera(P, f)
     M = P[:, :3]
     if abs(np.linalg.det(M)) < 1e-12 * np.linalg.norm(M) ** 3:
-        raise DegenerateGeometryError("decompose_projection: the left 3x3 block of P is singular (camera at infinity)")
+        raise degenerate(f, "P", "the left 3x3 block is singular (a camera at infinity)")
     if np.linalg.det(M) < 0:  # P is defined up to scale: pick the sign that gives det R = +1
         P, M = -P, -M
     # RQ via QR of the flipped, transposed matrix
@@ -191,11 +146,15 @@ def decompose_projection(P):
     R = flip @ q.T
     D = np.diag(np.sign(np.diag(K)))
     K, R = K @ D, D @ R
-    C = camera_center(P)
-    return K / K[2, 2], R, C
+    return K / K[2, 2], R, _centre(P, f, "P")
 
 
 # ------------------------------------------------------------- projection
+def _homogeneous(x: np.ndarray) -> np.ndarray:
+    """Checked points (N, D) with a column of ones appended."""
+    return np.concatenate([x, np.ones(x.shape[:-1] + (1,))], axis=-1)
+
+
 def to_homogeneous(X) -> np.ndarray:
     """Homogeneous coordinates ``[X, Y, Z, 1]`` of Euclidean points, Eq. (A.4).
 
@@ -207,8 +166,7 @@ def to_homogeneous(X) -> np.ndarray:
     -------
     ndarray, shape (N, D + 1)
     """
-    X = np.asarray(X, dtype=float)
-    return np.concatenate([X, np.ones(X.shape[:-1] + (1,))], axis=-1)
+    return _homogeneous(vd.numbers(X, "to_homogeneous", "X"))
 
 
 def from_homogeneous(Xh, tol: float = 1e-12) -> np.ndarray:
@@ -224,11 +182,12 @@ def from_homogeneous(Xh, tol: float = 1e-12) -> np.ndarray:
     -------
     ndarray, shape (N, D)
     """
-    Xh = np.asarray(Xh, dtype=float)
+    f = "from_homogeneous"
+    Xh, tol = vd.numbers(Xh, f, "Xh"), checks.real(tol, f, "tol", low=0.0)
     w = Xh[..., -1:]
     bad = np.abs(w[..., 0]) <= tol * np.linalg.norm(Xh, axis=-1)
     if np.any(bad):
-        raise DegenerateGeometryError(f"from_homogeneous: {int(np.sum(bad))} point(s) at infinity (W = 0)")
+        raise degenerate(f, "Xh", f"{int(np.sum(bad))} point(s) at infinity (W = 0)")
     return Xh[..., :-1] / w
 
 
@@ -251,16 +210,19 @@ def project(P, X, return_depth: bool = False):
     depth : ndarray, shape (N,)
         Only when ``return_depth``.
     """
-    P = as_matrix(P, (3, 4), "project", "P")
-    X = as_batch(X, (3,), "project", "X")
-    lam_x = to_homogeneous(X) @ P.T
+    f = "project"
+    P, (X, _) = vd.camera(P, f), vd.batch(X, f, "X", (3,))
+    return_depth = checks.flag(return_depth, f, "return_depth")
+    lam_x = _homogeneous(X) @ P.T
     lam = lam_x[:, 2]
     if np.any(np.abs(lam) <= 1e-14 * np.linalg.norm(lam_x, axis=1)):
-        raise DegenerateGeometryError("project: a point lies on the camera's principal plane (projective depth 0)")
+        raise degenerate(f, "X", "a point lies on the camera's principal plane (projective depth 0)")
     x = lam_x[:, :2] / lam[:, None]
     if not return_depth:
         return x
     M = P[:, :3]
+    if abs(np.linalg.det(M)) < 1e-12 * np.linalg.norm(M) ** 3:
+        raise degenerate(f, "P", "is a camera at infinity (singular left 3x3 block): its points have no depth")
     depth = np.sign(np.linalg.det(M)) * lam / np.linalg.norm(M[2])
     return x, depth
 
@@ -277,13 +239,17 @@ def camera_center(P) -> np.ndarray:
     C : ndarray, shape (3,)
         Euclidean centre (raises for a camera at infinity).
     """
-    P = as_matrix(P, (3, 4), "camera_center", "P")
+    return _centre(vd.camera(P, "camera_center"), "camera_center", "P")
+
+
+def _centre(P, func: str, name: str) -> np.ndarray:
+    """The Euclidean centre of a checked camera P; errors name ``func`` and ``name``."""
     _, s, vt = np.linalg.svd(P)
     if s[2] <= 1e-12 * s[0]:
-        raise DegenerateGeometryError("camera_center: P has rank < 3")
+        raise degenerate(func, name, "has rank < 3: it is not a camera")
     c = vt[-1]
     if abs(c[3]) <= 1e-12 * np.linalg.norm(c):
-        raise DegenerateGeometryError("camera_center: the camera centre is at infinity (affine camera)")
+        raise degenerate(func, name, "the camera centre is at infinity (affine camera)")
     return c[:3] / c[3]
 
 
@@ -305,11 +271,15 @@ def optical_planes(P) -> np.ndarray:
     planes : ndarray, shape (3, 4)
         Row ``i`` is ``(n_x, n_y, n_z, d)`` with ``n . X + d = 0`` on plane i.
     """
-    P = as_matrix(P, (3, 4), "optical_planes", "P")
+    f = "optical_planes"
+    P = vd.camera(P, f)
     norms = np.linalg.norm(P[:, :3], axis=1)
     if np.any(norms == 0):
-        raise DegenerateGeometryError("optical_planes: a row of P has a zero normal")
-    return np.sign(np.linalg.det(P[:, :3])) * P / norms[:, None]
+        raise degenerate(f, "P", "a row has a zero normal (1:3)")
+    det = np.linalg.det(P[:, :3] / norms[:, None])
+    if abs(det) <= 1e-12:
+        raise degenerate(f, "P", "the left 3x3 block is singular (a camera at infinity): the planes have no front")
+    return np.sign(det) * P / norms[:, None]
 
 
 def pseudo_inverse(P) -> np.ndarray:
@@ -323,10 +293,13 @@ def pseudo_inverse(P) -> np.ndarray:
     -------
     ndarray, shape (4, 3)
     """
-    P = as_matrix(P, (3, 4), "pseudo_inverse", "P")
+    return _pinv(vd.camera(P, "pseudo_inverse"), "pseudo_inverse", "P")
+
+
+def _pinv(P, func: str, name: str) -> np.ndarray:
     PPt = P @ P.T
     if np.linalg.cond(PPt) > 1e14:
-        raise DegenerateGeometryError("pseudo_inverse: P P^T is singular (rank of P < 3)")
+        raise degenerate(func, name, "P P^T is singular (rank of P < 3)")
     return P.T @ np.linalg.inv(PPt)
 
 
@@ -347,11 +320,14 @@ def back_project(P, x):
     directions : ndarray, shape (N, 3)
         Unit directions, pointing in front of the camera.
     """
-    P = as_matrix(P, (3, 4), "back_project", "P")
-    x = as_batch(x, (2,), "back_project", "x")
-    C = camera_center(P)
+    f = "back_project"
+    return _back_project(vd.camera(P, f), vd.batch(x, f, "x", (2,))[0], f, "P")
+
+
+def _back_project(P, x, func: str, name: str):
+    C = _centre(P, func, name)
     Ch = np.append(C, 1.0)
-    A = to_homogeneous(x) @ pseudo_inverse(P).T  # P+ x, homogeneous 4-vectors
+    A = _homogeneous(x) @ _pinv(P, func, name).T  # P+ x, homogeneous 4-vectors
     # Point at infinity of the pencil A + lambda C: W_A C - W_C A has W = 0.
     d = A[:, 3:4] * Ch[None, :3] - A[:, :3]
     d /= np.linalg.norm(d, axis=1, keepdims=True)
@@ -378,22 +354,26 @@ def closest_points_on_rays(o1, d1, o2, d2, tol: float = 1e-12):
     p1, p2 : ndarray, shape (N, 3)
         The closest point on each line; ``|p1 - p2|`` is the rays' gap.
     """
-    func = "closest_points_on_rays"
-    o1, d1, o2, d2 = (as_batch(a, (3,), func, n) for a, n in ((o1, "o1"), (d1, "d1"), (o2, "o2"), (d2, "d2")))
-    if not len(o1) == len(d1) == len(o2) == len(d2):
-        raise InvalidInputError(f"{func}: inputs have different numbers of rows")
+    f = "closest_points_on_rays"
+    o1, d1, o2, d2 = (vd.batch(a, f, n, (3,))[0] for a, n in ((o1, "o1"), (d1, "d1"), (o2, "o2"), (d2, "d2")))
+    checks.same_length(f, o1=o1, d1=d1, o2=o2, d2=d2)
+    return _closest(o1, d1, o2, d2, checks.real(tol, f, "tol", low=0.0, high=1.0), f, ("d1", "d2"))
+
+
+def _closest(o1, d1, o2, d2, tol: float, func: str, names: tuple):
+    """The closest points of checked rays; errors name ``func`` and the ``names`` of the two directions."""
     n1 = np.linalg.norm(d1, axis=1, keepdims=True)
     n2 = np.linalg.norm(d2, axis=1, keepdims=True)
-    if np.any(n1 == 0) or np.any(n2 == 0):
-        raise DegenerateGeometryError(f"{func}: a direction is the zero vector")
+    for n, name in ((n1, names[0]), (n2, names[1])):
+        if np.any(n == 0):
+            raise degenerate(func, name, f"direction {int(np.flatnonzero(n == 0)[0])} is the zero vector")
     u1, u2 = d1 / n1, d2 / n2
     cross = np.cross(u1, u2)
     denom = np.sum(cross * cross, axis=1)  # sin^2 of the angle, free of cancellation
     parallel = np.flatnonzero(denom <= tol * tol)
     if parallel.size:
-        raise DegenerateGeometryError(
-            f"{func}: {parallel.size} pair(s) of parallel rays (first index {parallel[0]}); the point is at infinity"
-        )
+        problem = f"{parallel.size} pair(s) of parallel rays (first index {parallel[0]}); the point is at infinity"
+        raise degenerate(func, ", ".join(names), problem)
     w = o2 - o1
     b = np.sum(u1 * u2, axis=1)
     a1, a2 = np.sum(u1 * w, axis=1), np.sum(u2 * w, axis=1)
@@ -439,22 +419,23 @@ def triangulate(P1, P2, x1, x2, method: str = "midpoint") -> np.ndarray:
     >>> np.round(triangulate(P1, P2, project(P1, X), project(P2, X)), 12)
     array([[ 0.1, -0.2,  3. ]])
     """
-    func = "triangulate"
-    P1 = as_matrix(P1, (3, 4), func, "P1")
-    P2 = as_matrix(P2, (3, 4), func, "P2")
-    x1 = as_batch(x1, (2,), func, "x1")
-    x2 = as_batch(x2, (2,), func, "x2")
-    if len(x1) != len(x2):
-        raise InvalidInputError(f"{func}: x1 has {len(x1)} points but x2 has {len(x2)}")
-    if method not in ("midpoint", "dlt"):
-        raise InvalidInputError(f"{func}: method must be 'midpoint' or 'dlt', got {method!r}")
+    f = "triangulate"
+    P1, P2 = vd.camera(P1, f, "P1"), vd.camera(P2, f, "P2")
+    (x1, _), (x2, _) = vd.batch(x1, f, "x1", (2,)), vd.batch(x2, f, "x2", (2,))
+    checks.same_length(f, x1=x1, x2=x2)
+    method = checks.choice(method, f, "method", ("midpoint", "dlt"))
+    return vd.overflow(_triangulate(P1, P2, x1, x2, method, f), f, "x1, x2")
+
+
+def _triangulate(P1, P2, x1, x2, method: str, func: str) -> np.ndarray:
+    """:func:`triangulate` of checked arguments; errors name ``func``."""
     c1, c2 = (np.linalg.svd(P)[2][-1] for P in (P1, P2))  # homogeneous centres, P C = 0
     if np.linalg.svd(np.vstack([c1, c2]), compute_uv=False)[1] <= 1e-12:
-        raise DegenerateGeometryError(f"{func}: the cameras share their centre; there is no baseline")
+        raise degenerate(func, "P1, P2", "the cameras share their centre; there is no baseline")
     if method == "midpoint":
-        o1, d1 = back_project(P1, x1)
-        o2, d2 = back_project(P2, x2)
-        q1, q2 = closest_points_on_rays(o1, d1, o2, d2)
+        o1, d1 = _back_project(P1, x1, func, "P1")
+        o2, d2 = _back_project(P2, x2, func, "P2")
+        q1, q2 = _closest(o1, d1, o2, d2, 1e-12, func, ("x1", "x2"))
         return 0.5 * (q1 + q2)
     else:
         A = np.stack(
@@ -468,12 +449,10 @@ def triangulate(P1, P2, x1, x2, method: str = "midpoint") -> np.ndarray:
         )  # (N, 4, 4)
         _, s, vt = np.linalg.svd(A)
         if np.any(s[:, 2] <= 1e-12 * s[:, 0]):
-            raise DegenerateGeometryError(f"{func}: the linear system is rank deficient (cameras share their centre?)")
+            raise degenerate(func, "P1, P2", "the linear system is rank deficient (cameras share their centre?)")
         Xh = vt[:, -1, :]
         w = Xh[:, 3]
         far = np.flatnonzero(np.abs(w) <= 1e-12)
         if far.size:
-            raise DegenerateGeometryError(
-                f"{func}: {far.size} point(s) at infinity (parallel rays; first index {far[0]})"
-            )
+            raise degenerate(func, "x1, x2", f"{far.size} point(s) at infinity (parallel rays; first index {far[0]})")
         return Xh[:, :3] / w[:, None]

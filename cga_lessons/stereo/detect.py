@@ -62,10 +62,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
-from cga_lessons.checks import rows
+from cga_lessons import checks
+from cga_lessons.checks import fail
 
 from . import detect_models as dm
+from . import validate as vd
 from .detect_noise import as_noise_model
 from .detect_search import DetectedEntity, Search, merge
 
@@ -134,34 +135,34 @@ class DetectConfig:
     max_failures: int = 3
 
     def __post_init__(self):
-        f = "DetectConfig"
-        if not self.kinds or any(k not in dm.KINDS for k in self.kinds) or len(set(self.kinds)) != len(self.kinds):
-            raise InvalidInputError(f"{f}: kinds: a non-empty tuple of distinct {dm.KINDS}, got {self.kinds!r}")
+        f, put = "DetectConfig", lambda name, value: object.__setattr__(self, name, value)
+        kinds = checks.instance(self.kinds, f, "kinds", (tuple, list), f"a tuple of distinct kinds among {dm.KINDS}")
+        kinds = tuple(checks.choice(k, f, "kinds", dm.KINDS) for k in kinds)
+        if not kinds or len(set(kinds)) != len(kinds):
+            raise fail(f, "kinds", f"must be a non-empty tuple of distinct kinds among {dm.KINDS}, got {self.kinds!r}")
+        put("kinds", kinds)
         for name in ("confidence", "removal_confidence", "merge_fraction", "selection_confidence"):
-            v = getattr(self, name)
-            if not (isinstance(v, int | float) and 0.0 < v < 1.0):
-                raise InvalidInputError(f"{f}: {name}: must lie in (0, 1), got {v!r}")
+            put(name, checks.real(getattr(self, name), f, name, low=0.0, high=1.0, strict_low=True, strict_high=True))
         if self.removal_confidence < self.confidence:
-            raise InvalidInputError(f"{f}: removal_confidence: must be >= confidence ({self.confidence})")
+            raise fail(f, "removal_confidence", f"must be >= confidence ({self.confidence})")
         for name in ("hypotheses", "score_points", "refine_iterations", "min_surface_inliers", "min_curve_inliers",
                      "max_entities", "max_failures"):  # fmt: skip
-            v = getattr(self, name)
-            if not (isinstance(v, int | np.integer) and not isinstance(v, bool) and v >= 1):
-                raise InvalidInputError(f"{f}: {name}: must be a positive integer, got {v!r}")
-        if not self.neighbourhoods or any(not isinstance(k, int | np.integer) or k < 3 for k in self.neighbourhoods):
-            raise InvalidInputError(f"{f}: neighbourhoods: positive integers >= 3, got {self.neighbourhoods!r}")
+            put(name, checks.integer(getattr(self, name), f, name, low=1, high=10**9))
+        hoods = checks.instance(self.neighbourhoods, f, "neighbourhoods", (tuple, list, np.ndarray), "whole numbers")
+        hoods = tuple(checks.integer(k, f, "neighbourhoods", low=3, high=10**6) for k in np.ravel(hoods))
+        if not hoods:
+            raise fail(f, "neighbourhoods", "must hold at least one neighbourhood size")
+        put("neighbourhoods", hoods)
         for name in ("min_conditioning", "connect_factor", "significance", "selection_z"):
-            v = getattr(self, name)
-            if not (isinstance(v, int | float) and np.isfinite(v) and v >= 0):
-                raise InvalidInputError(f"{f}: {name}: must be a finite number >= 0, got {v!r}")
-        if self.connect_radius is not None and not (np.isfinite(self.connect_radius) and self.connect_radius > 0):
-            raise InvalidInputError(f"{f}: connect_radius: must be positive or None, got {self.connect_radius!r}")
+            put(name, checks.real(getattr(self, name), f, name, low=0.0, high=1e9))
+        if self.connect_radius is not None:
+            put("connect_radius", checks.real(self.connect_radius, f, "connect_radius", low=0.0, strict_low=True))
 
 
 def _check_cloud(X, func: str, at_least: int) -> np.ndarray:
-    X = rows(X, func, "X", 3, at_least=at_least)  # the shared check: numbers, shape (N, 3), finite, count
+    X = vd.array(X, func, "X", (None, 3), at_least=at_least)  # numbers, shape (N, 3), finite, bounded, count
     if np.ptp(X, axis=0).max() == 0:
-        raise InvalidInputError(f"{func}: X: all points coincide")
+        raise fail(func, "X", "all points coincide")
     return X
 
 
@@ -193,10 +194,8 @@ def detect_entities(X, rng: np.random.Generator, config: DetectConfig | None = N
     """
     func = "detect_entities"
     config = DetectConfig() if config is None else config
-    if not isinstance(config, DetectConfig):
-        raise InvalidInputError(f"{func}: config: must be a DetectConfig, got {type(config).__name__}")
-    if not isinstance(rng, np.random.Generator):
-        raise InvalidInputError(f"{func}: rng: must be a numpy.random.Generator, got {type(rng).__name__}")
+    checks.instance(config, func, "config", DetectConfig, "a DetectConfig")
+    vd.generator(rng, func)
     small = min(config.min_curve_inliers if dm.CODIM[k] == 2 else config.min_surface_inliers for k in config.kinds)
     X = _check_cloud(X, func, max(small, max(dm.MINIMAL.values()) + 1))
     from scipy.spatial import cKDTree

@@ -29,9 +29,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
+from cga_lessons.algebra import GeometryError
+from cga_lessons.checks import degenerate, fail
 
 from . import camera as cam
+from . import validate as vd
 
 __all__ = ["NoiseModel", "as_noise_model", "estimate_noise", "triangulation_covariance", "chi2_gate"]
 
@@ -132,26 +135,21 @@ def as_noise_model(noise, X: np.ndarray, func: str) -> NoiseModel:
             return as_noise_model(noise.cov, X, func)
         return as_noise_model(noise.sigma, X, func) if noise.source != "estimated" else noise
     if noise is None:
-        return NoiseModel(estimate_noise(X), None, "estimated")
+        try:
+            return NoiseModel(estimate_noise(X), None, "estimated")
+        except GeometryError as exc:
+            raise degenerate(func, "noise", f"cannot be estimated from the cloud: {exc}") from None
     try:
-        arr = None if isinstance(noise, str | bytes | bool) else np.asarray(noise, dtype=float)
-    except (TypeError, ValueError):
-        arr = None
-    if arr is None:
-        raise InvalidInputError(f"{func}: noise: must be a number, an (N, 3, 3) array or None, got {noise!r:.40}")
-    if arr.ndim == 0:
-        s = float(arr)
-        if not (np.isfinite(s) and s > 0):
-            raise InvalidInputError(f"{func}: noise: sigma must be positive and finite, got {s}")
-        return NoiseModel(s, None, "given")
-    if arr.shape != (len(X), 3, 3):
-        raise InvalidInputError(f"{func}: noise: covariances must have shape ({len(X)}, 3, 3), got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise InvalidInputError(f"{func}: noise: covariances contain NaN or inf")
+        scalar = isinstance(noise, (str, bytes)) or np.ndim(noise) == 0
+    except ValueError:  # ragged rows: the array check says so
+        scalar = False
+    if scalar:
+        return NoiseModel(checks.real(noise, func, "noise", low=0.0, strict_low=True, high=vd.LIMIT), None, "given")
+    arr = vd.array(noise, func, "noise", (len(X), 3, 3))
     if not np.allclose(arr, np.swapaxes(arr, 1, 2), rtol=1e-9, atol=1e-18):
-        raise InvalidInputError(f"{func}: noise: covariances must be symmetric")
+        raise fail(func, "noise", "covariances must be symmetric")
     if np.any(np.linalg.eigvalsh(arr)[:, 0] <= 0):
-        raise InvalidInputError(f"{func}: noise: covariances must be positive definite")
+        raise fail(func, "noise", "covariances must be positive definite")
     return NoiseModel(None, arr, "covariances")
 
 
@@ -168,15 +166,15 @@ def estimate_noise(X, k: int = 16) -> float:
     """
     from scipy.spatial import cKDTree
 
-    X = np.asarray(X, dtype=float)
-    if X.ndim != 2 or X.shape[1] != 3 or len(X) <= k:
-        raise InvalidInputError(f"estimate_noise: X: need an (N, 3) cloud with N > k = {k}, got shape {X.shape}")
+    f = "estimate_noise"
+    k = checks.integer(k, f, "k", low=4)
+    X = vd.array(X, f, "X", (None, 3), at_least=k + 1)
     _, nb = cKDTree(X).query(X, k=k)
     P = X[nb] - X[nb].mean(axis=1, keepdims=True)
     lam = np.linalg.eigvalsh(np.einsum("nki,nkj->nij", P, P) / k)[:, 0]
     s = float(np.sqrt(np.median(lam) * k / (k - 3)))
     if not s > 0:
-        raise InvalidInputError("estimate_noise: X: the points are noise-free (sigma = 0); give noise explicitly")
+        raise degenerate(f, "X", "the points are noise-free (sigma = 0); give noise explicitly")
     return s
 
 
@@ -198,11 +196,19 @@ def triangulation_covariance(P1, P2, x1, x2, sigma_px: float, method: str = "mid
     sigma_px : float
         Pixel noise (standard deviation per coordinate), > 0.
     """
-    s = float(sigma_px) if np.isscalar(sigma_px) else np.nan
-    if not (np.isfinite(s) and s > 0):
-        raise InvalidInputError(f"triangulation_covariance: sigma_px: must be positive and finite, got {sigma_px!r}")
-    x1 = np.asarray(x1, dtype=float)
-    x2 = np.asarray(x2, dtype=float)
+    f = "triangulation_covariance"
+    P1, P2 = vd.camera(P1, f, "P1"), vd.camera(P2, f, "P2")
+    (x1, _), (x2, _) = vd.batch(x1, f, "x1", (2,)), vd.batch(x2, f, "x2", (2,))
+    checks.same_length(f, x1=x1, x2=x2)
+    s = checks.real(sigma_px, f, "sigma_px", low=0.0, strict_low=True, high=vd.LIMIT)
+    method = checks.choice(method, f, "method", ("midpoint", "dlt"))
+    try:
+        return vd.overflow(_covariance(P1, P2, x1, x2, s, method), f, "sigma_px")
+    except GeometryError as exc:
+        raise degenerate(f, "P1, P2, x1, x2", f"the points cannot be triangulated: {exc}") from None
+
+
+def _covariance(P1, P2, x1, x2, s: float, method: str) -> np.ndarray:
     h = 1e-3  # pixels: the triangulation is smooth, central differences are exact to ~h^2
     cols = []
     for view in (0, 1):
@@ -221,6 +227,8 @@ def chi2_gate(dof: int, confidence: float) -> float:
     """The ``confidence`` quantile of chi-square with ``dof`` degrees of freedom (the inlier gate on m)."""
     from scipy.special import chdtri  # inverse survival function of chi-square
 
-    if not 0.0 < confidence < 1.0:
-        raise InvalidInputError(f"chi2_gate: confidence: must lie in (0, 1), got {confidence!r}")
+    dof = checks.integer(dof, "chi2_gate", "dof", low=1)
+    confidence = checks.real(
+        confidence, "chi2_gate", "confidence", low=0.0, high=1.0, strict_low=True, strict_high=True
+    )
     return float(chdtri(dof, 1.0 - confidence))

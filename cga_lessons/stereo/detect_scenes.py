@@ -29,11 +29,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
+from cga_lessons import checks
+from cga_lessons.algebra import DegenerateGeometryError, GeometryError
+from cga_lessons.checks import degenerate
 
 from . import camera as cam
 from . import head as st
+from . import validate as vd
 from .detect_noise import triangulation_covariance
+from .detect_search import DetectedEntity
 from .experiments import random_points_in_view
 from .rig import StereoRig, stereo_head
 
@@ -76,6 +80,21 @@ class SceneConfig:
     image_size: tuple = (1600, 1200)
     tilt: float = 0.3
 
+    def __post_init__(self):
+        f, big = "SceneConfig", 10**7
+        for name in ("n_planes", "n_spheres", "n_circles", "n_lines", "clutter"):
+            object.__setattr__(self, name, checks.integer(getattr(self, name), f, name, low=0, high=big))
+        for name in ("plane_sides", "sphere_radius", "circle_radius", "line_length", "depth"):
+            object.__setattr__(self, name, vd.interval(getattr(self, name), f, name, "a range (low, high)"))
+        for name in ("surface_density", "curve_density", "baseline", "focal_px", "noise_px"):
+            object.__setattr__(
+                self, name, checks.real(getattr(self, name), f, name, low=0.0, strict_low=True, high=1e9)
+            )
+        for name in ("gap", "noise_m"):
+            object.__setattr__(self, name, checks.real(getattr(self, name), f, name, low=0.0, high=1e9))
+        object.__setattr__(self, "image_size", vd.image_size(self.image_size, f))
+        object.__setattr__(self, "tilt", checks.real(self.tilt, f, "tilt"))
+
 
 @dataclass(frozen=True, eq=False)
 class TruthEntity:
@@ -114,7 +133,12 @@ class DetectScene:
 
 def scene_rig(cfg: SceneConfig) -> StereoRig:
     """The stereo head of ``cfg`` (at 1.2 m height, looking along +x, tilted down by ``cfg.tilt``)."""
-    return stereo_head(cfg.baseline, cfg.focal_px, tuple(cfg.image_size), tilt=cfg.tilt)
+    f = "scene_rig"
+    cfg = checks.instance(cfg, f, "cfg", SceneConfig, "a SceneConfig")
+    try:
+        return stereo_head(cfg.baseline, cfg.focal_px, tuple(cfg.image_size), tilt=cfg.tilt)
+    except GeometryError as exc:
+        raise degenerate(f, "cfg", f"describes no valid stereo head: {exc}") from None
 
 
 def _unit(v):
@@ -207,15 +231,20 @@ def _entities(rng, rig, cfg):
     return out
 
 
-def _assemble(rng, rig, cfg):
+def _assemble(rng, rig, cfg, func: str):
     for attempt in range(20):  # a crowded layout can fail: start it again (same generator, so still seeded)
         try:
             ents = _entities(rng, rig, cfg)
             break
         except DegenerateGeometryError:
             if attempt == 19:
-                raise
-    clutter = random_points_in_view(rig, cfg.clutter, rng, depth=cfg.depth) if cfg.clutter else np.empty((0, 3))
+                raise degenerate(
+                    func, "cfg", "could not place the entities in view; use fewer or smaller ones"
+                ) from None
+    try:
+        clutter = random_points_in_view(rig, cfg.clutter, rng, depth=cfg.depth) if cfg.clutter else np.empty((0, 3))
+    except GeometryError as exc:
+        raise degenerate(func, "cfg", f"no clutter can be placed: {exc}") from None
     X = np.vstack([e[3] for e in ents] + [clutter])
     labels = np.concatenate([np.full(len(e[3]), i) for i, e in enumerate(ents)] + [np.full(len(clutter), -1)])
     order = rng.permutation(len(X))  # no information in the order of the points
@@ -225,18 +254,16 @@ def _assemble(rng, rig, cfg):
 
 
 def _check(cfg, rng, func):
-    if not isinstance(cfg, SceneConfig):
-        raise InvalidInputError(f"{func}: cfg: must be a SceneConfig, got {type(cfg).__name__}")
-    if not isinstance(rng, np.random.Generator):
-        raise InvalidInputError(f"{func}: rng: must be a numpy.random.Generator, got {type(rng).__name__}")
+    checks.instance(cfg, func, "cfg", SceneConfig, "a SceneConfig")
+    vd.generator(rng, func)
 
 
 def cloud_scene(rng: np.random.Generator, cfg: SceneConfig | None = None) -> DetectScene:
     """A scene whose points carry isotropic Gaussian noise ``cfg.noise_m`` (metres); ``noise`` is that sigma."""
-    cfg = cfg or SceneConfig()
+    cfg = SceneConfig() if cfg is None else cfg
     _check(cfg, rng, "cloud_scene")
     rig = scene_rig(cfg)
-    X, labels, truth = _assemble(rng, rig, cfg)
+    X, labels, truth = _assemble(rng, rig, cfg, "cloud_scene")
     noisy = X + rng.normal(scale=cfg.noise_m, size=X.shape)
     return DetectScene(noisy, X, labels, truth, float(cfg.noise_m), rig)
 
@@ -246,10 +273,13 @@ def stereo_scene(rng: np.random.Generator, cfg: SceneConfig | None = None, rig: 
 
     ``noise`` is the (N, 3, 3) first-order covariance of each triangulated point.
     """
-    cfg = cfg or SceneConfig()
-    _check(cfg, rng, "stereo_scene")
+    f = "stereo_scene"
+    cfg = SceneConfig() if cfg is None else cfg
+    _check(cfg, rng, f)
+    if rig is not None:
+        rig = checks.instance(rig, f, "rig", StereoRig, "a StereoRig (stereo_head, random_rig, load_rig) or None")
     rig = rig or scene_rig(cfg)
-    X, labels, truth = _assemble(rng, rig, cfg)
+    X, labels, truth = _assemble(rng, rig, cfg, f)
     x1, x2 = st.observe(rig, X, cfg.noise_px, rng)
     Y = cam.triangulate(rig.P1, rig.P2, x1, x2)
     cov = triangulation_covariance(rig.P1, rig.P2, x1, x2, cfg.noise_px)
@@ -302,7 +332,15 @@ def evaluate(scene: DetectScene, detections, position_tol: float | None = None) 
         ``"all"`` (the same over every kind), ``"matches"`` (list of
         ``(detection index, truth index, errors)``) and ``"tolerance"``.
     """
-    tol = 4.0 * scene.noise_scale() if position_tol is None else float(position_tol)
+    f = "evaluate"
+    scene = checks.instance(scene, f, "scene", DetectScene, "a DetectScene (stereo_scene, cloud_scene)")
+    detections = checks.instance(detections, f, "detections", (list, tuple), "a list of DetectedEntity")
+    for d in detections:
+        checks.instance(d, f, "detections", DetectedEntity, "DetectedEntity items (detect_entities)")
+    if position_tol is None:
+        tol = 4.0 * scene.noise_scale()
+    else:
+        tol = checks.real(position_tol, f, "position_tol", low=0.0, high=vd.LIMIT)
     used, matches = set(), []
     for i, det in enumerate(detections):
         cands = []

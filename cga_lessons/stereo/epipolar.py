@@ -2,17 +2,19 @@
 
 ``x2^T F x1 = 0`` (A.6) for corresponding pixels ``x1`` (view 1) and ``x2``
 (view 2).  Estimates are returned with unit Frobenius norm, and the sign that
-makes positive the first entry (row by row) larger than half the largest one.  The names are also available
-from :mod:`cga_lessons.stereo.camera`.
+makes positive the first entry (row by row) larger than half the largest one.  Two-view geometry builds on the
+one-camera model of :mod:`cga_lessons.stereo.camera` (which does not import this module).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
+from cga_lessons import checks
+from cga_lessons.checks import degenerate
 
-from .camera import as_batch, as_matrix, pseudo_inverse, to_homogeneous
+from . import validate as vd
+from .camera import pseudo_inverse
 
 __all__ = [
     "skew",
@@ -27,6 +29,26 @@ __all__ = [
 ]
 
 
+def _h(x: np.ndarray) -> np.ndarray:
+    """Checked pixels (N, 2) as homogeneous (N, 3)."""
+    return np.column_stack([x, np.ones(len(x))])
+
+
+def _pixels(x1, x2, func: str):
+    """Two checked batches of corresponding pixels (N, 2) of one length."""
+    (x1, _), (x2, _) = vd.batch(x1, func, "x1", (2,)), vd.batch(x2, func, "x2", (2,))
+    checks.same_length(func, x1=x1, x2=x2)
+    return x1, x2
+
+
+def _fundamental(F, func: str, name: str = "F") -> np.ndarray:
+    """A checked (3, 3) matrix that is not zero."""
+    F = vd.array(F, func, name, (3, 3))
+    if not np.any(F):
+        raise degenerate(func, name, "is the zero matrix")
+    return F
+
+
 def skew(v) -> np.ndarray:
     """Cross-product matrix ``[v]_x`` with ``[v]_x w = v x w``, Eq. (A.12).
 
@@ -38,7 +60,7 @@ def skew(v) -> np.ndarray:
     -------
     ndarray, shape (3, 3)
     """
-    a, b, c = as_matrix(v, (3,), "skew", "v")
+    a, b, c = vd.array(v, "skew", "v", (3,))
     return np.array([[0.0, -c, b], [c, 0.0, -a], [-b, a, 0.0]])
 
 
@@ -56,10 +78,10 @@ def eight_point_matrix(x1, x2) -> np.ndarray:
     -------
     Z : ndarray, shape (N, 9)
     """
-    x1 = as_batch(x1, (2,), "eight_point_matrix", "x1")
-    x2 = as_batch(x2, (2,), "eight_point_matrix", "x2")
-    if len(x1) != len(x2):
-        raise InvalidInputError(f"eight_point_matrix: x1 has {len(x1)} points but x2 has {len(x2)}")
+    return _z(*_pixels(x1, x2, "eight_point_matrix"))
+
+
+def _z(x1, x2) -> np.ndarray:
     x, y = x1[:, 0], x1[:, 1]
     xp, yp = x2[:, 0], x2[:, 1]
     one = np.ones_like(x)
@@ -84,11 +106,15 @@ def hartley_normalization(x):
     xn : ndarray, shape (N, 2)
         The normalised points.
     """
-    x = as_batch(x, (2,), "hartley_normalization", "x")
+    f = "hartley_normalization"
+    return _hartley(vd.batch(x, f, "x", (2,), at_least=1)[0], f, "x")
+
+
+def _hartley(x, func: str, name: str):
     c = x.mean(axis=0)
     mean_dist = np.mean(np.linalg.norm(x - c, axis=1))
     if mean_dist <= 1e-12 * max(1.0, np.abs(c).max()):
-        raise DegenerateGeometryError("hartley_normalization: all points coincide")
+        raise degenerate(func, name, "all points coincide")
     s = np.sqrt(2.0) / mean_dist
     T = np.array([[s, 0.0, -s * c[0]], [0.0, s, -s * c[1]], [0.0, 0.0, 1.0]])
     return T, (x - c) * s
@@ -134,31 +160,31 @@ def fundamental_8point(x1, x2, normalize: bool = True, rank2: bool = True) -> np
         space of Z is not one-dimensional (all points on a line, all scene
         points on one plane, repeated points).
     """
-    func = "fundamental_8point"
-    x1 = as_batch(x1, (2,), func, "x1")
-    x2 = as_batch(x2, (2,), func, "x2")
-    if len(x1) != len(x2):
-        raise InvalidInputError(f"{func}: x1 has {len(x1)} points but x2 has {len(x2)}")
+    f = "fundamental_8point"
+    x1, x2 = _pixels(x1, x2, f)
+    normalize, rank2 = checks.flag(normalize, f, "normalize"), checks.flag(rank2, f, "rank2")
     if len(x1) < 8:
-        raise DegenerateGeometryError(f"{func}: need at least 8 correspondences, got {len(x1)}")
-    T1, n1 = hartley_normalization(x1)
-    T2, n2 = hartley_normalization(x2)
+        raise degenerate(f, "x1, x2", f"need at least 8 correspondences, got {len(x1)}")
+    T1, n1 = _hartley(x1, f, "x1")
+    T2, n2 = _hartley(x2, f, "x2")
     # Degeneracy is judged on the well-conditioned (normalised) system.
-    s_n = np.linalg.svd(eight_point_matrix(n1, n2), compute_uv=False)
+    s_n = np.linalg.svd(_z(n1, n2), compute_uv=False)
     if s_n[7] <= 1e-9 * s_n[0]:
-        raise DegenerateGeometryError(
-            f"{func}: the correspondences are degenerate (null space of Z has dimension > 1, "
-            f"singular values {s_n[7]:.1e} / {s_n[0]:.1e}): points collinear, coplanar in space, or repeated"
+        raise degenerate(
+            f,
+            "x1, x2",
+            f"the correspondences are degenerate (null space of Z has dimension > 1, singular values "
+            f"{s_n[7]:.1e} / {s_n[0]:.1e}): points collinear, coplanar in space, or repeated",
         )
     a, b = (n1, n2) if normalize else (x1, x2)
-    _, _, vt = np.linalg.svd(eight_point_matrix(a, b))
+    _, _, vt = np.linalg.svd(_z(a, b))
     F = vt[-1].reshape(3, 3)
     if rank2:
         u, s, vt = np.linalg.svd(F)
         F = u @ np.diag([s[0], s[1], 0.0]) @ vt
     if normalize:
         F = T2.T @ F @ T1
-    return _canonical_sign(F)
+    return vd.overflow(_canonical_sign(F), f, "x1, x2")
 
 
 def fundamental_from_cameras(P1, P2) -> np.ndarray:
@@ -176,14 +202,12 @@ def fundamental_from_cameras(P1, P2) -> np.ndarray:
     F : ndarray, shape (3, 3)
         Unit Frobenius norm, sign as in the module docstring.
     """
-    P1 = as_matrix(P1, (3, 4), "fundamental_from_cameras", "P1")
-    P2 = as_matrix(P2, (3, 4), "fundamental_from_cameras", "P2")
+    f = "fundamental_from_cameras"
+    P1, P2 = vd.camera(P1, f, "P1"), vd.camera(P2, f, "P2")
     _, s, vt = np.linalg.svd(P1)
-    if s[2] <= 1e-12 * s[0]:
-        raise DegenerateGeometryError("fundamental_from_cameras: P1 has rank < 3")
     e2 = P2 @ vt[-1]
     if np.linalg.norm(e2) <= 1e-12 * np.linalg.norm(P2):
-        raise DegenerateGeometryError("fundamental_from_cameras: the two cameras have the same centre (no baseline)")
+        raise degenerate(f, "P1, P2", "the two cameras have the same centre (no baseline)")
     return _canonical_sign(skew(e2) @ P2 @ pseudo_inverse(P1))
 
 
@@ -199,10 +223,13 @@ def epipoles(F):
     e1, e2 : ndarray, shape (3,)
         Homogeneous unit vectors: the epipole in image 1 and in image 2.
     """
-    F = as_matrix(F, (3, 3), "epipoles", "F")
+    return _epipoles(_fundamental(F, "epipoles"), "epipoles")
+
+
+def _epipoles(F, func: str):
     u, s, vt = np.linalg.svd(F)
     if s[1] <= 1e-12 * s[0]:
-        raise DegenerateGeometryError("epipoles: F has rank < 2")
+        raise degenerate(func, "F", "has rank < 2")
     return vt[-1], u[:, -1]
 
 
@@ -222,12 +249,15 @@ def epipolar_lines(F, x1) -> np.ndarray:
         ``(a, b, c)`` with ``a x + b y + c = 0`` and ``a^2 + b^2 = 1``, so
         ``lines @ [x, y, 1]`` is a signed distance in pixels.
     """
-    F = as_matrix(F, (3, 3), "epipolar_lines", "F")
-    x1 = as_batch(x1, (2,), "epipolar_lines", "x1")
-    lines = to_homogeneous(x1) @ F.T
+    f = "epipolar_lines"
+    return _lines(_fundamental(F, f), vd.batch(x1, f, "x1", (2,))[0], f, "x1")
+
+
+def _lines(F, x, func: str, name: str) -> np.ndarray:
+    lines = _h(x) @ F.T
     n = np.linalg.norm(lines[:, :2], axis=1, keepdims=True)
     if np.any(n == 0):
-        raise DegenerateGeometryError("epipolar_lines: a point maps to no line (it is the epipole)")
+        raise degenerate(func, name, f"point {int(np.flatnonzero(n == 0)[0])} maps to no line (it is the epipole)")
     return lines / n
 
 
@@ -246,12 +276,13 @@ def epipolar_distance(F, x1, x2) -> np.ndarray:
     -------
     ndarray, shape (N,)
     """
-    F = as_matrix(F, (3, 3), "epipolar_distance", "F")
-    l2 = epipolar_lines(F, x1)
-    l1 = epipolar_lines(F.T, x2)
-    d2 = np.abs(np.sum(l2 * to_homogeneous(as_batch(x2, (2,), "epipolar_distance", "x2")), axis=1))
-    d1 = np.abs(np.sum(l1 * to_homogeneous(as_batch(x1, (2,), "epipolar_distance", "x1")), axis=1))
-    return 0.5 * (d1 + d2)
+    f = "epipolar_distance"
+    F = _fundamental(F, f)
+    x1, x2 = _pixels(x1, x2, f)
+    l2, l1 = _lines(F, x1, f, "x1"), _lines(F.T, x2, f, "x2")
+    d2 = np.abs(np.sum(l2 * _h(x2), axis=1))
+    d1 = np.abs(np.sum(l1 * _h(x1), axis=1))
+    return vd.overflow(0.5 * (d1 + d2), f, "x1, x2")
 
 
 def cameras_from_fundamental(F, v=(0.0, 0.0, 0.0), lam: float = 1.0):
@@ -275,14 +306,15 @@ def cameras_from_fundamental(F, v=(0.0, 0.0, 0.0), lam: float = 1.0):
     -------
     P1, P2 : ndarray, shape (3, 4)
     """
-    F = as_matrix(F, (3, 3), "cameras_from_fundamental", "F")
-    v = as_matrix(v, (3,), "cameras_from_fundamental", "v")
-    if lam == 0 or not np.isfinite(lam):
-        raise InvalidInputError(f"cameras_from_fundamental: lam must be a non-zero number, got {lam}")
+    f = "cameras_from_fundamental"
+    F, v = _fundamental(F, f), vd.array(v, f, "v", (3,))
+    lam = checks.real(lam, f, "lam")
+    if lam == 0 or abs(lam) > vd.LIMIT:
+        raise checks.fail(f, "lam", f"must be a non-zero number of magnitude at most {vd.LIMIT:.0e}, got {lam}")
     s = np.linalg.svd(F, compute_uv=False)
     if s[2] > 1e-8 * s[0]:
-        raise DegenerateGeometryError(f"cameras_from_fundamental: F must have rank 2 (s3/s1 = {s[2] / s[0]:.1e})")
-    _, e2 = epipoles(F)
+        raise degenerate(f, "F", f"must have rank 2 (s3/s1 = {s[2] / s[0]:.1e})")
+    _, e2 = _epipoles(F, f)
     P1 = np.hstack([np.eye(3), np.zeros((3, 1))])
     P2 = np.hstack([skew(e2) @ F + np.outer(e2, v), lam * e2[:, None]])
     return P1, P2

@@ -13,11 +13,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from cga_lessons import conformal
+from cga_lessons import checks, conformal
+from cga_lessons.algebra import GeometryError
+from cga_lessons.checks import degenerate, fail
 
 from . import camera as cam
 from . import epipolar as epi
 from . import head as st
+from . import validate as vd
 from .rig import StereoRig
 
 __all__ = [
@@ -36,15 +39,34 @@ def random_points_in_view(rig: StereoRig, n: int, rng: np.random.Generator, dept
     -------
     ndarray, shape (n, 3)
     """
+    f = "random_points_in_view"
+    rig, rng = _rig(rig, f), vd.generator(rng, f)
+    n, depth = checks.integer(n, f, "n", low=0, high=10**7), vd.depth_range(depth, f)
+    return _in_view(rig, n, rng, depth, f)
+
+
+def _rig(rig, func: str) -> StereoRig:
+    return checks.instance(rig, func, "rig", StereoRig, "a StereoRig (stereo_head, random_rig, load_rig)")
+
+
+def _count(n, func: str, name: str, low: int = 1) -> int:
+    return checks.integer(n, func, name, low=low, high=10**7)
+
+
+def _in_view(rig: StereoRig, n: int, rng, depth: tuple, func: str) -> np.ndarray:
     w, h = rig.image_size
     Kinv = np.linalg.inv(rig.K)
     out = np.empty((0, 3))
-    while len(out) < n:
+    for _ in range(300):  # rounds of 2n candidates: the view holds more than 1/600 of them, or no point at all
+        if len(out) >= n:
+            break
         m = 2 * n
         pix = np.column_stack([rng.uniform(0, w - 1, m), rng.uniform(0, h - 1, m), np.ones(m)])
         rays = (rig.R1.T @ Kinv @ pix.T).T  # depth-1 rays (camera z = 1)
         X = rig.C1 + rng.uniform(*depth, size=(m, 1)) * rays
         out = np.vstack([out, X[rig.in_view(X)]])
+    if len(out) < n:
+        raise degenerate(func, "depth", f"no point at depths {depth} is seen by both cameras of the rig")
     return out[:n]
 
 
@@ -65,12 +87,23 @@ def fundamental_comparison(rig: StereoRig, rng: np.random.Generator, n_points=20
         relative to the middle one; median), ``cond_Z`` (condition number
         sigma_1/sigma_8 of the system (A.9) that was solved; median).
     """
+    f = "fundamental_comparison"
+    rig, rng, trials = _rig(rig, f), vd.generator(rng, f), _count(trials, f, "trials")
+    n_points, n_test = _count(n_points, f, "n_points", 8), _count(n_test, f, "n_test")
+    noise_px = checks.real(noise_px, f, "noise_px", low=0.0, high=1e6)
+    try:
+        return _comparison(rig, rng, n_points, noise_px, trials, n_test, f)
+    except GeometryError as exc:  # pixel noise so large that the correspondences degenerate
+        raise degenerate(f, "noise_px", f"the noisy correspondences are degenerate: {exc}") from None
+
+
+def _comparison(rig, rng, n_points, noise_px, trials, n_test, func):
     F_true = rig.F
     res: dict = {}
     for _ in range(trials):
-        X = random_points_in_view(rig, n_points, rng)
+        X = _in_view(rig, n_points, rng, (1.0, 6.0), func)
         x1, x2 = st.observe(rig, X, noise_px, rng)
-        y1, y2 = rig.project(random_points_in_view(rig, n_test, rng))
+        y1, y2 = rig.project(_in_view(rig, n_test, rng, (1.0, 6.0), func))
         for normalize in (True, False):
             a, b = (epi.hartley_normalization(x1)[1], epi.hartley_normalization(x2)[1]) if normalize else (x1, x2)
             s = np.linalg.svd(epi.eight_point_matrix(a, b), compute_uv=False)
@@ -103,12 +136,25 @@ def triangulation_error_curve(rig: StereoRig, rng: np.random.Generator, noise_le
         and ``"predicted"`` (K,), the first-order depth error of a parallel rig,
         ``sigma_Z = Z^2 sqrt(2) sigma / (f b)`` (RMS over the points).
     """
-    X = random_points_in_view(rig, n_points, rng, depth)
-    out = {"noise_px": np.asarray(noise_levels, float), "midpoint": [], "dlt": [], "difference": []}
+    f = "triangulation_error_curve"
+    rig, rng, n_points, depth = (
+        _rig(rig, f),
+        vd.generator(rng, f),
+        _count(n_points, f, "n_points"),
+        vd.depth_range(depth, f),
+    )
+    noise_levels = vd.array(noise_levels, f, "noise_levels", (None,), at_least=1)
+    if np.any(noise_levels < 0) or np.any(noise_levels > 1e6):
+        raise fail(f, "noise_levels", "must lie between 0 and 1e6 pixels")
+    X = _in_view(rig, n_points, rng, depth, f)
+    out = {"noise_px": noise_levels, "midpoint": [], "dlt": [], "difference": []}
     for s in out["noise_px"]:
         x1, x2 = st.observe(rig, X, s, rng)
-        pm = cam.triangulate(rig.P1, rig.P2, x1, x2, "midpoint")
-        pd = cam.triangulate(rig.P1, rig.P2, x1, x2, "dlt")
+        try:
+            pm = cam.triangulate(rig.P1, rig.P2, x1, x2, "midpoint")
+            pd = cam.triangulate(rig.P1, rig.P2, x1, x2, "dlt")
+        except GeometryError as exc:  # noise so large that rays turn parallel
+            raise degenerate(f, "noise_levels", f"the noisy views cannot be triangulated: {exc}") from None
         out["midpoint"].append(np.sqrt(np.mean(np.sum((pm - X) ** 2, axis=1))))
         out["dlt"].append(np.sqrt(np.mean(np.sum((pd - X) ** 2, axis=1))))
         out["difference"].append(np.sqrt(np.mean(np.sum((pd - pm) ** 2, axis=1))))
@@ -146,6 +192,20 @@ def entity_error_table(rig: StereoRig, scene: st.StereoScene, rng: np.random.Gen
         estimated line or plane), ``radius_mm``, ``angle_deg`` (normal or direction); NaN where
         a quantity does not apply.
     """
+    f = "entity_error_table"
+    rig, scene, rng = (
+        _rig(rig, f),
+        checks.instance(scene, f, "scene", st.StereoScene, "a StereoScene"),
+        vd.generator(rng, f),
+    )
+    noise_px, trials = checks.real(noise_px, f, "noise_px", low=0.0, high=1e6), _count(trials, f, "trials")
+    try:
+        return _error_table(rig, scene, rng, noise_px, trials)
+    except GeometryError as exc:
+        raise degenerate(f, "scene, rig, noise_px", f"the noisy views give degenerate entities: {exc}") from None
+
+
+def _error_table(rig, scene, rng, noise_px, trials):
     truth = scene.truth()
     errs: dict = {r: {"position_mm": [], "radius_mm": [], "angle_deg": []} for r in _ROWS}
     keys = ["points", "segment", "circle_key", "plane_key", "sphere_key"]
@@ -196,7 +256,16 @@ def format_table(rows, columns, formats=None) -> str:
     formats : dict, optional
         ``key -> format spec`` (e.g. ``".2f"``); strings and bools print as they are.
     """
-    formats = formats or {}
+    f = "format_table"
+    rows = checks.instance(rows, f, "rows", (list, tuple), "a list of dicts")
+    columns = checks.instance(columns, f, "columns", (list, tuple), "a list of keys (strings)")
+    columns = [checks.text(k, f, "columns", empty=True) for k in columns]
+    formats = {} if formats is None else checks.instance(formats, f, "formats", dict, "a dict key -> format spec")
+    for i, row in enumerate(rows):
+        checks.instance(row, f, "rows", dict, f"a dict in row {i}")
+        missing = [k for k in columns if k not in row]
+        if missing:
+            raise fail(f, "rows, columns", f"row {i} has no {', '.join(map(repr, missing))}")
 
     def cell(row, k):
         v = row[k]
@@ -204,10 +273,14 @@ def format_table(rows, columns, formats=None) -> str:
             return "-"
         if isinstance(v, bool | np.bool_) or isinstance(v, str):
             return str(v)
-        return format(v, formats.get(k, ".3g"))
+        try:
+            return format(v, formats.get(k, ".3g"))
+        except (TypeError, ValueError) as exc:
+            spec = formats.get(k, ".3g")
+            raise fail(f, "rows, formats", f"cannot format {v!r:.30} of column {k!r} as {spec!r:.20} ({exc})") from None
 
     cells = [[cell(r, k) for k in columns] for r in rows]
-    widths = [max(len(k), *(len(c[i]) for c in cells)) for i, k in enumerate(columns)]
+    widths = [max([len(k), *(len(c[i]) for c in cells)]) for i, k in enumerate(columns)]
     lines = ["  ".join(k.ljust(w) for k, w in zip(columns, widths))]
     lines.append("  ".join("-" * w for w in widths))
     for c in cells:

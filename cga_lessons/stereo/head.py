@@ -21,17 +21,19 @@ Companion modules: :mod:`cga_lessons.stereo.rig` (the head),
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
+from cga_lessons import checks
 from cga_lessons import conformal as cga
-from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
-from cga_lessons.paths import data_path
+from cga_lessons.algebra import GeometryError
+from cga_lessons.checks import degenerate, fail
 
 from . import camera as cam
+from . import validate as vd
+from .accuracy import entity_errors
+from .polylines import circle_polyline, frame, line_polyline, square_polyline
 from .rig import StereoRig
 
 __all__ = [
@@ -50,24 +52,16 @@ __all__ = [
 
 
 # ---------------------------------------------------------------- the scene
-def _unit(v, func: str = "stereo") -> np.ndarray:
-    v = np.asarray(v, dtype=float)
-    if v.shape != (3,) or not np.all(np.isfinite(v)):
-        raise InvalidInputError(f"{func}: a direction must be 3 finite numbers, got {v!r}")
-    n = np.linalg.norm(v)
-    if n == 0:
-        raise DegenerateGeometryError(f"{func}: the zero vector is not a direction")
-    return v / n
+def _unit(v, func: str = "stereo", name: str = "direction") -> np.ndarray:
+    return vd.direction(v, func, name)
 
 
-def _frame(normal, hint=(0.0, 0.0, 1.0)):
-    """Two unit vectors u, v spanning the plane orthogonal to ``normal`` (v along ``hint`` if possible)."""
-    n = _unit(normal, "frame")
-    v = np.asarray(hint, dtype=float) - np.dot(hint, n) * n
-    if np.linalg.norm(v) < 1e-6:
-        v = np.eye(3)[np.argmin(np.abs(n))] - n * n[np.argmin(np.abs(n))]
-    v = _unit(v)
-    return np.cross(v, n), v
+def _rig(rig, func: str, name: str = "rig") -> StereoRig:
+    return checks.instance(rig, func, name, StereoRig, "a StereoRig (stereo_head, random_rig, load_rig)")
+
+
+def _scene(scene, func: str, name: str = "scene"):
+    return checks.instance(scene, func, name, StereoScene, "a StereoScene (load_scene, random_scene)")
 
 
 @dataclass(frozen=True)
@@ -92,9 +86,31 @@ class StereoScene:
     sphere_center: np.ndarray
     sphere_radius: float
 
+    def __post_init__(self):
+        f, out = "StereoScene", {}
+        out["points"] = vd.array(self.points, f, "points", (None, 3), at_least=1)
+        out["segment"] = vd.array(self.segment, f, "segment", (2, 3))
+        if np.array_equal(*out["segment"]):
+            raise degenerate(f, "segment", "its endpoints coincide")
+        for name in ("circle_center", "board_center", "sphere_center"):
+            out[name] = vd.array(getattr(self, name), f, name, (3,))
+        for name in ("circle_normal", "board_normal", "board_up"):
+            out[name] = vd.array(getattr(self, name), f, name, (3,))
+            _unit(out[name], f, name)
+        if np.linalg.norm(np.cross(_unit(out["board_normal"]), _unit(out["board_up"]))) < 1e-6:
+            raise degenerate(f, "board_up", "is parallel to board_normal: the board has no height direction")
+        for name in ("circle_radius", "sphere_radius"):
+            out[name] = checks.real(getattr(self, name), f, name, low=0.0, strict_low=True, high=vd.LIMIT)
+        w, h = vd.array(self.board_size, f, "board_size", (2,))
+        if not (w > 0 and h > 0):
+            raise fail(f, "board_size", f"must be (width, height) > 0, got {self.board_size!r}")
+        out["board_size"] = (float(w), float(h))
+        for name, value in out.items():
+            object.__setattr__(self, name, value)
+
     def board_corners(self) -> np.ndarray:
         """The board's four corners (4, 3), counter-clockwise seen from the side the normal points to."""
-        u, v = _frame(self.board_normal, self.board_up)
+        u, v = frame(self.board_normal, self.board_up)
         w, h = self.board_size
         signs = ((-1, -1), (1, -1), (1, 1), (-1, 1))
         return np.array([self.board_center + 0.5 * (sx * w * u + sy * h * v) for sx, sy in signs])
@@ -121,14 +137,20 @@ class StereoScene:
 
 def load_scene(path=None) -> StereoScene:
     """The scene described in ``data/stereo_scene.json`` (made by ``data/stereo_make.py``)."""
-    d = json.loads(Path(path or data_path("stereo_scene.json")).read_text())
-    a = np.asarray
-    return StereoScene(
-        a(d["points"], float), a([d["segment"]["a"], d["segment"]["b"]], float),
-        a(d["circle"]["center"], float), _unit(d["circle"]["normal"]), float(d["circle"]["radius"]),
-        a(d["plane"]["center"], float), _unit(d["plane"]["normal"]), _unit(d["plane"]["up"]),
-        tuple(d["plane"]["size"]), a(d["sphere"]["center"], float), float(d["sphere"]["radius"]),
-    )  # fmt: skip
+    f = "load_scene"
+    d = vd.json_object(path, "stereo_scene.json", f, ("points", "segment", "circle", "plane", "sphere"))
+    try:
+        c, p, s = d["circle"], d["plane"], d["sphere"]
+        return StereoScene(
+            d["points"], [d["segment"]["a"], d["segment"]["b"]],
+            c["center"], _unit(c["normal"], f, "circle normal"), c["radius"],
+            p["center"], _unit(p["normal"], f, "plane normal"), _unit(p["up"], f, "plane up"),
+            tuple(p["size"]), s["center"], s["radius"],
+        )  # fmt: skip
+    except (KeyError, TypeError) as exc:
+        raise fail(f, "path", f"is not a scene file: no {exc}") from None
+    except GeometryError as exc:
+        raise fail(f, "path", f"describes no valid scene: {exc}") from None
 
 
 def random_scene(rng: np.random.Generator, rig: StereoRig, depth=(1.5, 4.0)) -> StereoScene:
@@ -138,6 +160,8 @@ def random_scene(rng: np.random.Generator, rig: StereoRig, depth=(1.5, 4.0)) -> 
     camera sees at its depth; surfaces face the rig within 60 degrees so that
     they are seen at a usable angle.
     """
+    f = "random_scene"
+    rng, rig, depth = vd.generator(rng, f), _rig(rig, f), vd.depth_range(depth, f)
     mid = 0.5 * (rig.C1 + rig.C2)
     Kinv = np.linalg.inv(rig.K)
     w, h = rig.image_size
@@ -152,7 +176,7 @@ def random_scene(rng: np.random.Generator, rig: StereoRig, depth=(1.5, 4.0)) -> 
             cube = p + r * np.array([[i, j, k] for i in (-1, 1) for j in (-1, 1) for k in (-1, 1)])
             if np.all(rig.in_view(cube, margin=5)):
                 return p, r
-        raise DegenerateGeometryError("random_scene: could not place an object inside both views")
+        raise degenerate(f, "rig, depth", "could not place an object inside both views at these depths")
 
     def facing(p):
         to_cam = _unit(mid - p)
@@ -186,7 +210,13 @@ def sample_scene(scene: StereoScene, rig: StereoRig, rng: np.random.Generator, n
         the board), ``"plane"``, ``"sphere_key"`` (4 non-coplanar points on the
         visible cap), ``"sphere"``.
     """
-    u, v = _frame(scene.circle_normal)
+    f = "sample_scene"
+    scene, rig, rng = _scene(scene, f), _rig(rig, f), vd.generator(rng, f)
+    n_circle, n_board, n_sphere = (
+        checks.integer(n, f, name, low=0, high=10**8)
+        for n, name in ((n_circle, "n_circle"), (n_board, "n_board"), (n_sphere, "n_sphere"))
+    )
+    u, v = frame(scene.circle_normal)
     ang0 = rng.uniform(0, 2 * np.pi)
     ring = lambda t: scene.circle_center + scene.circle_radius * (np.cos(t)[:, None] * u + np.sin(t)[:, None] * v)  # noqa: E731
     out = {"points": np.array(scene.points, float), "segment": np.array(scene.segment, float)}
@@ -194,21 +224,29 @@ def sample_scene(scene: StereoScene, rig: StereoRig, rng: np.random.Generator, n
     out["circle"] = ring(rng.uniform(0, 2 * np.pi, n_circle))
     corners = scene.board_corners()
     out["plane_key"] = corners[[0, 1, 3]]
-    bu, bv = _frame(scene.board_normal, scene.board_up)
+    bu, bv = frame(scene.board_normal, scene.board_up)
     st = rng.uniform(-0.5, 0.5, size=(n_board, 2)) * np.asarray(scene.board_size)
     out["plane"] = scene.board_center + st[:, :1] * bu + st[:, 1:] * bv
     S, r = np.asarray(scene.sphere_center, float), scene.sphere_radius
+    if min(np.linalg.norm(rig.C1 - S), np.linalg.norm(rig.C2 - S)) <= r:
+        raise degenerate(f, "scene, rig", "a camera is inside the ball (sphere_center, sphere_radius)")
     to_c = [_unit(C - S) for C in (rig.C1, rig.C2)]
+    if np.linalg.norm(to_c[0] + to_c[1]) < 1e-9:
+        raise degenerate(f, "scene, rig", "the cameras see the ball from opposite sides: no common cap to sample")
     pole = _unit(to_c[0] + to_c[1])
-    pu, pv = _frame(pole)
+    pu, pv = frame(pole)
     key = [pole] + [np.cos(0.9) * pole + np.sin(0.9) * (np.cos(a) * pu + np.sin(a) * pv) for a in (0.0, 2.1, 4.2)]
     out["sphere_key"] = S + r * np.array(key)
     dirs = np.empty((0, 3))
-    while len(dirs) < n_sphere:
+    for _ in range(1000):  # the common cap is at least a 40-degree one: a few rounds fill it
+        if len(dirs) >= n_sphere:
+            break
         d = rng.normal(size=(4 * n_sphere, 3))
         d /= np.linalg.norm(d, axis=1, keepdims=True)
         ok = (d @ to_c[0] > np.cos(np.radians(70))) & (d @ to_c[1] > np.cos(np.radians(70)))
         dirs = np.vstack([dirs, d[ok]])
+    if len(dirs) < n_sphere:
+        raise degenerate(f, "scene, rig", "the two cameras see almost no common part of the sphere")
     out["sphere"] = S + r * dirs[:n_sphere]
     return out
 
@@ -220,13 +258,33 @@ def observe(rig: StereoRig, X, noise_px: float = 0.0, rng: np.random.Generator |
     -------
     x1, x2 : ndarray, shape (N, 2)
     """
-    x1, x2 = rig.project(X)
+    f = "observe"
+    rig, (X, _) = _rig(rig, f), vd.batch(X, f, "X", (3,))
+    noise_px = checks.real(noise_px, f, "noise_px", low=0.0, high=vd.LIMIT)
+    rng = None if rng is None else vd.generator(rng, f)
+    x1, x2 = seen(rig, X, f)
     if noise_px > 0:
         if rng is None:
-            raise InvalidInputError("observe: pass rng (numpy.random.default_rng(seed)) to add noise")
+            raise fail(f, "rng", "pass rng (numpy.random.default_rng(seed)) to add noise")
         x1 = x1 + rng.normal(scale=noise_px, size=x1.shape)
         x2 = x2 + rng.normal(scale=noise_px, size=x2.shape)
     return x1, x2
+
+
+def seen(rig: StereoRig, X: np.ndarray, func: str, name: str = "X"):
+    """Pixels ``(x1, x2)`` of checked points X (N, 3), which must lie in front of both cameras."""
+    out = []
+    for k, P in enumerate((rig.P1, rig.P2), 1):
+        try:
+            x, depth = cam.project(P, X, return_depth=True)
+        except GeometryError as exc:
+            raise degenerate(func, name, f"camera {k}: {exc}") from None
+        behind = np.flatnonzero(depth <= 0)
+        if behind.size:
+            problem = f"{behind.size} point(s) behind camera {k} (first index {behind[0]}): it cannot see them"
+            raise degenerate(func, name, problem)
+        out.append(x)
+    return out[0], out[1]
 
 
 # ------------------------------------------------- conformal entities (4.1)
@@ -251,6 +309,11 @@ def circle_center_via_plane(Z):
     -------
     ndarray, shape (3,)
     """
+    Z = vd.entity(Z, "circle_center_via_plane", "Z", ("circle",))
+    return _centre_via_plane(Z)
+
+
+def _centre_via_plane(Z):
     z = cga.standard_form(Z)
     Pz = cga.standard_form(cga.circle_plane(Z))  # (2.119), standard form
     Lz = z ^ cga.einf  # (2.120)
@@ -284,7 +347,41 @@ def reconstruct_entities(rig: StereoRig, views: dict, method: str = "midpoint") 
         ``radius`` used to draw it; ``"sphere"``: ``center`` and ``radius``
         (2.75, 2.115, 2.116, 2.73).  Each holds its conformal ``blade``.
     """
-    tri = {k: cam.triangulate(rig.P1, rig.P2, *views[k], method=method) for k in views}
+    f = "reconstruct_entities"
+    rig, method = _rig(rig, f), checks.choice(method, f, "method", ("midpoint", "dlt"))
+    views = checks.instance(views, f, "views", dict, "a dict name -> (x1, x2)")
+    tri = {}
+    for k, n in {**dict.fromkeys(views, 0), **_KEY_POINTS}.items():
+        tri[k] = _triangulate_view(rig, views, k, n, method, f)
+    try:
+        return _entities(tri)
+    except GeometryError as exc:
+        raise degenerate(f, "views", f"the triangulated points are degenerate: {exc}") from None
+
+
+#: The views :func:`reconstruct_entities` needs, and how many points each holds (0: any number).
+_KEY_POINTS = {"points": 0, "segment": 2, "circle_key": 3, "plane_key": 3, "sphere_key": 4}
+
+
+def _triangulate_view(rig, views: dict, key: str, n: int, method: str, func: str) -> np.ndarray:
+    if key not in views:
+        raise fail(func, "views", f"has no {key!r} (it needs {', '.join(_KEY_POINTS)})")
+    pair = views[key]
+    two = isinstance(pair, (tuple, list)) or isinstance(pair, np.ndarray) and pair.ndim > 0
+    if not two or len(pair) != 2:
+        raise fail(func, "views", f"{key!r} must be a pair (x1, x2) of pixel arrays, got {pair!r:.40}")
+    name = f"views[{key!r}]"
+    (x1, _), (x2, _) = vd.batch(pair[0], func, name, (2,), at_least=1), vd.batch(pair[1], func, name, (2,))
+    checks.same_length(func, **{f"{name}[0]": x1, f"{name}[1]": x2})
+    if n and len(x1) != n:
+        raise fail(func, name, f"must hold {n} points, got {len(x1)}")
+    try:
+        return cam.triangulate(rig.P1, rig.P2, x1, x2, method=method)
+    except GeometryError as exc:
+        raise degenerate(func, name, f"cannot be triangulated: {exc}") from None
+
+
+def _entities(tri: dict) -> dict:
     out = {}
     X = cga.up(tri["points"])  # (2.62), a batch
     out["point"] = {"points": cga.down(X), "blade": X}  # (2.114)
@@ -301,7 +398,7 @@ def reconstruct_entities(rig: StereoRig, views: dict, method: str = "midpoint") 
     }
     Z = cga.circle_from_points(*tri["circle_key"])  # (2.80)
     c, r, n = cga.circle_center_radius(Z)
-    out["circle"] = {"center": c, "center_via_plane": circle_center_via_plane(Z), "radius": r, "normal": n, "blade": Z}
+    out["circle"] = {"center": c, "center_via_plane": _centre_via_plane(Z), "radius": r, "normal": n, "blade": Z}
     Pl = cga.plane_from_points(*tri["plane_key"])  # (2.77)
     n, d = cga.plane_normal_distance(Pl)
     c, r, _ = cga.circle_center_radius(cga.circle_from_points(*tri["plane_key"]))
@@ -310,97 +407,3 @@ def reconstruct_entities(rig: StereoRig, views: dict, method: str = "midpoint") 
     c, r = cga.sphere_center_radius(S)
     out["sphere"] = {"center": c, "radius": r, "blade": S}
     return out
-
-
-def _angle(u, v, signed=True) -> float:
-    c = float(np.dot(_unit(u), _unit(v)))
-    c = c if signed else abs(c)
-    return float(np.arctan2(np.linalg.norm(np.cross(_unit(u), _unit(v))), c))
-
-
-def entity_errors(truth: dict, est: dict) -> dict:
-    """Errors of estimated entity parameters against the truth (metres, radians).
-
-    Points and point pairs: largest position error.  Lines: direction angle,
-    closest-point error and ``offset``, the distance of the true segment's
-    midpoint from the estimated line.  Circles and spheres: centre and radius errors
-    (and the circle's normal).  Planes: normal angle and ``offset``, the
-    distance of the true object's centre from the estimated plane (the plane's
-    distance to the world origin would mix in the normal error times a lever
-    arm of metres).  Normals of circles and planes are compared as unoriented
-    lines (their sign depends on the order of the points).
-
-    Returns
-    -------
-    dict
-        ``entity -> {quantity: error}`` for the entities present in both.
-    """
-    out = {}
-    both = [k for k in ("point", "pair", "line", "circle", "plane", "sphere") if k in est and k in truth]
-    for k in both:
-        e, t = est[k], truth[k]
-        if k in ("point", "pair"):
-            key = "points" if k == "point" else "endpoints"
-            out[k] = {"position": float(np.max(np.linalg.norm(e[key] - t[key], axis=1)))}
-        elif k == "line":
-            pos = float(np.linalg.norm(e["closest_point"] - t["closest_point"]))
-            out[k] = {"direction": _angle(e["direction"], t["direction"]), "position": pos}
-            if "midpoint" in t:
-                m = t["midpoint"] - e["closest_point"]
-                out[k]["offset"] = float(np.linalg.norm(m - np.dot(m, e["direction"]) * e["direction"]))
-        elif k == "plane":
-            offset = abs(float(np.dot(e["normal"], t["point"])) - e["distance"])
-            out[k] = {"normal": _angle(e["normal"], t["normal"], signed=False), "offset": offset}
-        else:
-            out[k] = {"center": float(np.linalg.norm(e["center"] - t["center"]))}
-            out[k]["radius"] = abs(e["radius"] - t["radius"])
-            if k == "circle":
-                out[k]["normal"] = _angle(e["normal"], t["normal"], signed=False)
-    return out
-
-
-# ------------------------------------------------------------ drawing (4.1)
-def line_polyline(L, PP) -> np.ndarray:
-    """The drawn segment of a line as 4.1 describes it (2.126, 2.127, 2.129, 2.131).
-
-    The line is normalised, its direction r and the point p closest to the
-    origin extracted; the endpoints of the stored point pair PP, projected onto
-    the line, say how far from p to draw.
-
-    Returns
-    -------
-    ndarray, shape (2, 3)
-    """
-    r, p = cga.line_direction(L), cga.line_closest_point(L)
-    ends = np.array(cga.point_pair_endpoints(PP))
-    t = (ends - p) @ r
-    return p + t[:, None] * r
-
-
-def circle_polyline(center, normal, radius, n: int = 64, phase: float = 0.0) -> np.ndarray:
-    """Points on a circle drawn as in 4.1: a perpendicular vector turned by a rotor (2.96).
-
-    A unit vector v orthogonal to the normal is scaled by the radius, turned
-    about the normal by the rotors ``R_z(theta)`` (2.96, 2.98) and shifted by
-    the centre.
-
-    Returns
-    -------
-    ndarray, shape (n + 1, 3)
-        Closed polyline (last point = first).
-    """
-    u, _ = _frame(normal)
-    theta = phase + np.linspace(0.0, 2 * np.pi, n + 1)
-    R = cga.rotor(_unit(normal, "circle_polyline"), theta)  # a batch of rotors about the normal
-    v = cga.vector(radius * u)
-    return np.asarray(center, float) + cga.euclidean(R * v * ~R)
-
-
-def square_polyline(center, normal, half_diagonal) -> np.ndarray:
-    """The square 4.1 draws for a plane: the circle construction with four 90-degree turns.
-
-    Returns
-    -------
-    ndarray, shape (5, 3)
-    """
-    return circle_polyline(center, normal, half_diagonal, n=4, phase=np.pi / 4)

@@ -17,11 +17,15 @@ depth ``Z = f B / (d + doffs)``.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons import checks
+from cga_lessons.checks import fail
 
 from . import camera as cam
+from . import validate as vd
 
 __all__ = ["MOTORCYCLE_CALIBRATION", "load_motorcycle", "motorcycle_cameras", "disparity_to_points", "label_image"]
 
@@ -50,11 +54,27 @@ def motorcycle_cameras(calib: dict | None = None):
     -------
     P_left, P_right : ndarray, shape (3, 4)
     """
-    c = calib or MOTORCYCLE_CALIBRATION
+    c = _calibration(calib, "motorcycle_cameras")
     K1 = cam.calibration_matrix(c["focal_px"], c["focal_px"], c["cx"], c["cy"])
     K2 = cam.calibration_matrix(c["focal_px"], c["focal_px"], c["cx"] + c["doffs"], c["cy"])
     R = np.eye(3)
     return cam.projection_matrix(K1, R, np.zeros(3)), cam.projection_matrix(K2, R, [c["baseline_m"], 0.0, 0.0])
+
+
+def _calibration(calib, func: str) -> dict:
+    """The checked calibration ``calib`` (None: the motorcycle's), as floats: positive focal length and baseline."""
+    if calib is None:
+        return dict(MOTORCYCLE_CALIBRATION)
+    calib = checks.instance(calib, func, "calib", dict, "a dict with keys " + ", ".join(MOTORCYCLE_CALIBRATION))
+    missing = [k for k in MOTORCYCLE_CALIBRATION if k not in calib]
+    if missing:
+        raise fail(func, "calib", f"has no {', '.join(map(repr, missing))}")
+    out = {
+        k: checks.real(calib[k], func, f"calib[{k!r}]", low=-vd.LIMIT, high=vd.LIMIT) for k in MOTORCYCLE_CALIBRATION
+    }
+    for k in ("focal_px", "baseline_m"):
+        vd.positive(out[k], func, f"calib[{k!r}]")
+    return out
 
 
 def disparity_to_points(disp, calib: dict | None = None, step: int = 1, max_depth: float = np.inf):
@@ -78,12 +98,12 @@ def disparity_to_points(disp, calib: dict | None = None, step: int = 1, max_dept
     pixels : ndarray, shape (N, 2)
         Their left-image coordinates ``(col, row)``.
     """
-    c = calib or MOTORCYCLE_CALIBRATION
-    disp = np.asarray(disp, dtype=float)
-    if disp.ndim != 2:
-        raise InvalidInputError(f"disparity_to_points: disp must have shape (H, W), got {disp.shape}")
-    if not (isinstance(step, int | np.integer) and step >= 1):
-        raise InvalidInputError(f"disparity_to_points: step must be a positive integer, got {step!r}")
+    f = "disparity_to_points"
+    c = _calibration(calib, f)
+    disp = vd.array(disp, f, "disp", (None, None), finite=False)
+    step = checks.integer(step, f, "step", low=1)
+    inf = isinstance(max_depth, float) and max_depth == math.inf  # the default: keep every depth
+    max_depth = math.inf if inf else checks.real(max_depth, f, "max_depth", low=0.0, strict_low=True)
     rows, cols = np.mgrid[0 : disp.shape[0] : step, 0 : disp.shape[1] : step]
     d = disp[rows, cols]
     ok = np.isfinite(d) & (d + c["doffs"] > 0)
@@ -91,7 +111,7 @@ def disparity_to_points(disp, calib: dict | None = None, step: int = 1, max_dept
     Z = c["focal_px"] * c["baseline_m"] / (d + c["doffs"])
     X = np.column_stack([(u - c["cx"]) * Z / c["focal_px"], (v - c["cy"]) * Z / c["focal_px"], Z])
     keep = Z <= max_depth
-    return X[keep], np.column_stack([u, v])[keep]
+    return vd.overflow(X[keep], f, "disp"), np.column_stack([u, v])[keep]
 
 
 def label_image(shape, pixels, labels, step: int = 1) -> np.ndarray:
@@ -102,8 +122,23 @@ def label_image(shape, pixels, labels, step: int = 1) -> np.ndarray:
     ndarray of int, shape ``shape``
         -1 where no labelled point fell.
     """
+    f = "label_image"
+    if isinstance(shape, (str, bytes)) or not isinstance(shape, (tuple, list, np.ndarray)) or len(shape) != 2:
+        raise fail(f, "shape", f"must be (rows, columns), got {shape!r:.40}")
+    shape = tuple(checks.integer(n, f, "shape", low=1, high=2**31 - 1) for n in shape)
+    if shape[0] * shape[1] > 10**9:
+        raise fail(f, "shape", f"{shape} is too large an image (more than 10^9 pixels)")
+    pixels = vd.array(pixels, f, "pixels", (None, 2))
+    labels = vd.array(labels, f, "labels", (None,))
+    if np.any(labels != np.round(labels)) or np.any(np.abs(labels) > 2**62):
+        raise fail(f, "labels", "must be whole numbers (of at most 2^62)")
+    checks.same_length(f, pixels=pixels, labels=labels)
+    step = checks.integer(step, f, "step", low=1)
     out = np.full(shape, -1, dtype=int)
-    pixels = np.asarray(pixels).astype(int)
+    # Blocks are clipped to the image's border: a pixel farther out than a block paints the same as one just
+    # that far (and its index fits an int).
+    pixels = np.clip(pixels, -step - 1, max(shape) + step).astype(int)
+    labels = labels.astype(int)
     for dr in range(step):
         for dc in range(step):
             r = np.clip(pixels[:, 1] + dr, 0, shape[0] - 1)

@@ -11,8 +11,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from cga_lessons import checks
+from cga_lessons.checks import degenerate
+
 from . import camera as cam
-from .head import StereoScene, circle_polyline
+from . import validate as vd
+from .head import StereoScene, seen
+from .polylines import circle_polyline
 from .rig import StereoRig
 
 __all__ = ["render_views"]
@@ -21,7 +26,8 @@ _SUB = 16  # OpenCV's fixed-point drawing: 4 fractional bits
 
 
 def _px(P, X) -> np.ndarray:
-    return np.round(cam.project(P, X) * _SUB).astype(np.int32)
+    """OpenCV's fixed-point pixels of points in front of the camera (far off-image ones clipped to fit an int)."""
+    return np.round(np.clip(cam.project(P, X), -(2**26), 2**26) * _SUB).astype(np.int32)
 
 
 def _floor(P, size) -> np.ndarray:
@@ -57,14 +63,37 @@ def _draw(img, P, C, focal, scene: StereoScene, what: str) -> None:
         S, r = scene.sphere_center, scene.sphere_radius
         D = np.linalg.norm(C - S)
         axis = (C - S) / D
-        rim = circle_polyline(S + r * r / D * axis, axis, r * np.sqrt(1 - (r / D) ** 2), 96)
-        cv2.fillPoly(img, [_px(P, rim)], (200, 60, 40), aa, shift=4)
+        cv2.fillPoly(img, [_px(P, _ball_rim(C, S, r))], (200, 60, 40), aa, shift=4)
         shine = axis + np.array([0.0, 0.0, 0.8])
         hl = _px(P, S + 0.5 * r * shine / np.linalg.norm(shine))[0]
         cv2.circle(img, tuple(int(v) for v in hl), int(_SUB * 0.25 * r * focal / D), (235, 150, 130), -1, aa, shift=4)
     elif what == "broom":
         a, b = _px(P, scene.segment)
         cv2.line(img, tuple(int(v) for v in a), tuple(int(v) for v in b), (140, 100, 40), 5, aa, shift=4)
+
+
+def _ball_rim(C, S, r, n: int = 96) -> np.ndarray:
+    """The ball's silhouette seen from C: the circle where the cone of rays from C touches it."""
+    D = np.linalg.norm(C - S)
+    axis = (C - S) / D
+    return circle_polyline(S + r * r / D * axis, axis, r * np.sqrt(1 - (r / D) ** 2), n)
+
+
+def _in_front(rig: StereoRig, scene: StereoScene, samples, func: str) -> None:
+    """Every object of the scene (and every key point of ``samples``) must lie in front of both cameras."""
+    rim = circle_polyline(scene.circle_center, scene.circle_normal, scene.circle_radius, 16)
+    seen(rig, np.vstack([scene.points, scene.segment, scene.board_corners(), rim]), func, "rig, scene")
+    for k, (P, C) in enumerate(((rig.P1, rig.C1), (rig.P2, rig.C2)), 1):
+        if not np.linalg.norm(C - scene.sphere_center) > scene.sphere_radius:
+            raise degenerate(func, "rig, scene", f"camera {k} is inside the ball (sphere_center, sphere_radius)")
+        if np.any(cam.project(P, _ball_rim(C, scene.sphere_center, scene.sphere_radius, 16), True)[1] <= 0):
+            raise degenerate(func, "rig, scene", f"the ball is (partly) behind camera {k}: it cannot see it")
+    if samples is not None:
+        samples = checks.instance(samples, func, "samples", dict, "a dict as sample_scene returns, or None")
+        for k in ("circle_key", "plane_key", "sphere_key"):
+            if k not in samples:
+                raise checks.fail(func, "samples", f"has no {k!r} (sample_scene's key points)")
+            seen(rig, vd.array(samples[k], func, f"samples[{k!r}]", (None, 3)), func, f"rig, samples[{k!r}]")
 
 
 def render_views(rig: StereoRig, scene: StereoScene, samples: dict | None = None):
@@ -82,6 +111,10 @@ def render_views(rig: StereoRig, scene: StereoScene, samples: dict | None = None
     -------
     left, right : ndarray, shape (h, w, 3), uint8, RGB
     """
+    f = "render_views"
+    rig = checks.instance(rig, f, "rig", StereoRig, "a StereoRig (stereo_head, random_rig, load_rig)")
+    scene = checks.instance(scene, f, "scene", StereoScene, "a StereoScene (load_scene, random_scene)")
+    _in_front(rig, scene, samples, f)
     import cv2
 
     images = []

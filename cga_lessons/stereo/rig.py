@@ -7,17 +7,17 @@ y down, z forward (OpenCV).  The bundled head is ``data/stereo_rig.json``
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
-from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
-from cga_lessons.paths import data_path
+from cga_lessons import checks
+from cga_lessons.algebra import GeometryError
+from cga_lessons.checks import degenerate, fail
 
 from . import camera as cam
-from .camera import as_matrix
+from . import epipolar as epi
+from . import validate as vd
 
 __all__ = ["StereoRig", "stereo_head", "random_rig", "load_rig", "rotation_matrix", "look_at_rotation"]
 
@@ -36,10 +36,11 @@ def rotation_matrix(axis, angle: float) -> np.ndarray:
     -------
     R : ndarray, shape (3, 3)
     """
-    axis = as_matrix(axis, (3,), "rotation_matrix", "axis")
+    f = "rotation_matrix"
+    axis, angle = vd.array(axis, f, "axis", (3,)), checks.real(angle, f, "angle")
     n = np.linalg.norm(axis)
     if n == 0:
-        raise DegenerateGeometryError("rotation_matrix: the axis is the zero vector")
+        raise degenerate(f, "axis", "is the zero vector")
     a, b, c = axis / n
     k = np.array([[0.0, -c, b], [c, 0.0, -a], [-b, a, 0.0]])  # [n]_x as in (A.12)
     return np.eye(3) + np.sin(angle) * k + (1.0 - np.cos(angle)) * (k @ k)
@@ -60,16 +61,20 @@ def look_at_rotation(center, target, up=(0.0, 0.0, 1.0)) -> np.ndarray:
     R : ndarray, shape (3, 3)
         Rows are the camera's x, y, z axes expressed in world coordinates.
     """
-    center = as_matrix(center, (3,), "look_at_rotation", "center")
-    target = as_matrix(target, (3,), "look_at_rotation", "target")
-    up = as_matrix(up, (3,), "look_at_rotation", "up")
+    f = "look_at_rotation"
+    center, target, up = (vd.array(a, f, n, (3,)) for a, n in ((center, "center"), (target, "target"), (up, "up")))
     z = target - center
     if np.linalg.norm(z) == 0:
-        raise DegenerateGeometryError("look_at_rotation: center and target coincide")
+        raise degenerate(f, "target", "coincides with center: there is no viewing direction")
+    return _look_along(z, up, f, "up")
+
+
+def _look_along(z, up, func: str, name: str) -> np.ndarray:
+    """The rotation looking along the checked, non-zero direction z; ``up`` parallel to it is ``name``'s fault."""
     z = z / np.linalg.norm(z)
     x = np.cross(z, up)
-    if np.linalg.norm(x) < 1e-12:
-        raise DegenerateGeometryError("look_at_rotation: the viewing direction is parallel to 'up'")
+    if not np.linalg.norm(x) >= 1e-12 * max(1.0, np.linalg.norm(up)):
+        raise degenerate(func, name, "'up' is zero or parallel to the viewing direction: the image has no up")
     x = x / np.linalg.norm(x)
     return np.vstack([x, np.cross(z, x), z])
 
@@ -97,6 +102,17 @@ class StereoRig:
     C2: np.ndarray
     image_size: tuple
 
+    def __post_init__(self):
+        f = "StereoRig"
+        fields = {"K": vd.calibration(self.K, f, "K"), "R1": vd.rotation(self.R1, f, "R1")}
+        fields.update(C1=vd.array(self.C1, f, "C1", (3,)), R2=vd.rotation(self.R2, f, "R2"))
+        fields.update(C2=vd.array(self.C2, f, "C2", (3,)), image_size=vd.image_size(self.image_size, f))
+        C1, C2 = fields["C1"], fields["C2"]
+        if not np.linalg.norm(C2 - C1) > 1e-12 * max(1.0, float(np.max(np.abs(C1)))):
+            raise degenerate(f, "C2", "coincides with C1: cameras at one centre have no baseline")
+        for name, value in fields.items():
+            object.__setattr__(self, name, value)
+
     @property
     def P1(self) -> np.ndarray:
         return cam.projection_matrix(self.K, self.R1, self.C1)
@@ -113,7 +129,7 @@ class StereoRig:
     @property
     def F(self) -> np.ndarray:
         """The true fundamental matrix, ``x2^T F x1 = 0`` (A.6)."""
-        return cam.fundamental_from_cameras(self.P1, self.P2)
+        return epi.fundamental_from_cameras(self.P1, self.P2)
 
     def project(self, X):
         """Pixel coordinates ``(x1, x2)`` of world points X (N, 3) in both views (A.5)."""
@@ -121,8 +137,10 @@ class StereoRig:
 
     def in_view(self, X, margin: float = 0.0) -> np.ndarray:
         """Mask (N,) of points in front of both cameras and inside both images."""
+        f = "StereoRig.in_view"
+        X, margin = vd.batch(X, f, "X", (3,))[0], checks.real(margin, f, "margin")
         w, h = self.image_size
-        ok = np.ones(len(np.atleast_2d(X)), dtype=bool)
+        ok = np.ones(len(X), dtype=bool)
         for P in (self.P1, self.P2):
             x, depth = cam.project(P, X, return_depth=True)
             ok &= (depth > 0) & (x[:, 0] >= margin) & (x[:, 0] <= w - 1 - margin)
@@ -156,24 +174,47 @@ def stereo_head(
     yaw, tilt : float
         Heading (about world z) and downward tilt, radians.
     """
-    w, h = image_size
+    f = "stereo_head"
+    baseline, focal_px = (_length(a, f, n) for a, n in ((baseline, "baseline"), (focal_px, "focal_px")))
+    w, h = vd.image_size(image_size, f)
     if principal_point is None:
         principal_point = ((w - 1) / 2.0, (h - 1) / 2.0)
-    if not baseline > 0:
-        raise InvalidInputError(f"stereo_head: baseline must be positive, got {baseline}")
+    principal_point = vd.array(principal_point, f, "principal_point", (2,))
+    pos = vd.array(position, f, "position", (3,))
+    yaw, tilt = checks.real(yaw, f, "yaw"), checks.real(tilt, f, "tilt")
     K = cam.calibration_matrix(focal_px, focal_px, *principal_point)
     fwd = np.array([np.cos(yaw) * np.cos(tilt), np.sin(yaw) * np.cos(tilt), -np.sin(tilt)])
-    pos = np.asarray(position, dtype=float)
-    R = look_at_rotation(pos, pos + fwd)
+    z = (pos + fwd) - pos  # the viewing direction as look_at_rotation(pos, pos + fwd) sees it
+    if not np.linalg.norm(z - fwd) < 1e-6:
+        raise degenerate(f, "position", "is so large that the viewing direction is lost in its magnitude")
+    R = _look_along(z, np.array([0.0, 0.0, 1.0]), f, "tilt")
     right = R[0]
-    return StereoRig(K, R, pos - 0.5 * baseline * right, R.copy(), pos + 0.5 * baseline * right, (int(w), int(h)))
+    C1, C2 = pos - 0.5 * baseline * right, pos + 0.5 * baseline * right
+    return _rig(K, R, C1, R.copy(), C2, (w, h), f, "position")
+
+
+def _length(value, func: str, name: str) -> float:
+    """A positive length within the camera model's range."""
+    return checks.real(value, func, name, low=0.0, strict_low=True, high=vd.LIMIT)
+
+
+def _rig(K, R1, C1, R2, C2, size, func: str, name: str) -> StereoRig:
+    """The rig of checked parts; a rig that is still invalid (cameras at one centre: the baseline lost in the
+    magnitude of the position) is the fault of the argument ``name``."""
+    try:
+        return StereoRig(K, R1, C1, R2, C2, size)
+    except GeometryError as exc:
+        raise degenerate(func, name, f"gives no valid rig ({exc})") from None
 
 
 def random_rig(rng: np.random.Generator, target=(2.5, 0.0, 0.5)) -> StereoRig:
     """A random rig looking roughly at ``target``: random baseline (5-40 cm), focal
     length (400-1200 px), principal point, skew-free K, head pose and convergence
     (each camera aimed at its own point near the target)."""
-    target = np.asarray(target, dtype=float)
+    f = "random_rig"
+    rng, target = vd.generator(rng, f), vd.array(target, f, "target", (3,))
+    if np.max(np.abs(target)) > 1e9:
+        raise fail(f, "target", f"must lie within 1e9 m of the origin (the rig stands metres from it), got {target}")
     w, h = int(rng.integers(480, 1025)), int(rng.integers(360, 769))
     K = cam.calibration_matrix(
         rng.uniform(400, 1200), rng.uniform(400, 1200), w / 2 + rng.uniform(-20, 20), h / 2 + rng.uniform(-20, 20)
@@ -189,13 +230,15 @@ def random_rig(rng: np.random.Generator, target=(2.5, 0.0, 0.5)) -> StereoRig:
     C1, C2 = head + 0.5 * b * side, head - 0.5 * b * side
     R1 = look_at_rotation(C1, target + rng.normal(scale=0.1, size=3))
     R2 = look_at_rotation(C2, target + rng.normal(scale=0.1, size=3))
-    return StereoRig(K, R1, C1, R2, C2, (w, h))
+    return _rig(K, R1, C1, R2, C2, (w, h), f, "target")
 
 
 def load_rig(path=None) -> StereoRig:
     """The stereo head described in ``data/stereo_rig.json`` (made by ``data/stereo_make.py``)."""
-    d = json.loads(Path(path or data_path("stereo_rig.json")).read_text())
-    return stereo_head(
-        d["baseline_m"], d["focal_px"], tuple(d["image_size"]), tuple(d["principal_point"]),
-        d["head_position_m"], d["yaw_rad"], d["tilt_rad"],
-    )  # fmt: skip
+    f = "load_rig"
+    keys = ("baseline_m", "focal_px", "image_size", "principal_point", "head_position_m", "yaw_rad", "tilt_rad")
+    d = vd.json_object(path, "stereo_rig.json", f, keys)
+    try:
+        return stereo_head(*(d[k] for k in keys))
+    except GeometryError as exc:
+        raise fail(f, "path", f"describes no valid stereo head: {exc}") from None

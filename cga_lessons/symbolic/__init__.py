@@ -11,11 +11,12 @@ Nothing here draws (figures and widgets are in :mod:`cga_lessons.viz`).  This fa
 * :mod:`~cga_lessons.symbolic.derivations`: Verified derivations of chapter 2 with SymPy, and the errata they decide
 * :mod:`~cga_lessons.symbolic.entities`: Symbolic derivations of spheres, planes and point pairs (table 2.1,
 * :mod:`~cga_lessons.symbolic.model`: Symbolic derivations of sections 2.1-2.3.3: the Clifford product, the
+* :mod:`~cga_lessons.symbolic.records`: The record of a derivation: its Check steps, the Derivation that holds them
 * :mod:`~cga_lessons.symbolic.versors`: Symbolic derivations of the conformal transformations (section 2.3.4,
 """
 
 from .circles_lines import circle_properties, line_properties
-from .core import Check, Derivation, Ring, is_zero, proportional, same
+from .core import Ring, is_zero, proportional, same
 from .derivations import DERIVATIONS, ERRATA, Erratum, errata_table, run_all, verify_errata
 from .entities import point_pair_extraction, sphere_and_plane
 from .model import (
@@ -27,6 +28,7 @@ from .model import (
     projection_rejection,
     stereographic_projection,
 )
+from .records import Check, Derivation
 from .versors import conformal_transformations, rotors_and_motors
 
 __all__ = [

@@ -24,7 +24,6 @@ from cga_lessons.conformal import (
 )
 
 from .core import (
-    Derivation,
     Ring,
     add3,
     const,
@@ -37,11 +36,13 @@ from .core import (
     sphere_from_center,
     sub3,
 )
+from .records import Derivation, derivation
 
 __all__ = ["circle_properties", "line_properties"]
 
 
 # --------------------------------------------------------------- circles
+@derivation
 def circle_properties() -> Derivation:
     """Circles, Eqs. (2.78)-(2.80) and (2.119)-(2.124), symbolic centre and radius.
 
@@ -153,6 +154,7 @@ def circle_properties() -> Derivation:
 
 
 # --------------------------------------------------------------- lines
+@derivation
 def line_properties() -> Derivation:
     """Lines, Eqs. (2.81) and (2.125)-(2.130) with table 2.1.
 

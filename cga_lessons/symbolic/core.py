@@ -18,17 +18,18 @@ out as expected.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import math
+import numbers
 
 import sympy as sp
+from sympy.polys.polyerrors import PolynomialError
 from sympy.polys.rings import PolyElement
 
-from cga_lessons.algebra import DegenerateGeometryError, Multivector
+from cga_lessons import checks
+from cga_lessons.algebra import DegenerateGeometryError, GeometryError, Multivector
 from cga_lessons.conformal import G41, exact_constants, up
 
 __all__ = [
-    "Check",
-    "Derivation",
     "Ring",
     "const",
     "euclid",
@@ -109,13 +110,16 @@ class Ring:
     """
 
     def __init__(self, symbols, relations=(), subs=()):
-        self.symbols = tuple(symbols)
-        self.subs = dict(subs)
+        self.symbols = _symbols(symbols)
+        self.subs = _pairs(subs)
         self.R, *gens = sp.ring(self.symbols, sp.QQ, order="lex")
         self.gens = dict(zip(self.symbols, gens))
-        rels = [sp.expand(r) for r in relations]
-        basis = sp.groebner(rels, *self.symbols, order="lex").exprs if rels else []
-        self.basis = [self.R.from_expr(g) for g in basis]
+        rels = [sp.expand(side(r, "Ring", "relations", allow_none=False)) for r in _sequence(relations, "relations")]
+        try:
+            basis = sp.groebner(rels, *self.symbols, order="lex").exprs if rels else []
+            self.basis = [self.R.from_expr(g) for g in basis]
+        except (PolynomialError, ValueError, TypeError) as exc:
+            raise checks.fail("Ring", "relations", f"must be polynomials in symbols {self.symbols} ({exc})") from None
 
     def element(self, v):
         """A ring element from a polynomial expression (or a ring element)."""
@@ -153,7 +157,7 @@ class Ring:
         for blade, v in X.coeffs.items():
             (q,), rem = self.element(v).div([den])
             if rem != 0:
-                raise ValueError(f"Ring.divide: {den} does not divide the coefficient {v}")
+                raise checks.fail("Ring.divide", "den", f"{den} does not divide the coefficient {v}")
             out[blade] = q
         return Multivector(X.algebra, out, _prune=True)
 
@@ -174,6 +178,79 @@ class Ring:
             ex = v.as_expr() if isinstance(v, PolyElement) else sp.sympify(v)
             out[b] = ex.subs(back) if back else ex
         return Multivector(X.algebra, out, _prune=True)
+
+
+def _sequence(value, name: str) -> list:
+    if isinstance(value, (str, bytes, dict)) or not hasattr(value, "__iter__"):
+        raise checks.fail("Ring", name, f"expected a sequence, got {value!r:.40}")
+    return list(value)
+
+
+def _symbols(symbols) -> tuple:
+    """The ring's generators: distinct SymPy symbols, at least one."""
+    out = tuple(_sequence(symbols, "symbols"))
+    if not out or not all(isinstance(v, sp.Symbol) for v in out):
+        raise checks.fail("Ring", "symbols", f"expected SymPy symbols (at least one), got {out!r:.60}")
+    if len(set(out)) != len(out):
+        raise checks.fail("Ring", "symbols", f"lists a symbol twice: {out!r:.60}")
+    return out
+
+
+def _pairs(subs) -> dict:
+    """The substitutions (expression, expression) applied before conversion, as a dict."""
+    pairs = list(subs.items()) if isinstance(subs, dict) else _sequence(subs, "subs")
+    for pair in pairs:
+        if isinstance(pair, (str, bytes)) or not hasattr(pair, "__len__") or len(pair) != 2:
+            raise checks.fail("Ring", "subs", f"expected (expression, expression) pairs, got {pair!r:.40}")
+        for v in pair:
+            side(v, "Ring", "subs", allow_none=False)
+    return dict(pairs)
+
+
+#: What one side of a comparison may be (besides lists, tuples and dicts of them, and None where allowed).
+_SIDE_TYPES = (bool, numbers.Number, Multivector, PolyElement, sp.Basic, sp.MatrixBase, list, tuple, dict)
+
+
+def side(value, func: str, name: str, *, allow_none: bool = True):
+    """``value`` if it can be one side of a comparison: a SymPy expression or matrix, a Multivector, a ring element,
+    a finite number, a bool, or a list, tuple or dict of them (``None`` if ``allow_none``)."""
+    if value is None and allow_none:
+        return value
+    if not isinstance(value, _SIDE_TYPES) or isinstance(value, complex):
+        raise checks.fail(
+            func, name, f"expected a SymPy expression, a Multivector, a number or a list of them, got {value!r:.40}"
+        )
+    if isinstance(value, float) and not math.isfinite(value):
+        raise checks.fail(func, name, f"is NaN or inf ({value!r})")
+    if isinstance(value, Multivector):
+        for b, v in value.coeffs.items():
+            if isinstance(v, float) and not math.isfinite(v):
+                raise checks.fail(func, name, f"coefficient of {value.algebra.blade_names[b]} is NaN or inf")
+    return value
+
+
+def ring_or_none(rel, func: str):
+    """``rel`` if it is None or a :class:`Ring`."""
+    if rel is not None and not isinstance(rel, Ring):
+        raise checks.fail(func, "rel", f"expected a Ring or None, got {type(rel).__name__} {rel!r:.40}")
+    return rel
+
+
+def signature_list(signatures, func: str) -> tuple:
+    """``signatures`` as distinct ``(p, q, r)`` triples of ints with 1 <= p + q + r <= 10."""
+    if isinstance(signatures, (str, bytes)) or not hasattr(signatures, "__iter__"):
+        raise checks.fail(func, "signatures", f"expected a sequence of (p, q, r), got {signatures!r:.40}")
+    out = []
+    for sig in signatures:
+        if isinstance(sig, (str, bytes)) or not hasattr(sig, "__len__") or len(sig) != 3:
+            raise checks.fail(func, "signatures", f"each signature is (p, q, r), got {sig!r:.40}")
+        p, q, r = (checks.integer(v, func, "signatures", low=0, high=10) for v in sig)
+        if not 1 <= p + q + r <= 10:
+            raise checks.fail(func, "signatures", f"G({p},{q},{r}) must have dimension 1 to 10")
+        out.append((p, q, r))
+    if not out or len(set(out)) != len(out):
+        raise checks.fail(func, "signatures", f"expected distinct signatures, at least one, got {out}")
+    return tuple(out)
 
 
 def _scalar_is_zero(e, rel: Ring | None) -> bool:
@@ -199,6 +276,10 @@ def is_zero(x, rel: Ring | None = None) -> bool:
     Exact: a polynomial or rational difference is zero only if it expands
     (or cancels, or reduces modulo the relations of ``rel``) to 0.
     """
+    return _is_zero(side(x, "is_zero", "x", allow_none=False), ring_or_none(rel, "is_zero"))
+
+
+def _is_zero(x, rel: Ring | None) -> bool:
     if isinstance(x, bool):
         return not x
     if isinstance(x, Multivector):
@@ -206,7 +287,7 @@ def is_zero(x, rel: Ring | None = None) -> bool:
     if isinstance(x, sp.MatrixBase):
         return all(_scalar_is_zero(v, rel) for v in x)
     if isinstance(x, (list, tuple)):
-        return all(is_zero(v, rel) for v in x)
+        return all(_is_zero(v, rel) for v in x)
     return _scalar_is_zero(x, rel)
 
 
@@ -243,6 +324,16 @@ def same(a, b, rel: Ring | None = None) -> bool:
     With a :class:`Ring`, polynomial sides are compared in the ring; sides
     with denominators are compared as expressions (numerator reduced).
     """
+    side(a, "same", "a", allow_none=False)
+    side(b, "same", "b", allow_none=False)
+    ring_or_none(rel, "same")
+    try:
+        return _same(a, b, rel)
+    except (TypeError, AttributeError, sp.SympifyError, GeometryError) as exc:
+        raise checks.fail("same", "a, b", f"cannot be compared ({type(exc).__name__}: {exc})") from None
+
+
+def _same(a, b, rel: Ring | None) -> bool:
     if isinstance(a, bool) or isinstance(b, bool):
         return bool(a) == bool(b)
     if rel is not None:
@@ -255,7 +346,7 @@ def same(a, b, rel: Ring | None = None) -> bool:
                 b = rel.scalar(b)
             elif isinstance(b, Multivector) and isinstance(a, PolyElement):
                 a = rel.scalar(a)
-    return is_zero(_diff(a, b), rel)
+    return _is_zero(_diff(a, b), rel)
 
 
 def proportional(X: Multivector, Y: Multivector, rel: Ring | None = None) -> bool:
@@ -264,7 +355,10 @@ def proportional(X: Multivector, Y: Multivector, rel: Ring | None = None) -> boo
     Tests that every 2x2 minor ``X_i Y_j - X_j Y_i`` of the coefficient
     vectors vanishes; entities of the conformal model are defined up to scale.
     """
-    if is_zero(X, rel) or is_zero(Y, rel):
+    for name, M in (("X", X), ("Y", Y)):
+        side(checks.instance(M, "proportional", name, Multivector, "a Multivector"), "proportional", name)
+    ring_or_none(rel, "proportional")
+    if _is_zero(X, rel) or _is_zero(Y, rel):
         return False
     blades = sorted(set(X.coeffs) | set(Y.coeffs))
     xs = [X.coeffs.get(b, 0) for b in blades]
@@ -292,134 +386,12 @@ def inverse(X: Multivector) -> Multivector:
     return rev.map(lambda v: v / d)
 
 
-def _display(x):
+def display(x):
     """x with ring elements turned back into SymPy expressions (for display)."""
     if isinstance(x, PolyElement):
         return x.as_expr()
     if isinstance(x, Multivector) and any(isinstance(v, PolyElement) for v in x.coeffs.values()):
-        return Multivector(x.algebra, {b: _display(v) for b, v in x.coeffs.items()}, _prune=True)
+        return Multivector(x.algebra, {b: display(v) for b, v in x.coeffs.items()}, _prune=True)
     if isinstance(x, list):
-        return [_display(v) for v in x]
+        return [display(v) for v in x]
     return x
-
-
-@dataclass(frozen=True)
-class Check:
-    """One step of a derivation: ``lhs == rhs`` and whether it holds.
-
-    Attributes
-    ----------
-    name : str
-        Short key, e.g. ``"2.56 e0 E = e0 (printed)"``.
-    label : str
-        The thesis's equation number, e.g. ``"2.56"`` (``"table 2.2"`` for a table).
-    raw_lhs, raw_rhs
-        The two sides as computed (SymPy expressions, multivectors, or ring
-        elements of a :class:`Ring`); the properties ``lhs`` and ``rhs``
-        give them with SymPy coefficients, for display.
-    holds : bool
-        Whether ``lhs == rhs`` identically.
-    expected : bool
-        ``True`` for a correct statement, ``False`` for a printed erratum
-        (which must then fail).
-    note : str
-        What the step says, in words.
-    """
-
-    name: str
-    label: str
-    raw_lhs: object
-    raw_rhs: object
-    holds: bool
-    expected: bool = True
-    note: str = ""
-
-    @property
-    def lhs(self):
-        """Left side, with SymPy coefficients (converted from ring elements on access)."""
-        return _display(self.raw_lhs)
-
-    @property
-    def rhs(self):
-        """Right side, with SymPy coefficients."""
-        return _display(self.raw_rhs)
-
-    @property
-    def ok(self) -> bool:
-        """True when the check came out as expected (identity holds, erratum fails)."""
-        return self.holds == self.expected
-
-
-@dataclass
-class Derivation:
-    """Result of a derivation: the checks of its steps and its named values.
-
-    ``holds`` is true when every correct identity holds and every printed
-    erratum fails.  Index by check name: ``d["2.45"].holds``.
-    """
-
-    title: str
-    labels: tuple
-    checks: list = field(default_factory=list)
-    values: dict = field(default_factory=dict)
-
-    def add(self, name, label, lhs, rhs, expected=True, note="", rel=None) -> Check:
-        """Compare ``lhs`` with ``rhs`` and record the result as a :class:`Check`."""
-        if any(c.name == name for c in self.checks):
-            raise ValueError(f"check {name!r} recorded twice")
-        chk = Check(name, label, lhs, rhs, same(lhs, rhs, rel), expected, note)
-        self.checks.append(chk)
-        return chk
-
-    def add_bool(self, name, label, value: bool, expected=True, note="", lhs=None, rhs=None) -> Check:
-        """Record a check decided elsewhere (proportionality, a set of solutions)."""
-        if any(c.name == name for c in self.checks):
-            raise ValueError(f"check {name!r} recorded twice")
-        chk = Check(name, label, lhs, rhs, bool(value), expected, note)
-        self.checks.append(chk)
-        return chk
-
-    @property
-    def holds(self) -> bool:
-        return all(c.ok for c in self.checks)
-
-    def __getitem__(self, name: str) -> Check:
-        for c in self.checks:
-            if c.name == name:
-                return c
-        raise KeyError(f"{self.title}: no check named {name!r}; have {[c.name for c in self.checks]}")
-
-    def names(self) -> list:
-        return [c.name for c in self.checks]
-
-    def for_label(self, label: str) -> list:
-        """The checks of one equation."""
-        return [c for c in self.checks if c.label == label]
-
-    def errata(self) -> list:
-        """The checks of printed forms that are wrong (expected to fail)."""
-        return [c for c in self.checks if not c.expected]
-
-    def failures(self) -> list:
-        """Checks that did not come out as expected (empty when ``holds``)."""
-        return [c for c in self.checks if not c.ok]
-
-    def table(self) -> str:
-        """The checks as a Markdown table (for notebooks)."""
-        rows = [f"**{self.title}** (Eqs. {', '.join(self.labels)})", "", "| eq. | step | result |", "|---|---|---|"]
-        for c in self.checks:
-            if c.expected:
-                res = "holds" if c.holds else "**FAILS**"
-            else:
-                res = "printed form fails (erratum)" if not c.holds else "**printed form holds?**"
-            name = c.name.replace("|", "\\|")  # a literal | would split the Markdown cell
-            rows.append(f"| {c.label} | {name} | {res} |")
-        return "\n".join(rows)
-
-    def _repr_markdown_(self) -> str:
-        return self.table()
-
-    def __repr__(self) -> str:
-        n_err = len(self.errata())
-        status = "holds" if self.holds else f"{len(self.failures())} unexpected result(s)"
-        return f"<Derivation {self.title!r}: {len(self.checks)} checks, {n_err} errata, {status}>"

@@ -47,6 +47,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from cga_lessons import checks
+
 from .circles_lines import circle_properties, line_properties
 from .entities import point_pair_extraction, sphere_and_plane
 from .model import (
@@ -57,6 +59,7 @@ from .model import (
     projection_rejection,
     stereographic_projection,
 )
+from .records import Derivation
 from .versors import conformal_transformations, rotors_and_motors
 
 __all__ = [
@@ -89,7 +92,8 @@ DERIVATIONS = {
 
 
 def run_all() -> dict:
-    """Run every derivation; returns ``{name: Derivation}`` (under 10 s)."""
+    """Run every derivation; returns ``{name: Derivation}`` (under 10 s the first time; each derivation is
+    computed once per process, and later calls return copies)."""
     return {name: f() for name, f in DERIVATIONS.items()}
 
 
@@ -118,6 +122,16 @@ class Erratum:
     printed_check: str
     correct_check: str
     note: str = ""
+
+    def __post_init__(self):
+        for name in ("label", "printed", "correct", "decided_by", "printed_check", "correct_check"):
+            checks.text(getattr(self, name), "Erratum", name)
+        checks.text(self.note, "Erratum", "note", empty=True)
+        prefix, _, name = self.decided_by.rpartition(".")
+        if prefix != "cga_lessons.symbolic" or name not in DERIVATIONS:
+            raise checks.fail(
+                "Erratum", "decided_by", f"expected 'cga_lessons.symbolic.<derivation>', one of {list(DERIVATIONS)}"
+            )
 
     @property
     def function(self):
@@ -256,14 +270,25 @@ def verify_errata(derivations: dict | None = None) -> list:
 
     ``derivations`` may hold already computed results (``run_all()``).
     """
+    func = "verify_errata"
+    if derivations is not None and not isinstance(derivations, dict):
+        raise checks.fail(func, "derivations", f"expected None or {{name: Derivation}}, got {derivations!r:.40}")
     derivations = dict(derivations or {})
+    for name, d in derivations.items():
+        if name not in DERIVATIONS or not isinstance(d, Derivation):
+            raise checks.fail(
+                func, "derivations", f"expected {{name: Derivation}} with names of DERIVATIONS, got {name!r}"
+            )
     out = []
     for err in ERRATA:
         name = err.decided_by.rsplit(".", 1)[1]
         if name not in derivations:
             derivations[name] = DERIVATIONS[name]()
         d = derivations[name]
-        out.append((err, not d[err.printed_check].holds, d[err.correct_check].holds))
+        try:
+            out.append((err, not d[err.printed_check].holds, d[err.correct_check].holds))
+        except KeyError as exc:
+            raise checks.fail(func, "derivations", f"{name}: {exc}") from None
     return out
 
 

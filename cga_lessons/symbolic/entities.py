@@ -24,7 +24,6 @@ from cga_lessons.conformal import (
 from cga_lessons.conformal import sphere as sphere_entity
 
 from .core import (
-    Derivation,
     Ring,
     add3,
     const,
@@ -38,6 +37,7 @@ from .core import (
     sphere_from_center,
     sub3,
 )
+from .records import Derivation, derivation
 
 __all__ = ["sphere_and_plane", "point_pair_extraction"]
 
@@ -45,6 +45,7 @@ HALF = sp.Rational(1, 2)
 
 
 # --------------------------------------------------------------- 2.69 - 2.77
+@derivation
 def sphere_and_plane() -> Derivation:
     """Spheres and planes, Eqs. (2.69)-(2.77), for a symbolic centre and radius.
 
@@ -164,6 +165,7 @@ def sphere_and_plane() -> Derivation:
 
 
 # --------------------------------------------------------------- point pairs
+@derivation
 def point_pair_extraction() -> Derivation:
     """The two points of a point pair, Eqs. (2.131)-(2.134), for symbolic a, b.
 

@@ -15,7 +15,8 @@ import sympy as sp
 from cga_lessons.algebra import Algebra, Multivector
 from cga_lessons.conformal import up
 
-from .core import Derivation, const, dot3, euclid, inverse
+from .core import const, dot3, euclid, inverse, signature_list
+from .records import Derivation, derivation
 
 __all__ = [
     "clifford_product_plane",
@@ -37,6 +38,7 @@ def _basis(alg: Algebra) -> list:
 
 
 # --------------------------------------------------------------- 2.1 - 2.10
+@derivation
 def clifford_product_plane() -> Derivation:
     """The Clifford product of vectors in R^2, Eqs. (2.1)-(2.8).
 
@@ -88,8 +90,14 @@ def basis_and_product_axioms(signatures=((2, 0, 0), (3, 0, 0), (4, 1, 0), (2, 1,
     For each signature: the blades of grade k number C(n, k) (2.9), the
     pseudoscalar is ``e1 ^ ... ^ en`` (2.9), ``e_i e_i`` is +1, -1, 0 for the
     first p, next q and last r vectors, and ``e_i e_j = e_i ^ e_j = -e_j ^ e_i``
-    for i != j (2.10).
+    for i != j (2.10).  ``signatures``: distinct ``(p, q, r)``, each of dimension 1 to 10.
     """
+    return _axioms(signature_list(signatures, "basis_and_product_axioms"))
+
+
+@derivation
+def _axioms(signatures: tuple) -> Derivation:
+    """:func:`basis_and_product_axioms` of checked signatures (computed once each)."""
     d = Derivation("Basis blades and product axioms of G(p,q,r)", ("2.9", "2.10"))
     for p, q, r in signatures:
         alg = Algebra(p, q, r)
@@ -122,6 +130,7 @@ def basis_and_product_axioms(signatures=((2, 0, 0), (3, 0, 0), (4, 1, 0), (2, 1,
 
 
 # --------------------------------------------------------------- 2.38 - 2.51
+@derivation
 def stereographic_projection() -> Derivation:
     """Stereographic projection in 1D, Eqs. (2.38)-(2.51), solved with SymPy.
 
@@ -224,6 +233,7 @@ MINKOWSKI_PROPERTIES = (
 )
 
 
+@derivation
 def minkowski_plane() -> Derivation:
     """The Minkowski plane R^{1,1} and its null basis, Eqs. (2.52)-(2.56).
 
@@ -280,6 +290,7 @@ def minkowski_plane() -> Derivation:
 
 
 # --------------------------------------------------------------- 2.57 - 2.60
+@derivation
 def projection_rejection() -> Derivation:
     """Projection onto and rejection from the Minkowski plane, Eqs. (2.57)-(2.60).
 
@@ -319,6 +330,7 @@ def projection_rejection() -> Derivation:
 
 
 # --------------------------------------------------------------- 2.61 - 2.68
+@derivation
 def null_cone_points() -> Derivation:
     """Conformal points, the null cone and the distance identity, Eqs. (2.61)-(2.68).
 

@@ -26,7 +26,8 @@ from cga_lessons.conformal import (
     up,
 )
 
-from .core import Derivation, Ring, add3, const, cross3, dot3, euclid, inverse, sub3
+from .core import Ring, add3, const, cross3, dot3, euclid, inverse, sub3
+from .records import Derivation, derivation
 
 __all__ = ["conformal_transformations", "rotors_and_motors"]
 
@@ -41,6 +42,7 @@ def _general_vector(name: str):
 
 
 # --------------------------------------------------------------- 2.82 - 2.93
+@derivation
 def conformal_transformations() -> Derivation:
     """Inversions, reflections, translations and rotations as versors,
     Eqs. (2.82)-(2.93) and table 2.2.
@@ -234,6 +236,7 @@ def conformal_transformations() -> Derivation:
 
 
 # --------------------------------------------------------------- 2.135 - 2.145
+@derivation
 def rotors_and_motors() -> Derivation:
     """Rotor and motor properties and the motor decomposition, Eqs. (2.135)-(2.145).
 

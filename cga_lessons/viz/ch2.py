@@ -23,6 +23,24 @@ from matplotlib.patches import FancyArrowPatch, Polygon
 
 from cga_lessons import conformal as cga
 from cga_lessons.algebra import Algebra, GeometryError
+from cga_lessons.checks import fail, instance, integer, same_length
+
+from ._inputs import (
+    LIMIT,
+    axes,
+    coord,
+    coords,
+    entity,
+    figure,
+    floats,
+    generator,
+    optional_text,
+    relabel,
+    texts,
+    vector,
+)
+from ._inputs import legend_loc as legend_location
+from ._inputs import points as point_rows
 
 __all__ = [
     "DPI",
@@ -60,8 +78,10 @@ def show(fig, colors=256):
 
     Line drawings lose nothing visible in the palette, and the stored
     notebook gets two to three times smaller than with the default RGBA PNG.
-    Outside IPython this is ``plt.show()``.
+    Outside IPython this is ``plt.show()``.  ``colors``: the palette's size, 2 to 256.
     """
+    fig = figure(fig, "show")
+    colors = integer(colors, "show", "colors", low=2, high=256)
     try:
         from IPython import get_ipython
         from IPython.display import Image, display
@@ -88,6 +108,7 @@ def product_table(alg: Algebra) -> str:
     Row ``A``, column ``B`` holds ``A B``: a signed blade name, or ``0`` when a
     null basis vector is squared.
     """
+    alg = instance(alg, "product_table", "alg", Algebra, "an Algebra (cga_lessons.algebra.Algebra)")
     names = [alg.blade_names[b] for b in alg.blade_order]
     cells = []
     for a in names:
@@ -126,7 +147,7 @@ def _circulation(ax, center, radius, ccw, color):
 
 def fig_bivectors(a, b):
     """Figures 2.1-2.3: the unit bivector e12, the parallelogram a ^ b, and a ^ b = -b ^ a (2.6, 2.7)."""
-    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    a, b = coords(a, "fig_bivectors", "a", (2,)), coords(b, "fig_bivectors", "b", (2,))
     fig, axes = plt.subplots(1, 3, figsize=(13, 4.5), dpi=DPI, gridspec_kw={"width_ratios": [1, 1.1, 1.7]})
     o = np.zeros(2)
     e1, e2 = np.array([1.0, 0.0]), np.array([0.0, 1.0])
@@ -190,10 +211,10 @@ def _stereo(x):
 
 def fig_stereographic_1d(xs):
     """Figure 2.4: stereographic projection of points x e1 onto the unit circle from n = e+ (2.38-2.48)."""
+    xs = coords(xs, "fig_stereographic_1d", "xs", (None,), at_least=1)
     fig, ax = plt.subplots(figsize=(7, 5), dpi=DPI)
     t = np.linspace(0, 2 * np.pi, 200)
     ax.plot(np.cos(t), np.sin(t), "k", lw=1)
-    xs = np.asarray(xs, dtype=float)
     span = max(2.0, np.abs(xs).max() + 0.5)
     ax.axhline(0, color="grey", lw=0.8)
     ax.axvline(0, color="grey", lw=0.8)
@@ -228,6 +249,7 @@ def fig_null_cone(xs):
     x e1 + (x^2-1)/2 e+ + (x^2+1)/2 e-, where the cone meets the hyperplane
     X . e = -1.
     """
+    xs = coords(xs, "fig_null_cone", "xs", (None,), at_least=1, limit=1e6)
     fig = plt.figure(figsize=(7, 6.2), dpi=DPI)
     ax = fig.add_subplot(projection="3d")
     h = 2.6
@@ -314,8 +336,20 @@ def _orthonormal_pair(n):
 
 
 def set_equal_3d(ax, pts, pad=0.3, labels=("$e_1$", "$e_2$", "$e_3$")):
-    """Equal scales on a 3D axes around the points ``pts`` (with a margin ``pad``), axes labelled ``labels``."""
-    pts = np.asarray(pts, dtype=float).reshape(-1, 3)
+    """Equal scales on a 3D axes around the points ``pts`` (N, 3) (with a margin ``pad``), axes labelled ``labels``."""
+    func = "set_equal_3d"
+    ax = axes(ax, func, three_d=True, optional=False)
+    pts = point_rows(pts, func, "pts")
+    pad = coord(pad, func, "pad", low=0.0)
+    labels = _labels3(labels, func)
+    _equal_3d(ax, pts, pad, labels)
+
+
+def _labels3(value, func: str) -> list:
+    return texts(value, func, "labels", 3)
+
+
+def _equal_3d(ax, pts, pad, labels):
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     c, r = (lo + hi) / 2, (hi - lo).max() / 2 + pad
     ax.set_xlim(c[0] - r, c[0] + r)
@@ -337,39 +371,43 @@ def fig_entities(points=None, point_pair=None, sphere=None, plane=None, line=Non
     ``cga.plane_normal_distance``, ``cga.line_closest_point`` /
     ``cga.line_direction`` and ``cga.circle_center_radius``.
     """
+    func = "fig_entities"
+    pts = None if points is None else point_rows(points, func, "points")
+    given = {"point_pair": point_pair, "sphere": sphere, "plane": plane, "line": line, "circle": circle}
+    read = {name: _read_entity(X, func, name) for name, X in given.items() if X is not None}
+    title = optional_text(title, func, "title")
     fig = plt.figure(figsize=(7, 6.2), dpi=DPI)
     ax = fig.add_subplot(projection="3d")
     extent = []
-    if points is not None:
-        pts = np.atleast_2d(points)
+    if pts is not None:
         ax.scatter(*pts.T, color=_COLORS["point"], s=25, label="points $\\underline{x}$ (2.62)")
         extent.append(pts)
-    if sphere is not None:
-        c, r = cga.sphere_center_radius(sphere)
+    if "sphere" in read:
+        c, r = read["sphere"]
         u, v = np.meshgrid(np.linspace(0, 2 * np.pi, 30), np.linspace(0, np.pi, 16))
         xyz = c[:, None, None] + r * np.array([np.cos(u) * np.sin(v), np.sin(u) * np.sin(v), np.cos(v)])
         ax.plot_wireframe(*xyz, color=_COLORS["sphere"], alpha=0.35, lw=0.6)
         ax.plot([], [], color=_COLORS["sphere"], label=f"sphere, $\\rho$ = {r:.2f}")
         extent.append(xyz.reshape(3, -1).T)
-    if circle is not None:
-        c, r, n = cga.circle_center_radius(circle)
+    if "circle" in read:
+        c, r, n = read["circle"]
         u, v = _orthonormal_pair(n)
         t = np.linspace(0, 2 * np.pi, 100)
         xyz = c + r * (np.cos(t)[:, None] * u + np.sin(t)[:, None] * v)
         ax.plot(*xyz.T, color=_COLORS["circle"], lw=2, label=f"circle, $\\rho$ = {r:.2f}")
         extent.append(xyz)
-    if line is not None:
-        p, d = cga.line_closest_point(line), cga.line_direction(line)
+    if "line" in read:
+        p, d = read["line"]
         seg = p + np.linspace(-2.5, 2.5, 2)[:, None] * d
         ax.plot(*seg.T, color=_COLORS["line"], lw=2.5, label="line")
         extent.append(seg)
-    if point_pair is not None:
-        p1, p2 = cga.point_pair_endpoints(point_pair)
+    if "point_pair" in read:
+        p1, p2 = read["point_pair"]
         ax.plot(*np.array([p1, p2]).T, color=_COLORS["point_pair"], ls=":", lw=1)
         ax.scatter(*np.array([p1, p2]).T, color=_COLORS["point_pair"], s=60, marker="D", label="point pair")
         extent.append(np.array([p1, p2]))
-    if plane is not None:
-        n, d = cga.plane_normal_distance(plane)
+    if "plane" in read:
+        n, d = read["plane"]
         u, v = _orthonormal_pair(n)
         s, t = np.meshgrid(np.linspace(-2.2, 2.2, 2), np.linspace(-2.2, 2.2, 2))
         middle = np.vstack(extent).mean(axis=0) if extent else np.zeros(3)
@@ -377,16 +415,41 @@ def fig_entities(points=None, point_pair=None, sphere=None, plane=None, line=Non
         xyz = foot[:, None, None] + s * u[:, None, None] + t * v[:, None, None]
         ax.plot_surface(*xyz, color=_COLORS["plane"], alpha=0.2)
         ax.plot([], [], color=_COLORS["plane"], lw=6, alpha=0.4, label="plane")
-    set_equal_3d(ax, np.vstack(extent) if extent else np.zeros((1, 3)))
+    _equal_3d(ax, np.vstack(extent) if extent else np.zeros((1, 3)), 0.3, ("$e_1$", "$e_2$", "$e_3$"))
     ax.legend(loc="upper left", fontsize=9)
     ax.set_title(title or "Table 2.1: conformal entities")
     fig.tight_layout()
     return fig
 
 
+_READERS = {
+    "point_pair": ("point pair", cga.point_pair_endpoints),
+    "sphere": ("sphere", cga.sphere_center_radius),
+    "plane": ("plane", cga.plane_normal_distance),
+    "line": ("line", lambda X: (cga.line_closest_point(X), cga.line_direction(X))),
+    "circle": ("circle", cga.circle_center_radius),
+}
+
+
+def _read_entity(X, func: str, name: str) -> tuple:
+    """The Euclidean parameters of the entity given as ``name`` (of its kind), checked drawable."""
+    kind, read = _READERS[name]
+    X = entity(X, func, name, (kind,))
+    with relabel(func, name):
+        out = read(X)
+    values = np.concatenate([np.ravel(v) for v in out])
+    if not np.all(np.isfinite(values)) or np.abs(values).max() > LIMIT:
+        raise fail(func, name, f"its {kind}'s parameters cannot be drawn (not finite or beyond +-{LIMIT:g})")
+    return out
+
+
 # ----------------------------------------------------- section 2.3.4
 def grid_lines(lo, hi, n_lines, n_pts=200):
-    """A square grid in the plane z = 0: an array (2 n_lines, n_pts, 3) of polylines."""
+    """A square grid in the plane z = 0: an array (2 n_lines, n_pts, 3) of polylines from ``lo`` to ``hi``."""
+    func = "grid_lines"
+    lo, hi = coord(lo, func, "lo"), coord(hi, func, "hi")
+    n_lines = integer(n_lines, func, "n_lines", low=1, high=1000)
+    n_pts = integer(n_pts, func, "n_pts", low=2, high=10**5)
     ticks = np.linspace(lo, hi, n_lines)
     s = np.linspace(lo, hi, n_pts)
     horiz = [np.column_stack([s, np.full_like(s, y), np.zeros_like(s)]) for y in ticks]
@@ -399,11 +462,22 @@ def fig_inversion_grid(grid, image, center, radius, window=None, highlight=None)
 
     ``grid`` and ``image`` are arrays (lines, points, 3): the polylines and
     their images.  Lines of the grid become circles through the centre.
-    ``highlight`` is the index of one line drawn (with its image) in black.
+    ``highlight`` is the index of one line drawn (with its image) in black; ``window`` is ``(x0, x1, y0, y1)``.
     """
+    func = "fig_inversion_grid"
+    grid = coords(grid, func, "grid", (None, None, 3), at_least=1)
+    image = coords(image, func, "image", (None, None, 3))
+    if image.shape != grid.shape:
+        raise fail(func, "image", f"expected the shape of grid {grid.shape}, got {image.shape}")
+    center, radius = vector(center, func, "center"), coord(radius, func, "radius", low=0.0, strict_low=True)
+    if window is not None:
+        window = coords(window, func, "window", (4,))
+        if not (window[0] < window[1] and window[2] < window[3]):
+            raise fail(func, "window", f"expected (x0, x1, y0, y1) with x0 < x1 and y0 < y1, got {window.tolist()}")
+    if highlight is not None:
+        highlight = integer(highlight, func, "highlight", low=0, high=len(grid) - 1)
     fig, axes = plt.subplots(1, 2, figsize=(12, 6), dpi=DPI)
     t = np.linspace(0, 2 * np.pi, 200)
-    center = np.asarray(center, dtype=float)
     for ax, data, color, title in (
         (axes[0], grid, "tab:blue", "a grid of lines"),
         (axes[1], image, "tab:red", "its image under the inversion $g(x)$ (2.88)"),
@@ -427,6 +501,22 @@ def fig_inversion_grid(grid, image, center, radius, window=None, highlight=None)
     return fig
 
 
+def _planes(planes, func: str) -> list:
+    """Two ``(normal, distance, label)`` triples, each normal with a part in the (e1, e2) plane."""
+    if not isinstance(planes, (list, tuple, np.ndarray)) or len(planes) != 2:
+        raise fail(func, "planes", f"expected two (normal, distance, label) triples, got {type(planes).__name__}")
+    out = []
+    for k, plane in enumerate(planes):
+        if not isinstance(plane, (list, tuple, np.ndarray)) or len(plane) != 3:
+            raise fail(func, f"planes[{k}]", "expected a triple (normal, distance, label)")
+        n = vector(plane[0], func, f"planes[{k}] normal", (2, 3))
+        if not np.hypot(n[0], n[1]) > 1e-12 * max(1.0, np.abs(n).max()):
+            raise fail(func, f"planes[{k}] normal", "has no part in the (e1, e2) plane: its trace is not a line")
+        distance = coord(plane[1], func, f"planes[{k}] distance")
+        out.append((n, distance, optional_text(plane[2], func, f"planes[{k}] label")))
+    return out
+
+
 def _plane_trace(ax, normal, distance, span, color, label):
     """The trace of the plane n . x = delta in the (e1, e2) view: a line."""
     n = np.asarray(normal, dtype=float)[:2]
@@ -446,6 +536,14 @@ def fig_two_reflections(shape, after_first, after_second, planes, title, span=3.
     ``(normal, distance, label)`` triples, the plane used first, then the one
     used second (2.89).  ``center``, if given, is marked (the centre of a rotation).
     """
+    func = "fig_two_reflections"
+    shape = coords(shape, func, "shape", (None, 3), at_least=1)
+    after_first, after_second = (coords(v, func, k, shape.shape) for k, v in
+                                 (("after_first", after_first), ("after_second", after_second)))  # fmt: skip
+    planes, title = _planes(planes, func), optional_text(title, func, "title")
+    span = coord(span, func, "span", low=0.0, strict_low=True)
+    center = None if center is None else vector(center, func, "center")
+    legend_loc = legend_location(legend_loc, func)
     fig, ax = plt.subplots(figsize=(7, 6), dpi=DPI)
     for (n, d, label), color in zip(planes, ("tab:gray", "tab:brown")):
         _plane_trace(ax, n, d, span, color, label)
@@ -477,10 +575,15 @@ def fig_two_reflections(shape, after_first, after_second, planes, title, span=3.
 
 
 def fig_screw_helix(points, axis_point, axis_direction, title="A point under a repeated screw motion (2.110)"):
-    """The orbit of a point under powers of a screw motor: a helix around the screw axis."""
+    """The orbit of a point under powers of a screw motor: a helix around the screw axis (``points`` (N, 3))."""
+    func = "fig_screw_helix"
+    pts = point_rows(points, func, "points")
+    axis_point = vector(axis_point, func, "axis_point", (3,))
+    if not np.linalg.norm(vector(axis_direction, func, "axis_direction", (3,))) > 0:
+        raise fail(func, "axis_direction", "must not be the zero vector")
+    title = optional_text(title, func, "title")
     fig = plt.figure(figsize=(7, 7), dpi=DPI)
     ax = fig.add_subplot(projection="3d")
-    pts = np.asarray(points)
     ax.plot(*pts.T, color="tab:blue", lw=1)
     ax.scatter(*pts.T, c=np.arange(len(pts)), cmap="viridis", s=18)
     ax.scatter(*pts[0], color="tab:red", s=60, label="start")
@@ -489,7 +592,7 @@ def fig_screw_helix(points, axis_point, axis_direction, title="A point under a r
     proj = (pts - axis_point) @ d
     seg = np.asarray(axis_point) + np.array([proj.min() - 0.3, proj.max() + 0.3])[:, None] * d
     ax.plot(*seg.T, "k--", lw=1.5, label="screw axis")
-    set_equal_3d(ax, np.vstack([pts, seg]), pad=0.2)
+    _equal_3d(ax, np.vstack([pts, seg]), 0.2, ("$e_1$", "$e_2$", "$e_3$"))
     ax.view_init(*_side_view(d))
     ax.legend(loc="upper left")
     ax.set_title(title)
@@ -521,6 +624,12 @@ def point_pair_accuracy(separations, distance, rng, trials=20):
     failed : array of int, how many trials raised a ``GeometryError`` with the guard off
     refused : array of int, how many trials the default guard refused
     """
+    func = "point_pair_accuracy"
+    separations = coords(separations, func, "separations", (None,), at_least=1, limit=1e6)
+    if np.any(separations <= 0):
+        raise fail(func, "separations", "must all be > 0 (two distinct points)")
+    distance = coord(distance, func, "distance", low=0.0, limit=1e6)
+    rng, trials = generator(rng, func), integer(trials, func, "trials", low=1, high=10**5)
     worst, failed, refused = [], [], []
     for s in separations:
         errs, bad, ref = [], 0, 0
@@ -544,6 +653,29 @@ def point_pair_accuracy(separations, distance, rng, trials=20):
     return np.array(worst), np.array(failed), np.array(refused)
 
 
+def _accuracy_curves(separations, curves, func: str):
+    """The separations (> 0) and ``{label: (worst, failed, refused)}`` of :func:`point_pair_accuracy`, checked."""
+    seps = coords(separations, func, "separations", (None,), at_least=1)
+    if np.any(seps <= 0):
+        raise fail(func, "separations", "must all be > 0 (a log scale)")
+    if not isinstance(curves, dict) or not curves:
+        raise fail(func, "curves", "expected a non-empty dict label -> (worst, failed, refused)")
+    out = {}
+    for name, curve in curves.items():
+        where = f"curves[{name!r}]"
+        if not isinstance(name, str) or not isinstance(curve, (list, tuple)) or len(curve) != 3:
+            raise fail(func, where, "expected a label (str) -> (worst, failed, refused) of point_pair_accuracy")
+        worst = floats(curve[0], func, f"{where} worst", (None,), finite=False)  # NaN: every trial raised
+        same_length(func, separations=seps, **{f"{where} worst": worst})
+        if np.any(worst < 0) or np.any(worst == np.inf):
+            raise fail(func, f"{where} worst", "errors must be >= 0 (or NaN where every trial raised)")
+        counts = [floats(c, func, f"{where} {k}", seps.shape) for k, c in zip(("failed", "refused"), curve[1:])]
+        if any(np.any(c < 0) for c in counts):
+            raise fail(func, where, "failed and refused are counts (>= 0)")
+        out[name] = (worst, *counts)
+    return seps, out
+
+
 def fig_point_pair_accuracy(separations, curves):
     """Log-log error of (2.131) against the separation of the two points.
 
@@ -552,8 +684,8 @@ def fig_point_pair_accuracy(separations, curves):
     some trials raised even with the guard off; the dashed vertical line of
     each curve is the largest separation that the default guard refused.
     """
+    seps, curves = _accuracy_curves(separations, curves, "fig_point_pair_accuracy")
     fig, ax = plt.subplots(figsize=(8, 5.5), dpi=DPI)
-    seps = np.asarray(separations)
     ax.loglog(seps, seps, "k:", lw=1, label="error = separation")
     colors = plt.cm.viridis(np.linspace(0, 0.85, len(curves)))
     for k, ((label, (worst, failed, refused)), color) in enumerate(zip(curves.items(), colors)):

@@ -10,7 +10,10 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from cga_lessons.exploration import ANALYSED, LABEL_NAMES, NOT_SEEN, OCCUPIED, SEEN
+from cga_lessons.checks import choice, fail, flag, integer
+from cga_lessons.exploration import ANALYSED, LABEL_NAMES, NOT_SEEN, OCCUPIED, SEEN, Grid, Scenario
+
+from ._inputs import axes, coord, coords, floats, optional_text
 
 __all__ = ["plot_scenario", "plot_nodes", "plot_occupancy_steps", "plot_disagreements", "plot_detour"]
 
@@ -39,11 +42,40 @@ def _rays(ax, result, plane):
         ax.plot([o[i], end[i]], [o[j], end[j]], style, color=color, lw=1.2, label=label if k in (0, 2) else None)
 
 
+def _result(result, func: str, *, obstacle: bool = False):
+    """A scenario's result (:func:`cga_lessons.exploration.run_scenario`); with ``obstacle``, one with a sphere."""
+    scenario, grid = getattr(result, "scenario", None), getattr(result, "grid", None)
+    if not (isinstance(scenario, Scenario) and isinstance(grid, Grid)):
+        raise fail(func, "result", f"expected the result of exploration.run_scenario, got {type(result).__name__}")
+    if obstacle and (result.obstacle is None or result.loop is None or result.points is None):
+        raise fail(func, "result", "the scenario has no obstacle (a sphere with points): nothing to draw")
+    return result
+
+
+def _codes(value, func: str, name: str, n: int, allowed) -> np.ndarray:
+    """One whole-number code per node, each in ``allowed``."""
+    a = floats(value, func, name, (n,))
+    if np.any(a != np.round(a)) or not np.all(np.isin(a, list(allowed))):
+        raise fail(func, name, f"expected {n} codes from {sorted(allowed)}")
+    return a.astype(int)
+
+
 def plot_nodes(ax, result, plane="xy", labels=None, legend=True):
-    """Nodes coloured by label on the plane "xy" or "xz" (occupied drawn last, on top)."""
+    """Nodes coloured by label on the plane "xy" or "xz" (occupied drawn last, on top).
+
+    ``labels``: one label code per node (default: the result's own labels).
+    """
+    func = "plot_nodes"
+    ax, result = axes(ax, func, optional=False), _result(result, func)
+    plane, legend = choice(plane, func, "plane", _AXES), flag(legend, func, "legend")
+    nodes = result.grid.nodes
+    lab = result.labels.labels if labels is None else _codes(labels, func, "labels", len(nodes), COLORS)
+    return _plot_nodes(ax, result, plane, lab, legend)
+
+
+def _plot_nodes(ax, result, plane, lab, legend):
     i, j = _AXES[plane]
     nodes = result.grid.nodes
-    lab = result.labels.labels if labels is None else labels
     for code in (NOT_SEEN, SEEN, ANALYSED, OCCUPIED):
         m = lab == code
         if m.any():
@@ -71,9 +103,10 @@ def plot_nodes(ax, result, plane="xy", labels=None, legend=True):
 
 def plot_scenario(result, title=None):
     """Figure with the x-y view and the x-z view (all y rows projected) of a labelled scenario."""
+    result, title = _result(result, "plot_scenario"), optional_text(title, "plot_scenario", "title")
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(12, 4.6), gridspec_kw={"width_ratios": [1, 1.25]})
-    plot_nodes(a1, result, "xy", legend=False)
-    plot_nodes(a2, result, "xz")
+    _plot_nodes(a1, result, "xy", result.labels.labels, False)
+    _plot_nodes(a2, result, "xz", result.labels.labels, True)
     a1.set_title("x-y view")
     a2.set_title("x-z view (all rows of y projected; z stretched)")
     a2.set_aspect("auto")
@@ -86,8 +119,15 @@ def plot_scenario(result, title=None):
 def plot_occupancy_steps(result, counts=(1, 3, 6, None), window=45.0):
     """Figure 3.6: the nearest-node loop of exploration (3.1) after the given numbers of steps.
 
-    x-y view: the two layers of z are drawn on top of each other.
+    x-y view: the two layers of z are drawn on top of each other.  ``counts``: numbers of steps (None: all of
+    them), one panel each; ``window``: the half-width of the view around the sphere's centre.
     """
+    func = "plot_occupancy_steps"
+    result = _result(result, func, obstacle=True)
+    if not isinstance(counts, (list, tuple)) or not 1 <= len(counts) <= 12:
+        raise fail(func, "counts", f"expected 1 to 12 numbers of steps (or None), got {counts!r}")
+    counts = [None if k is None else integer(k, func, "counts", low=0) for k in counts]
+    window = coord(window, func, "window", low=0.0, strict_low=True)
     loop, pts, nodes = result.loop, result.points, result.grid.nodes
     fig, axes = plt.subplots(1, len(counts), figsize=(3.3 * len(counts), 3.6), sharey=True)
     c = np.asarray(result.obstacle.center)
@@ -115,7 +155,16 @@ def plot_occupancy_steps(result, counts=(1, 3, 6, None), window=45.0):
 
 
 def plot_disagreements(result, codes, names):
-    """x-y and x-z views of where the document's rule and 3D ray casting differ, coloured by reason."""
+    """x-y and x-z views of where the document's rule and 3D ray casting differ, coloured by reason.
+
+    ``codes``: one code 0-3 per node (:func:`cga_lessons.exploration.ray_cast_disagreements`); ``names``: the
+    reason of each code (:data:`cga_lessons.exploration.DISAGREEMENTS`).
+    """
+    func = "plot_disagreements"
+    result = _result(result, func, obstacle=True)
+    codes = _codes(codes, func, "codes", len(result.grid.nodes), range(4))
+    if not isinstance(names, dict) or any(not isinstance(names.get(k), str) for k in range(4)):
+        raise fail(func, "names", "expected a dict code -> reason (str) for the codes 0, 1, 2 and 3")
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.6), gridspec_kw={"width_ratios": [1, 1.25]})
     colors = {0: "0.8", 1: "tab:purple", 2: "tab:orange", 3: "tab:cyan"}
     nodes = result.grid.nodes
@@ -137,11 +186,30 @@ def plot_disagreements(result, codes, names):
     return fig
 
 
+def _detour(detour, func: str) -> None:
+    """The answer of :func:`cga_lessons.exploration.detour`: a drawable path, crossings and tangent points."""
+    if not all(hasattr(detour, k) for k in ("path", "crossings", "tangent_points")):
+        raise fail(func, "detour", f"expected the answer of exploration.detour, got {type(detour).__name__}")
+    coords(detour.path, func, "detour", (None, 2), at_least=2)
+    for part in (detour.crossings, detour.tangent_points):
+        if part is not None:
+            coords(part, func, "detour", (None, 2))
+
+
 def plot_detour(start, goal, center, radius, detour, crossings_document=None, ax=None):
-    """Figure 3.10: the straight path, its crossings with the circle, the part removed and the smooth detour."""
-    if ax is None:
+    """Figure 3.10: the straight path, its crossings with the circle, the part removed and the smooth detour.
+
+    ``detour`` is :func:`cga_lessons.exploration.detour`'s answer; ``crossings_document`` (k, 2), optional, the
+    crossings by the document's algebra.
+    """
+    func = "plot_detour"
+    s, g, c = (coords(v, func, k, (2,)) for k, v in (("start", start), ("goal", goal), ("center", center)))
+    radius = coord(radius, func, "radius", low=0.0, strict_low=True)
+    _detour(detour, func)
+    if crossings_document is not None:
+        crossings_document = coords(crossings_document, func, "crossings_document", (None, 2))
+    if axes(ax, func) is None:
         _, ax = plt.subplots(figsize=(7, 5))
-    s, g, c = (np.asarray(v, float) for v in (start, goal, center))
     ax.add_patch(plt.Circle(c, radius, fill=False, color="k", lw=1.2, label="obstacle (3.3)"))
     ax.plot(*np.c_[s, g], ":", color="0.5", label="straight path (3.2)")
     if detour.crossings is not None:

@@ -26,10 +26,12 @@ import numpy as np
 
 from cga_lessons import conformal as cga
 from cga_lessons import mapping2d
-from cga_lessons.algebra import InvalidInputError, Multivector
-from cga_lessons.checks import real
+from cga_lessons.algebra import Multivector
+from cga_lessons.checks import fail, real
 from cga_lessons.mapping2d import SegmentSet, theta_correction, translation_correction
 
+from ._inputs import coord, point_pairs, relabel, vector
+from ._inputs import scene as as_scene
 from .controls import slider_panel
 from .laser import draw_scene
 
@@ -38,26 +40,44 @@ __all__ = ["CorrectionExplorer", "place", "ends", "line_members", "rotor_about",
 
 def place(PP: Multivector, pose) -> tuple[Multivector, Multivector]:
     """Point pairs of the laser frame put in the world by the laser motor of ``pose`` (3.17), ``M PP ~M`` (3.18)."""
-    M = mapping2d.laser_motor(pose)
+    PP, pose = point_pairs(PP, "place"), vector(pose, "place", "pose", (3,), limit=1e6)
+    with relabel("place", "pose"):
+        M = mapping2d.laser_motor(pose)
     return (M * PP * ~M).grade(2), M
 
 
 def ends(PP: Multivector) -> tuple[np.ndarray, np.ndarray]:
     """The two points (2.131) of each point pair, (n, 2) each."""
-    p1, p2 = cga.point_pair_endpoints(PP)
+    return _ends(point_pairs(PP, "ends"), "ends")
+
+
+def _ends(PP: Multivector, func: str) -> tuple[np.ndarray, np.ndarray]:
+    with relabel(func, "PP"):
+        p1, p2 = cga.point_pair_endpoints(PP)
     return np.atleast_2d(p1)[:, :2], np.atleast_2d(p2)[:, :2]
 
 
 def line_members(PP: Multivector, centre) -> tuple[np.ndarray, np.ndarray]:
     """Oriented ``(rho, theta)`` of the lines ``PP ^ e`` seen from ``centre``: (3.14), (3.15) and (2.127)."""
-    p1, p2 = ends(PP)
+    func = "line_members"
+    return _members(point_pairs(PP, func), vector(centre, func, "centre", (2, 3), limit=1e6)[:2], func)
+
+
+def _members(PP: Multivector, centre: np.ndarray, func: str) -> tuple[np.ndarray, np.ndarray]:
+    p1, p2 = _ends(PP, func)
     segs = SegmentSet(p1, p2, np.zeros((len(p1), 6)), np.zeros((len(p1), 2), int))
-    return mapping2d.ConformalGeometry().hough(segs, np.asarray(centre, float))
+    with relabel(func, "PP"):
+        return mapping2d.ConformalGeometry().hough(segs, centre)
 
 
 def rotor_about(centre, angle: float) -> Multivector:
     """The motor turning the plane by ``angle`` about the point ``centre``: ``T R ~T`` (2.94, 2.100)."""
-    c = np.asarray(centre, float)
+    c = vector(centre, "rotor_about", "centre", (2, 3), limit=1e6)
+    angle = real(angle, "rotor_about", "angle", low=-1e6, high=1e6)
+    return _rotor_about(c, angle)
+
+
+def _rotor_about(c: np.ndarray, angle: float) -> Multivector:
     return mapping2d.robot_motor([c[0], c[1], angle]) * cga.translator([-c[0], -c[1], 0.0])
 
 
@@ -69,21 +89,30 @@ def conformal_correction(PP_map: Multivector, PP_scan: Multivector, centre, thet
     Returns ``{"theta", "t", "rotor", "motor", "turned", "corrected"}``: the motor ``T(t) R_centre(theta)`` and the
     scan's point pairs after the turn alone and after the whole correction (3.18).
     """
-    rho_g, th_g = line_members(PP_map, centre)
-    rho_l, th_l = line_members(PP_scan, centre)
-    theta = theta_correction(mapping2d.diff_theta(th_g, th_l, theta_xi))  # (3.8)
-    R = rotor_about(centre, theta)
+    func = "conformal_correction"
+    PP_map, PP_scan = point_pairs(PP_map, func, "PP_map"), point_pairs(PP_scan, func, "PP_scan")
+    if PP_map.shape != PP_scan.shape:
+        raise fail(func, "PP_scan", f"expected as many point pairs as PP_map {PP_map.shape}, got {PP_scan.shape}")
+    centre = vector(centre, func, "centre", (2, 3), limit=1e6)[:2]
+    theta_xi = real(theta_xi, func, "theta_xi", low=0.0, strict_low=True, high=np.pi / 2)
+    rho_g, th_g = _members(PP_map, centre, func)
+    rho_l, th_l = _members(PP_scan, centre, func)
+    with relabel(func, "PP_scan"):
+        theta = theta_correction(mapping2d.diff_theta(th_g, th_l, theta_xi))  # (3.8)
+    R = _rotor_about(centre, theta)
     turned = (R * PP_scan * ~R).grade(2)
-    rho_l, th_l = line_members(turned, centre)
-    t = np.asarray(translation_correction(rho_g, rho_l, th_l), float)  # (3.12)
+    rho_l, th_l = _members(turned, centre, func)
+    with relabel(func, "PP_scan"):
+        t = np.asarray(translation_correction(rho_g, rho_l, th_l), float)  # (3.12)
     C = cga.translator([t[0], t[1], 0.0]) * R
     return {"theta": float(theta), "t": t, "rotor": R, "motor": C, "turned": turned,
             "corrected": (C * PP_scan * ~C).grade(2)}  # fmt: skip
 
 
 def _check(value, func: str, name: str) -> float:
-    """A slider's value as a float; NaN, inf, a bool or a string raise InvalidInputError (a ValueError) naming both."""
-    return real(value, func, name)
+    """A slider's value (a pose error, m or degrees) as a float; NaN, inf, a bool, a string or None raise
+    InvalidInputError (a ValueError) naming both; an error beyond +-1000 (m or degrees) is refused."""
+    return real(value, func, name, low=-1000.0, high=1000.0)
 
 
 def _polyline(p1: np.ndarray, p2: np.ndarray) -> tuple[list, list]:
@@ -109,13 +138,17 @@ class CorrectionExplorer:
     def __init__(self, scene="room", pose=(3.0, 2.0, 0.3), dx: float = 0.4, dy: float = -0.3,
                  dtheta_deg: float = 10.0, max_range: float = 5.0, theta_xi_deg: float = 30.0):  # fmt: skip
         func = "CorrectionExplorer"
-        self.scene = mapping2d.load_scene(scene) if isinstance(scene, str) else scene
-        self.pose = np.array([_check(v, func, "pose") for v in np.asarray(pose, float).reshape(3)])
-        self.theta_xi_deg = _check(theta_xi_deg, func, "theta_xi_deg")
-        ranges, angles = mapping2d.simulate_scan(self.scene, self.pose, None, max_range=max_range)
-        self.segments = mapping2d.extract_segments(ranges, angles, max_range=max_range)  # laser frame
+        self.scene, self.pose = as_scene(scene, func), vector(pose, func, "pose", (3,), limit=1e6)
+        error = [_check(v, func, k) for k, v in (("dx", dx), ("dy", dy), ("dtheta_deg", dtheta_deg))]
+        self.theta_xi_deg = real(theta_xi_deg, func, "theta_xi_deg", low=0.0, strict_low=True, high=90.0)
+        if abs(error[2]) >= self.theta_xi_deg:
+            raise fail(func, "dtheta_deg", f"must lie within the angle gate of (3.5), +-{self.theta_xi_deg:g} deg")
+        max_range = coord(max_range, func, "max_range", low=0.0, strict_low=True, limit=1e6)
+        with relabel(func, "pose"):
+            ranges, angles = mapping2d.simulate_scan(self.scene, self.pose, None, max_range=max_range)
+            self.segments = mapping2d.extract_segments(ranges, angles, max_range=max_range)  # laser frame
         if not self.segments:
-            raise InvalidInputError(f"{func}: the scan from pose {self.pose.tolist()} sees no segment")
+            raise fail(func, "pose", f"the scan from {self.pose.tolist()} sees no segment")
         self.local = mapping2d.segment_point_pair(self.segments)  # PP* = p_i ^ p_f, section 3.2.1
         self.map, self.true_motor = place(self.local, self.pose)
         self.error = np.zeros(3)
@@ -155,8 +188,8 @@ class CorrectionExplorer:
             if value is not None:
                 error[i] = _check(value, func, name)
         if abs(error[2]) >= self.theta_xi_deg:
-            raise InvalidInputError(f"{func}: dtheta_deg: must lie within the angle gate of (3.5), "
-                             f"+-{self.theta_xi_deg:g} deg, got {error[2]:g}")  # fmt: skip
+            raise fail(func, "dtheta_deg", f"must lie within the angle gate of (3.5), +-{self.theta_xi_deg:g} deg, "
+                       f"got {error[2]:g}")  # fmt: skip
         self.error = error
         err = self.error * np.array([1.0, 1.0, np.pi / 180])
         self.believed = self.pose + err

@@ -19,8 +19,10 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from cga_lessons import conformal as cga
-from cga_lessons.algebra import GeometryError
+from cga_lessons.algebra import DegenerateGeometryError, GeometryError
+from cga_lessons.checks import fail, real
 
+from ._inputs import coords, vector
 from .controls import slider_panel
 
 __all__ = ["PairExplorer", "pair_readback"]
@@ -31,13 +33,34 @@ def pair_readback(separation: float, distance: float, direction=(0.48, 0.6, 0.64
 
     ``a`` and ``b`` lie ``separation`` apart along ``direction`` about the midpoint
     ``distance * (1, 1, 1)/sqrt(3)``.  Returns ``{"a", "b", "p1", "p2", "error", "guard"}`` with ``error`` the
-    largest endpoint error (NaN when (2.131) has no real answer in floating point) and ``guard`` ``"accepted"`` or
-    ``"refused"``.
+    largest endpoint error (NaN when (2.131) has no real answer in floating point, or when ``a`` and ``b`` are
+    the same floating-point point) and ``guard`` ``"accepted"`` or ``"refused"``.  ``separation`` lies in (0, 1e6]
+    m, ``distance`` in [0, 1e6] m.
     """
-    d = np.asarray(direction, float) / np.linalg.norm(direction)
+    func = "pair_readback"
+    separation, distance = _separation(separation, func), _distance(distance, func)
+    d = vector(direction, func, "direction", (3,))
+    if not np.linalg.norm(d) > 0:
+        raise fail(func, "direction", "must not be the zero vector")
+    return _readback(separation, distance, d / np.linalg.norm(d))
+
+
+def _separation(value, func: str, name: str = "separation") -> float:
+    return real(value, func, name, low=0.0, strict_low=True, high=1e6)
+
+
+def _distance(value, func: str) -> float:
+    return real(value, func, "distance", low=0.0, high=1e6)
+
+
+def _readback(separation: float, distance: float, d: np.ndarray) -> dict:
     m = distance * np.ones(3) / np.sqrt(3.0)
     a, b = m - d * separation / 2, m + d * separation / 2
-    pair = cga.point_pair(a, b)
+    try:
+        pair = cga.point_pair(a, b)
+    except DegenerateGeometryError:  # a and b are one float point: no pair, no answer
+        nan = np.full(3, np.nan)
+        return {"a": a, "b": b, "p1": nan, "p2": nan.copy(), "error": float("nan"), "guard": "refused"}
     try:
         p1, p2 = cga.point_pair_endpoints(pair, min_separation=0.0)
         error = float(max(np.linalg.norm(p1 - a), np.linalg.norm(p2 - b)))
@@ -56,8 +79,11 @@ class PairExplorer:
     """The error of (2.131) against the separation, for pairs at one distance from the origin; redrawn by update."""
 
     def __init__(self, separation: float = 1e-3, distance: float = 4.0, grid=None):
-        self.separation, self.distance = float(separation), float(distance)
-        self.grid = np.logspace(0, -10, 41) if grid is None else np.asarray(grid, float)
+        func = "PairExplorer"
+        self.separation, self.distance = _separation(separation, func), _distance(distance, func)
+        self.grid = np.logspace(0, -10, 41) if grid is None else coords(grid, func, "grid", (None,), at_least=1)
+        if np.any(self.grid <= 0) or self.grid.max() > 1e6:
+            raise fail(func, "grid", "separations must lie in (0, 1e6] m (a log scale)")
         self.fig, self.ax = plt.subplots(figsize=(6.5, 4.2))
         (self._curve,) = self.ax.loglog([], [], "-o", ms=3, color="tab:blue", label="worst endpoint error")
         (self._refused,) = self.ax.loglog([], [], "x", color="tab:red", ms=7, label="refused by the default guard")
@@ -70,18 +96,19 @@ class PairExplorer:
         self.update()
 
     def update(self, separation: float | None = None, distance: float | None = None) -> None:
-        """Change the separation and/or the distance from the origin, recompute and redraw in place."""
-        if separation is not None:
-            self.separation = float(separation)
-        if distance is not None:
-            self.distance = float(distance)
-        rows = [pair_readback(s, self.distance) for s in self.grid]
+        """Change the separation and/or the distance from the origin (None: unchanged), recompute and redraw."""
+        func = "PairExplorer.update"
+        separation = self.separation if separation is None else _separation(separation, func)
+        distance = self.distance if distance is None else _distance(distance, func)
+        self.separation, self.distance = separation, distance
+        d = np.array([0.48, 0.6, 0.64])
+        rows = [_readback(s, self.distance, d) for s in self.grid]
         errors = np.array([r["error"] for r in rows])
         shown = np.where(np.isfinite(errors) & (errors > 0), errors, np.nan)
         self._curve.set_data(self.grid, np.maximum(shown, 1e-17))
         refused = np.array([r["guard"] == "refused" for r in rows])
         self._refused.set_data(self.grid[refused], np.maximum(np.nan_to_num(shown[refused], nan=1.0), 1e-17))
-        self.result = pair_readback(self.separation, self.distance)
+        self.result = _readback(self.separation, self.distance, d)
         err = self.result["error"]
         self._marker.set_data([self.separation], [max(err, 1e-17) if np.isfinite(err) else 1.0])
         self.ax.set_xlim(self.grid.min() / 2, self.grid.max() * 2)

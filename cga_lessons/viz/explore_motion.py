@@ -17,13 +17,15 @@ values is what a reader sees where no kernel runs.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, fields, replace
 
 import matplotlib.pyplot as plt
 import numpy as np
 
 from cga_lessons import conformal as cga
+from cga_lessons.checks import fail, instance, integer, real
 
+from ._inputs import vector
 from .controls import slider_panel
 from .motions import tool_outline
 
@@ -42,6 +44,10 @@ class ScrewParams:
     pitch: float = 0.6
     steps: int = 7
 
+    def __post_init__(self):
+        for name, value in _checked("ScrewParams", vars(self)).items():
+            object.__setattr__(self, name, value)
+
     def axis(self) -> np.ndarray:
         az, el = np.radians(self.azimuth), np.radians(self.elevation)
         return np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
@@ -51,12 +57,32 @@ class ScrewParams:
         return self.pitch * self.angle / 360.0
 
 
+def _checked(func: str, values: dict) -> dict:
+    """The given fields of :class:`ScrewParams` checked: angles in degrees within +-1e6, the axis point within 1e6 m,
+    the pitch within +-1e3 m per turn, 1 to 100 steps."""
+    out = {}
+    for name, value in values.items():
+        if name in ("azimuth", "elevation", "angle"):
+            out[name] = real(value, func, name, low=-1e6, high=1e6)
+        elif name == "pitch":
+            out[name] = real(value, func, name, low=-1e3, high=1e3)
+        elif name == "point":
+            out[name] = tuple(float(v) for v in vector(value, func, name, (3,), limit=1e6))
+        elif name == "steps":
+            out[name] = integer(value, func, name, low=1, high=100)
+        else:
+            known = ", ".join(f.name for f in fields(ScrewParams))
+            raise fail(func, name, f"not a parameter of the screw (one of {known})")
+    return out
+
+
 class ScrewExplorer:
     """The tool of :func:`~cga_lessons.viz.motions.tool_outline` moved along a screw; redrawn by :meth:`update`."""
 
     def __init__(self, params: ScrewParams | None = None, start=(0.9, 0.2, 0.1)):
-        self.params = params or ScrewParams()
-        self.start = cga.translator(np.asarray(start, float))  # the tool's first pose
+        func = "ScrewExplorer"
+        self.params = ScrewParams() if params is None else instance(params, func, "params", ScrewParams, "ScrewParams")
+        self.start = cga.translator(vector(start, func, "start", (3,), limit=1e6))  # the tool's first pose
         self.outline = tool_outline()
         self.fig = plt.figure(figsize=(6.5, 5.5))
         self.ax = self.fig.add_subplot(projection="3d")
@@ -77,6 +103,7 @@ class ScrewExplorer:
 
     def motor(self, s: float = 1.0) -> cga.Multivector:
         """The screw of (2.110) run a fraction ``s`` of the way: angle ``s angle`` and slide ``s distance``."""
+        s = real(s, "ScrewExplorer.motor", "s", low=-1e3, high=1e3)
         p = self.params
         angle, slide = s * np.radians(p.angle), s * p.distance()
         if abs(angle) < 1e-12:
@@ -88,7 +115,8 @@ class ScrewExplorer:
         return [self.motor(float(v)) * self.start for v in np.linspace(0.0, 1.0, self.params.steps)]
 
     def tip_path(self, n: int = 60) -> np.ndarray:
-        """The fingertip (the end of the longer finger) along the motion, (n, 3)."""
+        """The fingertip (the end of the longer finger) along the motion, (n, 3), n from 2 to 10000."""
+        n = integer(n, "ScrewExplorer.tip_path", "n", low=2, high=10_000)
         tip = self.outline[1, 1]
         return np.array([cga.apply_to_points(self.motor(float(v)) * self.start, tip) for v in np.linspace(0, 1, n)])
 
@@ -104,7 +132,7 @@ class ScrewExplorer:
     def update(self, **changes) -> None:
         """Change parameters (those of :class:`ScrewParams`) and redraw the lines in place."""
         if changes:
-            self.params = replace(self.params, **changes)
+            self.params = replace(self.params, **_checked("ScrewExplorer.update", changes))
         flat = self.outline.reshape(-1, 3)
         for lines, M in zip(self._tools, self.poses()):
             moved = cga.apply_to_points(M, flat).reshape(self.outline.shape)

@@ -18,35 +18,50 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from cga_lessons import exploration
+from cga_lessons.checks import real
 
+from ._inputs import relabel
 from .controls import slider_panel
 from .exploration import plot_nodes
 
 __all__ = ["NodeExplorer"]
 
 
+def _settings(func: str, heading_deg, fov_deg, diameter) -> tuple[float, float, float]:
+    return (real(heading_deg, func, "heading_deg", low=-1e6, high=1e6),
+            real(fov_deg, func, "fov_deg", low=0.0, strict_low=True, high=360.0),
+            real(diameter, func, "diameter", low=0.0, high=1000.0))  # fmt: skip
+
+
 class NodeExplorer:
     """The labelled nodes of one scenario, x-y view; redrawn by :meth:`update` (degrees and centimetres)."""
 
     def __init__(self, heading_deg: float = 180.0, fov_deg: float = 150.0, diameter: float = 15.0):
-        self.heading_deg, self.fov_deg, self.diameter = float(heading_deg), float(fov_deg), float(diameter)
+        self.heading_deg, self.fov_deg, self.diameter = _settings("NodeExplorer", heading_deg, fov_deg, diameter)
         self.fig, self.ax = plt.subplots(figsize=(8.2, 5.2))
-        self.update()
+        self._redraw("NodeExplorer")
 
     def update(self, heading_deg=None, fov_deg=None, diameter=None) -> None:
-        """Change the robot's heading, the cameras' field of view or the sphere's diameter (0: no sphere); redraw."""
-        if heading_deg is not None:
-            self.heading_deg = float(heading_deg)
-        if fov_deg is not None:
-            self.fov_deg = float(fov_deg)
-        if diameter is not None:
-            self.diameter = float(diameter)
+        """Change the robot's heading, the cameras' field of view or the sphere's diameter (0: no sphere); redraw.
+
+        None leaves a setting as it is.  The heading is in degrees (within +-1e6), the field of view in (0, 360]
+        degrees, the diameter in [0, 1000] cm.
+        """
+        func = "NodeExplorer.update"
+        old = (self.heading_deg, self.fov_deg, self.diameter)
+        new = (heading_deg, fov_deg, diameter)
+        given = _settings(func, *(o if v is None else v for v, o in zip(new, old)))
+        self.heading_deg, self.fov_deg, self.diameter = given
+        self._redraw(func)
+
+    def _redraw(self, func: str) -> None:
         changes = {"heading": np.radians(self.heading_deg), "fov": np.radians(min(self.fov_deg, 359.0))}
         if self.diameter > 0:
             changes["sphere_diameter"] = self.diameter
         else:
             changes["sphere_center"] = None
-        self.result = exploration.run_scenario(**changes)
+        with relabel(func, "diameter"):
+            self.result = exploration.run_scenario(**changes)
         self.counts = self.result.labels.counts()
         self.ax.clear()
         plot_nodes(self.ax, self.result, "xy")

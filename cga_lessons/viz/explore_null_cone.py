@@ -17,16 +17,22 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from cga_lessons import conformal as cga
+from cga_lessons.checks import real
 
 from .controls import slider_panel
 
 __all__ = ["StereographicExplorer"]
 
 
+def _x(value, func: str) -> float:
+    return real(value, func, "x", low=-1e6, high=1e6)
+
+
 class StereographicExplorer:
     """One point ``x e1``: its stereographic image and its conformal point; redrawn by :meth:`update`."""
 
     def __init__(self, x: float = 1.5):
+        x = _x(x, "StereographicExplorer")
         self.fig, (self.ax, self.ax_cone) = plt.subplots(1, 2, figsize=(11, 4.6),
                                                           gridspec_kw={"width_ratios": [1.5, 1]})  # fmt: skip
         t = np.linspace(0, 2 * np.pi, 200)
@@ -53,11 +59,14 @@ class StereographicExplorer:
         self.ax_cone.set_xlabel("coefficient of e1")
         self.ax_cone.set_ylabel("coefficient of e-")
         self.ax_cone.legend(loc="upper center", fontsize=8)
-        self.update(x)
+        self._move(x)
 
     def update(self, x: float) -> None:
-        """Move the point to ``x e1`` and redraw."""
-        self.x = float(x)
+        """Move the point to ``x e1`` (``|x| <= 1e6``) and redraw."""
+        self._move(_x(x, "StereographicExplorer.update"))
+
+    def _move(self, x: float) -> None:
+        self.x = x
         X = cga.up([self.x, 0.0, 0.0])
         self.point = X
         self.image = np.array([2 * self.x / (self.x**2 + 1), (self.x**2 - 1) / (self.x**2 + 1)])  # (2.48)

@@ -24,9 +24,10 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from cga_lessons.algebra import Algebra, InvalidInputError, Multivector
-from cga_lessons.checks import real
+from cga_lessons.algebra import Algebra, Multivector
+from cga_lessons.checks import fail, real
 
+from ._inputs import vector
 from .controls import slider_panel
 
 __all__ = ["ProductExplorer", "geometric_product", "reflect"]
@@ -41,22 +42,28 @@ def geometric_product(a, b) -> tuple[Multivector, float, float]:
     >>> dot, wedge, str(ab)
     (5.0, 5.0, '5 + 5 e12')
     """
+    a, b = (vector(x, "geometric_product", k, (2,), limit=1e100) for k, x in (("a", a), ("b", b)))
     ab = G2.vector([float(a[0]), float(a[1])]) * G2.vector([float(b[0]), float(b[1])])
     return ab, float(ab.scalar()), float(ab["e12"])
 
 
 def reflect(v, n) -> np.ndarray:
     """``-n v n^-1``: ``v`` reflected in the line orthogonal to ``n`` (2.84, with ``n^-1 = n / n^2``, 2.19)."""
+    v, n = vector(v, "reflect", "v", (2,), limit=1e100), vector(n, "reflect", "n", (2,), limit=1e100)
+    if not np.hypot(*n) > 0:
+        raise fail("reflect", "n", "the zero vector has no inverse (n^2 = 0): no line to reflect in")
     V, N = G2.vector([float(v[0]), float(v[1])]), G2.vector([float(n[0]), float(n[1])])
     out = -(N * V * N.inv())
     return np.array([float(out["e1"]), float(out["e2"])])
 
 
 def _check(value, func: str, name: str, positive: bool = False) -> float:
-    """A slider's value as a float; NaN, inf, a bool or a string raise InvalidInputError (a ValueError) naming both."""
-    v = real(value, func, name)
+    """A slider's value as a float; NaN, inf, a bool or a string raise InvalidInputError (a ValueError) naming both.
+
+    Angles lie within +-1e6 degrees, lengths in (0, 1e6]."""
+    v = real(value, func, name, low=-1e6, high=1e6)
     if positive and v <= 0:
-        raise InvalidInputError(f"{func}: {name}: must be positive, got {v!r}")
+        raise fail(func, name, f"must be positive, got {v!r}")
     return v
 
 
@@ -76,7 +83,9 @@ class ProductExplorer:
         func = "ProductExplorer"
         self.angle, self.direction = _check(angle, func, "angle"), _check(direction, func, "direction")
         self.len_a, self.len_b = _check(len_a, func, "len_a", True), _check(len_b, func, "len_b", True)
-        self.test = np.array([_check(c, func, "test") for c in np.asarray(test, float).reshape(2)])
+        self.test = vector(test, func, "test", (2,), limit=1e6)
+        if not np.hypot(*self.test) > 0:
+            raise fail(func, "test", "the vector to turn must not be zero")
         self.fig, (self.ax_vec, self.ax_prod, self.ax_rot) = plt.subplots(1, 3, figsize=(13.5, 4.6))
         ax = self.ax_vec
         (self._para,) = ax.fill([0, 0], [0, 0], alpha=0.35, lw=1.2)

@@ -30,8 +30,7 @@ import numpy as np
 from matplotlib.collections import LineCollection
 
 from cga_lessons import mapping2d
-from cga_lessons.algebra import InvalidInputError
-from cga_lessons.checks import real
+from cga_lessons.checks import degenerate, integer, real
 from cga_lessons.relocalization import (
     HEADING_TOLERANCE,
     POSITION_TOLERANCE,
@@ -44,6 +43,9 @@ from cga_lessons.relocalization import (
     transform_points,
 )
 
+from ._inputs import coords, relabel, vector
+from ._inputs import scene as as_scene
+from ._inputs import seed as as_seed
 from .controls import slider_panel
 
 __all__ = ["RelocalizationExplorer", "true_partners"]
@@ -72,8 +74,11 @@ def true_partners(map_segments, scan_segments, pose, distance: float = 0.05, ang
     ...               (1.0, 1.0, 0.0)).tolist()
     [0]
     """
-    M = np.asarray(map_segments, float).reshape(-1, 2, 2)
-    S = np.asarray(scan_segments, float).reshape(-1, 2, 2)
+    func = "true_partners"
+    M, S = (_segments(v, func, k) for k, v in (("map_segments", map_segments), ("scan_segments", scan_segments)))
+    pose = vector(pose, func, "pose", (3,), limit=1e6)
+    distance = real(distance, func, "distance", low=0.0, strict_low=True, high=1e6)
+    angle = real(angle, func, "angle", low=0.0, strict_low=True, high=np.pi / 2)
     out = np.full(len(S), -1, int)
     if not len(M) or not len(S):
         return out
@@ -94,6 +99,15 @@ def true_partners(map_segments, scan_segments, pose, distance: float = 0.05, ang
     has = np.isfinite(off[np.arange(len(S)), best])
     out[has] = best[has]
     return out
+
+
+def _segments(value, func: str, name: str) -> np.ndarray:
+    """Segments (k, 2, 2) of non-zero length, drawable."""
+    segs = coords(value, func, name, (None, 2, 2), limit=1e6)
+    short = np.flatnonzero(np.hypot(*(segs[:, 1] - segs[:, 0]).T) == 0)
+    if len(short):
+        raise degenerate(func, name, f"segment {short[0]} has zero length (its two ends coincide)")
+    return segs
 
 
 def _triangles(poses, size: float) -> tuple[list, list]:
@@ -125,14 +139,14 @@ class RelocalizationExplorer:
     """
 
     def __init__(self, scene="office", pose=None, seed: int | None = 0, n_show: int = 6):
-        self.scene = mapping2d.load_scene(scene) if isinstance(scene, str) else scene
-        self.ref = prepare_map(self.scene.walls)
-        self.params = RelocParams()
+        func = "RelocalizationExplorer"
+        self.scene = as_scene(scene, func)
         start = (8.0, 3.5, np.radians(30.0)) if pose is None else pose
-        self.pose = np.array([real(v, "RelocalizationExplorer", f"pose[{k}]") for k, v in enumerate(start)])
-        if self.pose.shape != (3,):
-            raise InvalidInputError(f"RelocalizationExplorer: pose must have 3 entries, got {len(self.pose)}")
-        self.seed, self.n_show = seed, int(n_show)
+        self.pose = vector(start, func, "pose", (3,), limit=1e6)
+        self.seed, self.n_show = as_seed(seed, func), integer(n_show, func, "n_show", low=1, high=50)
+        with relabel(func, "scene"):
+            self.ref = prepare_map(self.scene.walls)
+        self.params = RelocParams()
         self.M_h = hough_set(self.ref.segments)  # figure 5.1: rho from the map's origin
         self._build_figure()
         self.update()
@@ -244,7 +258,7 @@ class RelocalizationExplorer:
     def update(self, x: float | None = None, y: float | None = None, theta_deg: float | None = None) -> None:
         """Move the true pose (metres, heading in degrees), rescan with the same noise, relocalize and redraw."""
         given = {
-            k: real(v, "RelocalizationExplorer.update", k)
+            k: real(v, "RelocalizationExplorer.update", k, low=-1e6, high=1e6)
             for k, v in (("x", x), ("y", y), ("theta_deg", theta_deg))
             if v is not None
         }  # all checked first

@@ -28,6 +28,7 @@ from matplotlib.ticker import MaxNLocator
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
 from cga_lessons.algebra import InvalidInputError
+from cga_lessons.checks import fail, instance, real
 from cga_lessons.map3d import DOFS, FusedMap, Robot, RobotState
 
 from .controls import slider_panel
@@ -69,20 +70,23 @@ class RobotExplorer:
 
     def __init__(self, fused: FusedMap, robot: Robot | None = None, state: RobotState | None = None, *,
                  sight: float = 2.0, vis=None):  # fmt: skip
-        if not isinstance(fused, FusedMap):
-            raise InvalidInputError(f"RobotExplorer: fused must be a FusedMap, got {type(fused).__name__}")
-        if robot is not None and not isinstance(robot, Robot):
-            raise InvalidInputError(f"RobotExplorer: robot must be a Robot, got {type(robot).__name__}")
-        if state is not None and not isinstance(state, RobotState):
-            raise InvalidInputError(f"RobotExplorer: state must be a RobotState, got {type(state).__name__}")
-        if isinstance(sight, bool) or not isinstance(sight, (int, float)) or not 0 < sight < np.inf:
-            raise InvalidInputError(f"RobotExplorer: sight must be a positive length in metres, got {sight!r}")
-        self.fused, self.sight, self.vis = fused, float(sight), vis
+        func = "RobotExplorer"
+        instance(fused, func, "fused", FusedMap, "a FusedMap (map3d.build_fused_map)")
+        if robot is not None:
+            instance(robot, func, "robot", Robot, "a Robot")
+        if state is not None:
+            instance(state, func, "state", RobotState, "a RobotState")
+        sight = real(sight, func, "sight", low=0.0, strict_low=True, high=1e3)
+        if vis is not None:
+            from .meshcat_scene import Visualizer
+
+            instance(vis, func, "vis", Visualizer, "a meshcat Visualizer (open_viewer()) or None")
+        self.fused, self.sight, self.vis = fused, sight, vis
         self.robot = robot or Robot(fused.tour.geometry)
         try:
             self.recomputed = self.robot.set_state(state or RobotState(*fused.laser.poses[0]))
         except InvalidInputError as exc:
-            raise InvalidInputError(f"RobotExplorer: state: {exc}") from None
+            raise fail(func, "state", str(exc)) from None
         self.fig = plt.figure(figsize=(12, 5.4))
         self.ax_room = self.fig.add_subplot(1, 2, 1, projection="3d")
         self.ax_close = self.fig.add_subplot(1, 2, 2, projection="3d")
@@ -170,11 +174,15 @@ class RobotExplorer:
         Raises the robot's ``InvalidInputError`` (a ``ValueError``) for a pan or tilt outside its joint range
         or a value that is not a finite number, and leaves the robot where it was.
         """
-        given = dict(zip(DOFS, (x, y, theta, pan, tilt)))
+        func = "RobotExplorer.update"
+        g = self.robot.geometry
+        limits = {"pan": g.pan_limits, "tilt": g.tilt_limits}  # the joints' ranges (rad); the rest within 1e6
+        given = {k: real(v, func, k, low=limits.get(k, (-1e6,))[0], high=limits.get(k, (0, 1e6))[1])
+                 for k, v in zip(DOFS, (x, y, theta, pan, tilt)) if v is not None}  # fmt: skip
         try:
-            self.recomputed = self.robot.update(**{k: v for k, v in given.items() if v is not None})
+            self.recomputed = self.robot.update(**given)
         except InvalidInputError as exc:
-            raise InvalidInputError(f"RobotExplorer.update: {exc}") from None
+            raise fail(func, ", ".join(given), str(exc)) from None
         self._redraw()
         return self.recomputed
 

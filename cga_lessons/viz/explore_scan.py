@@ -20,7 +20,11 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from cga_lessons import mapping2d
+from cga_lessons.checks import fail, real
 
+from ._inputs import relabel, vector
+from ._inputs import scene as as_scene
+from ._inputs import seed as as_seed
 from .controls import slider_panel
 from .laser import draw_scene
 
@@ -31,9 +35,13 @@ class HoughExplorer:
     """One scan of ``scene`` from a movable pose, drawn in the world and in Hough space."""
 
     def __init__(self, scene="office", pose=None, seed: int | None = 0, max_range: float = 5.0):
-        self.scene = mapping2d.load_scene(scene) if isinstance(scene, str) else scene
-        self.pose = np.array(self.scene.trajectory[60] if pose is None else pose, float)
-        self.seed, self.max_range = seed, float(max_range)  # seed None: a noise-free scan
+        func = "HoughExplorer"
+        self.scene = as_scene(scene, func)
+        if pose is None and len(self.scene.trajectory) <= 60:
+            raise fail(func, "pose", f"the scene's trajectory has no pose 60 ({len(self.scene.trajectory)} poses)")
+        self.pose = vector(self.scene.trajectory[60] if pose is None else pose, func, "pose", (3,), limit=1e6).copy()
+        self.seed = as_seed(seed, func)  # seed None: a noise-free scan
+        self.max_range = real(max_range, func, "max_range", low=0.0, strict_low=True, high=1e3)
         self.fig, (self.ax_world, self.ax_hough) = plt.subplots(1, 2, figsize=(11, 4.3))
         draw_scene(self.scene, ax=self.ax_world)
         self.ax_world.set_xlim(self.pose[0] - 5.5, self.pose[0] + 5.5)
@@ -48,19 +56,27 @@ class HoughExplorer:
         self.ax_hough.set_ylabel("rho (m)")
         self.ax_hough.grid(alpha=0.3)
         self.ax_hough.set_title("Hough space of the scan (3.3)")
-        self.update()
+        self._redraw(func)
 
     def update(self, x: float | None = None, y: float | None = None, theta_deg: float | None = None) -> None:
-        """Move the robot (world metres, heading in degrees), rescan with the same noise seed and redraw."""
-        if x is not None:
-            self.pose[0] = float(x)
-        if y is not None:
-            self.pose[1] = float(y)
-        if theta_deg is not None:
-            self.pose[2] = float(mapping2d.wrap_angle(np.radians(theta_deg)))
+        """Move the robot (world metres, heading in degrees; None: unchanged), rescan with the same noise seed and
+        redraw.  Values are checked first (finite, within +-1e6): a bad one changes nothing."""
+        func = "HoughExplorer.update"
+        given = {k: real(v, func, k, low=-1e6, high=1e6) for k, v in (("x", x), ("y", y), ("theta_deg", theta_deg))
+                 if v is not None}  # fmt: skip
+        if "x" in given:
+            self.pose[0] = given["x"]
+        if "y" in given:
+            self.pose[1] = given["y"]
+        if "theta_deg" in given:
+            self.pose[2] = float(mapping2d.wrap_angle(np.radians(given["theta_deg"])))
+        self._redraw(func)
+
+    def _redraw(self, func: str) -> None:
         rng = None if self.seed is None else np.random.default_rng(self.seed)  # the same noise at every pose
-        ranges, angles = mapping2d.simulate_scan(self.scene, self.pose, rng, max_range=self.max_range)
-        self.segments = mapping2d.extract_segments(ranges, angles, max_range=self.max_range)
+        with relabel(func, "pose"):
+            ranges, angles = mapping2d.simulate_scan(self.scene, self.pose, rng, max_range=self.max_range)
+            self.segments = mapping2d.extract_segments(ranges, angles, max_range=self.max_range)
         self.hough = np.array([s.hough() for s in self.segments]).reshape(-1, 2)  # (rho, theta), robot frame
         world = [s.transformed(self.pose) for s in self.segments]
         xs, ys = [], []

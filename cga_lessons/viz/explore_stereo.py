@@ -16,20 +16,35 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from cga_lessons import stereo
+from cga_lessons.checks import fail, integer, real
 from cga_lessons.stereo import stereo_head
 
+from ._inputs import coords, relabel
 from .controls import slider_panel
 
 __all__ = ["DepthErrorExplorer"]
+
+
+def _rig(func: str, baseline, focal_px, noise_px) -> tuple[float, float, float]:
+    """A baseline in [1 mm, 100 m], a focal length in [1, 1e5] px and a noise in [0, 1000] px."""
+    return (real(baseline, func, "baseline", low=1e-3, high=100.0), real(focal_px, func, "focal_px", low=1.0, high=1e5),
+            real(noise_px, func, "noise_px", low=0.0, high=1e3))  # fmt: skip
 
 
 class DepthErrorExplorer:
     """RMS depth error of triangulated points against depth, measured and predicted; redrawn by :meth:`update`."""
 
     def __init__(self, baseline=0.12, focal_px=700.0, noise_px=0.5, depths=None, n_points=400, seed=0):
-        self.baseline, self.focal_px, self.noise_px = float(baseline), float(focal_px), float(noise_px)
-        self.depths = np.linspace(1.0, 6.0, 11) if depths is None else np.asarray(depths, float)
-        self.n_points, self.seed = int(n_points), int(seed)
+        func = "DepthErrorExplorer"
+        self.baseline, self.focal_px, self.noise_px = _rig(func, baseline, focal_px, noise_px)
+        if depths is None:
+            self.depths = np.linspace(1.0, 6.0, 11)
+        else:
+            self.depths = coords(depths, func, "depths", (None,), at_least=1, limit=1e4)
+            if np.any(self.depths <= 0):
+                raise fail(func, "depths", "depths must be > 0 (in front of the head)")
+        self.n_points = integer(n_points, func, "n_points", low=1, high=100_000)
+        self.seed = integer(seed, func, "seed", low=0)
         self.fig, self.ax = plt.subplots(figsize=(6.5, 4.2))
         (self._measured,) = self.ax.plot([], [], "o", color="tab:blue", label="triangulated (A.14), RMS")
         (self._predicted,) = self.ax.plot([], [], "-", color="0.3", label="Z^2 sqrt(2) sigma / (f b)")
@@ -56,14 +71,13 @@ class DepthErrorExplorer:
         return np.array(out)
 
     def update(self, baseline=None, focal_px=None, noise_px=None) -> None:
-        """Change the rig or the noise, re-triangulate (same seed) and redraw in place."""
-        if baseline is not None:
-            self.baseline = float(baseline)
-        if focal_px is not None:
-            self.focal_px = float(focal_px)
-        if noise_px is not None:
-            self.noise_px = float(noise_px)
-        self.measured = self._errors()
+        """Change the rig or the noise (None: unchanged), re-triangulate (same seed) and redraw in place."""
+        func = "DepthErrorExplorer.update"
+        new = [old if v is None else v for v, old in
+               zip((baseline, focal_px, noise_px), (self.baseline, self.focal_px, self.noise_px))]  # fmt: skip
+        self.baseline, self.focal_px, self.noise_px = _rig(func, *new)
+        with relabel(func, "baseline"):
+            self.measured = self._errors()
         self.predicted = self.depths**2 * np.sqrt(2.0) * self.noise_px / (self.focal_px * self.baseline)
         self._measured.set_data(self.depths, self.measured)
         zz = np.linspace(self.depths.min(), self.depths.max(), 100)

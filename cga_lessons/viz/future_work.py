@@ -18,13 +18,15 @@ from dataclasses import dataclass
 import matplotlib.pyplot as plt
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
-from cga_lessons.checks import rows as as_points  # the shared check, under the name the figures use
+from cga_lessons.checks import fail, integer, real, text
+from cga_lessons.relocalization import MCLEstimate
 
+from ._inputs import LIMIT, axes, colormap, coord, coords, floats, optional_text, texts, vector
+from ._inputs import color as a_color
+from ._inputs import figsize as fig_size
 from .laser import draw_walls
 
-__all__ = ["as_points", "metric_box", "Snapshot", "covariance_ellipse", "draw_particles", "draw_pose",
-           "mcl_figure",
+__all__ = ["metric_box", "Snapshot", "covariance_ellipse", "draw_particles", "draw_pose", "mcl_figure",
            "error_trace_figure"]  # fmt: skip
 
 TRUTH_COLOR, ESTIMATE_COLOR, PARTICLE_CMAP = "k", "tab:red", "Blues"
@@ -32,9 +34,20 @@ TOLERANCE = (0.10, float(np.radians(2.0)))  #: located: within 10 cm and 2 degre
 
 
 def metric_box(ax, pts, pad: float = 0.0):
-    """Fit a 3D axes to points ``(N, 3)`` (plus ``pad`` metres) with one metre the same length on every axis."""
-    pts = np.asarray(pts, float)
+    """Fit a 3D axes to points ``(N, 3)`` (plus ``pad`` metres) with one metre the same length on every axis.
+
+    A box thinner than a millimetre along an axis is widened to one (matplotlib needs a box of some size).
+    """
+    ax = axes(ax, "metric_box", three_d=True, optional=False)
+    pts = coords(pts, "metric_box", "pts", (None, 3), at_least=1)
+    pad = coord(pad, "metric_box", "pad", low=0.0)
+    _metric_box(ax, pts, pad)
+
+
+def _metric_box(ax, pts: np.ndarray, pad: float) -> None:
     lo, hi = pts.min(axis=0) - pad, pts.max(axis=0) + pad
+    thin = hi - lo < 1e-3
+    lo, hi = np.where(thin, (lo + hi) / 2 - 5e-4, lo), np.where(thin, (lo + hi) / 2 + 5e-4, hi)
     for setter, k in ((ax.set_xlim, 0), (ax.set_ylim, 1), (ax.set_zlim, 2)):
         setter(lo[k], hi[k])
     ax.set_box_aspect(hi - lo)
@@ -45,40 +58,16 @@ def metric_box(ax, pts, pad: float = 0.0):
         axis.set_major_locator(plt.MaxNLocator(4))
 
 
-def _vector(x, func: str, name: str, sizes: tuple) -> np.ndarray:
-    """``x`` as a finite 1-d float array whose length is one of ``sizes``."""
-    try:
-        a = np.asarray(x, dtype=float)
-    except (TypeError, ValueError):
-        raise InvalidInputError(f"{func}: {name}: expected {' or '.join(map(str, sizes))} numbers") from None
-    if a.ndim != 1 or len(a) not in sizes:
-        raise InvalidInputError(f"{func}: {name}: expected {' or '.join(map(str, sizes))} numbers, got {a.shape}")
-    if not np.all(np.isfinite(a)):
-        raise InvalidInputError(f"{func}: {name}: contains NaN or inf")
-    return a
-
-
-def _series(x, func: str, name: str) -> np.ndarray:
-    """``x`` as a non-empty finite 1-d float array."""
-    try:
-        a = np.asarray(x, dtype=float)
-    except (TypeError, ValueError):
-        raise InvalidInputError(f"{func}: {name}: expected a sequence of numbers") from None
-    if a.ndim != 1 or not len(a) or not np.all(np.isfinite(a)):
-        raise InvalidInputError(f"{func}: {name}: expected a non-empty 1-d sequence of finite numbers")
-    return a
-
-
-def _covariance(cov, func: str) -> np.ndarray:
-    try:
-        c = np.asarray(cov, dtype=float)
-    except (TypeError, ValueError):
-        raise InvalidInputError(f"{func}: covariance: expected a (2, 2) or (3, 3) array") from None
-    if c.shape not in ((2, 2), (3, 3)) or not np.all(np.isfinite(c)):
-        raise InvalidInputError(f"{func}: covariance: expected a finite (2, 2) or (3, 3) array, got {c.shape}")
+def _covariance(cov, func: str, name: str = "cov") -> np.ndarray:
+    """A (2, 2) or a pose's (3, 3) covariance: its x-y block, symmetric positive semi-definite, drawable."""
+    c = floats(cov, func, name, (None, None))
+    if c.shape not in ((2, 2), (3, 3)):
+        raise fail(func, name, f"expected a (2, 2) or (3, 3) array, got {c.shape}")
     c = c[:2, :2]
+    if np.abs(c).max() > LIMIT:
+        raise fail(func, name, f"variances beyond {LIMIT:g} cannot be drawn")
     if not np.allclose(c, c.T, atol=1e-12 * max(1.0, np.abs(c).max())) or np.linalg.eigvalsh(c).min() < -1e-12:
-        raise InvalidInputError(f"{func}: covariance: not symmetric positive semi-definite")
+        raise fail(func, name, "not symmetric positive semi-definite")
     return c
 
 
@@ -95,12 +84,14 @@ def covariance_ellipse(mean, cov, n_sigma: float = 3.0, n: int = 72) -> np.ndarr
            [-1.,  2.]])
     """
     func = "covariance_ellipse"
-    m = _vector(mean, func, "mean", (2, 3))[:2]
+    m = vector(mean, func, "mean", (2, 3))[:2]
     c = _covariance(cov, func)
-    if not (isinstance(n_sigma, (int, float)) and np.isfinite(n_sigma) and n_sigma > 0):
-        raise InvalidInputError(f"{func}: n_sigma: expected a finite number > 0, got {n_sigma!r}")
-    if not (isinstance(n, (int, np.integer)) and n >= 3):
-        raise InvalidInputError(f"{func}: n: expected an integer >= 3, got {n!r}")
+    n_sigma = real(n_sigma, func, "n_sigma", low=0.0, strict_low=True, high=1e3)
+    n = integer(n, func, "n", low=3, high=100_000)
+    return _ellipse(m, c, n_sigma, n)
+
+
+def _ellipse(m: np.ndarray, c: np.ndarray, n_sigma: float, n: int) -> np.ndarray:
     vals, vecs = np.linalg.eigh(c)
     t = np.linspace(0.0, 2 * np.pi, int(n), endpoint=False)
     circle = np.column_stack([np.cos(t), np.sin(t)]) * np.sqrt(np.maximum(vals, 0.0))
@@ -113,14 +104,26 @@ def draw_particles(ax, particles, log_w=None, *, s: float = 2.0, cmap: str = PAR
     Returns the PathCollection; its offsets are the particles' x, y (the heaviest drawn last, on top).
     """
     func = "draw_particles"
-    p = as_points(particles, func, "particles", 3, at_least=1)
+    ax = axes(ax, func, optional=False)
+    p = coords(particles, func, "particles", (None, 3), at_least=1)
+    lw = None if log_w is None else _log_weights(log_w, func, len(p))
+    s, cmap = real(s, func, "s", low=0.0, strict_low=True, high=1e4), colormap(cmap, func)
+    return _draw_particles(ax, p, lw, s, cmap)
+
+
+def _log_weights(log_w, func: str, n: int, name: str = "log_w") -> np.ndarray:
+    """``n`` log-weights: not NaN, not +inf, at least one finite (-inf: a particle of weight zero)."""
+    lw = floats(log_w, func, name, (None,), finite=False)
+    if lw.shape != (n,) or np.any(np.isnan(lw)) or np.any(lw == np.inf) or not np.any(np.isfinite(lw)):
+        raise fail(func, name, f"expected {n} numbers (not NaN or +inf, one at least finite), got {lw.shape}")
+    return lw
+
+
+def _draw_particles(ax, p: np.ndarray, lw, s: float, cmap: str):
     order = np.arange(len(p))
-    if log_w is None:
+    if lw is None:
         shade = np.full(len(p), 0.75)
     else:
-        lw = np.asarray(log_w, dtype=float)
-        if lw.shape != (len(p),) or np.any(np.isnan(lw)) or np.any(lw == np.inf):
-            raise InvalidInputError(f"{func}: log_w: expected {len(p)} numbers (not NaN or +inf), got {lw.shape}")
         w = np.exp(lw - lw.max())
         shade = 0.15 + 0.85 * w
         order = np.argsort(w, kind="stable")  # the heavy ones on top
@@ -128,8 +131,11 @@ def draw_particles(ax, particles, log_w=None, *, s: float = 2.0, cmap: str = PAR
 
 
 def draw_pose(ax, pose, color=TRUTH_COLOR, length: float = 0.6, label=None, **kw):
-    """An arrow from the pose's position along its heading (a pose is x, y, theta)."""
-    x, y, th = _vector(pose, "draw_pose", "pose", (3,))
+    """An arrow from the pose's position along its heading (a pose is x, y, theta), ``length`` long."""
+    func = "draw_pose"
+    ax, (x, y, th) = axes(ax, func, optional=False), vector(pose, func, "pose", (3,))
+    color, length = a_color(color, func), coord(length, func, "length", low=0.0, strict_low=True)
+    label = optional_text(label, func)
     return ax.annotate("", xy=(x + length * np.cos(th), y + length * np.sin(th)), xytext=(x, y), zorder=6,
                        arrowprops=dict(arrowstyle="-|>", color=color, lw=kw.pop("lw", 1.8), shrinkA=0, shrinkB=0),
                        label=label, **kw)  # fmt: skip
@@ -150,6 +156,19 @@ class Snapshot:
     estimate: object = None
     truth: np.ndarray | None = None
     zoom: float | None = None
+
+    def __post_init__(self):
+        func, put = "Snapshot", lambda name, value: object.__setattr__(self, name, value)
+        put("title", text(self.title, func, "title", empty=True))
+        put("particles", coords(self.particles, func, "particles", (None, 3), at_least=1))
+        put("log_w", None if self.log_w is None else _log_weights(self.log_w, func, len(self.particles)))
+        if self.estimate is not None and not isinstance(self.estimate, MCLEstimate):
+            raise fail(func, "estimate", f"expected an MCLEstimate or None, got {type(self.estimate).__name__}")
+        put("truth", None if self.truth is None else vector(self.truth, func, "truth", (3,)))
+        if self.zoom is not None:
+            put("zoom", coord(self.zoom, func, "zoom", low=0.0, strict_low=True))
+            if self.estimate is None and self.truth is None:
+                raise fail(func, "zoom", "a zoom needs a centre: give an estimate or a truth")
 
 
 def _panel(ax, segments, snap: Snapshot, n_sigma):
@@ -182,13 +201,16 @@ def mcl_figure(map_segments, rows, row_titles=None, n_sigma: float = 3.0, panel:
     ellipse (x-y block of :attr:`MCLEstimate.covariance`).  Returns the figure; its axes are row by row.
     """
     func = "mcl_figure"
-    segs = np.asarray(map_segments, dtype=float) if not hasattr(map_segments, "segments") else map_segments.segments
-    if segs.ndim != 3 or segs.shape[1:] != (2, 2) or not len(segs) or not np.all(np.isfinite(segs)):
-        raise InvalidInputError(f"{func}: map_segments: expected a non-empty array (M, 2, 2) of finite numbers")
-    if not rows or not all(rows) or not all(isinstance(s, Snapshot) for r in rows for s in r):
-        raise InvalidInputError(f"{func}: rows: expected a non-empty list of non-empty lists of Snapshot")
-    if row_titles is not None and len(row_titles) != len(rows):
-        raise InvalidInputError(f"{func}: row_titles: expected {len(rows)} titles, got {len(row_titles)}")
+    segs = map_segments.segments if hasattr(map_segments, "segments") else map_segments
+    segs = coords(segs, func, "map_segments", (None, 2, 2), at_least=1)
+    if not isinstance(rows, (list, tuple)) or not rows or not all(isinstance(r, (list, tuple)) and r for r in rows):
+        raise fail(func, "rows", "expected a non-empty list of non-empty lists of Snapshot")
+    if not all(isinstance(s, Snapshot) for r in rows for s in r):
+        raise fail(func, "rows", "expected a non-empty list of non-empty lists of Snapshot")
+    if row_titles is not None:
+        row_titles = texts(row_titles, func, "row_titles", len(rows))
+    n_sigma = real(n_sigma, func, "n_sigma", low=0.0, strict_low=True, high=1e3)
+    panel = real(panel, func, "panel", low=0.5, high=20.0)
     ncols = max(len(r) for r in rows)
     fig, axes = plt.subplots(len(rows), ncols, figsize=(panel * ncols, panel * len(rows) + 0.3), squeeze=False)
     for i, row in enumerate(rows):
@@ -209,6 +231,19 @@ def mcl_figure(map_segments, rows, row_titles=None, n_sigma: float = 3.0, panel:
     return fig
 
 
+def _events(events, func: str) -> list:
+    """``(update index, label)`` pairs."""
+    if not isinstance(events, (list, tuple)):
+        raise fail(func, "events", f"expected a list of (update index, label), got {type(events).__name__}")
+    out = []
+    for k, e in enumerate(events):
+        if not isinstance(e, (list, tuple)) or len(e) != 2:
+            raise fail(func, f"events[{k}]", f"expected (update index, label), got {e!r}")
+        at, label = integer(e[0], func, f"events[{k}]", low=0, high=10**9), text(e[1], func, f"events[{k}]", empty=True)
+        out.append((at, label))
+    return out
+
+
 def error_trace_figure(position_error, heading_error, converged, events=(), tolerance=TOLERANCE,
                        figsize=(9.0, 3.6)):  # fmt: skip
     """Position and heading error of the estimate per update (log scale), converged updates filled.
@@ -217,11 +252,17 @@ def error_trace_figure(position_error, heading_error, converged, events=(), tole
     ``tolerance`` (m, rad) is drawn dashed.  Returns the figure.
     """
     func = "error_trace_figure"
-    pe = _series(position_error, func, "position_error")
-    he = _series(heading_error, func, "heading_error")
-    conv = np.asarray(converged)
-    if len(he) != len(pe) or conv.shape != pe.shape or conv.dtype != bool:
-        raise InvalidInputError(f"{func}: heading_error and converged (bool) must match position_error's {pe.shape}")
+    pe = coords(position_error, func, "position_error", (None,), at_least=1)
+    he = coords(heading_error, func, "heading_error", (None,), at_least=1)
+    conv = np.asarray(converged) if isinstance(converged, (list, tuple, np.ndarray)) else None
+    if len(he) != len(pe) or conv is None or conv.shape != pe.shape or conv.dtype != bool:
+        raise fail(func, "heading_error, converged", f"heading_error and converged (bools) must match "
+                   f"position_error's {pe.shape}")  # fmt: skip
+    events = _events(events, func)
+    tolerance = floats(tolerance, func, "tolerance", (2,))
+    if not np.all(tolerance > 0) or tolerance.max() > LIMIT:
+        raise fail(func, "tolerance", f"expected (metres, radians) > 0, got {tolerance.tolist()}")
+    figsize = fig_size(figsize, func)
     fig, axes = plt.subplots(1, 2, figsize=figsize)
     k = np.arange(1, len(pe) + 1)
     for ax, err, tol, unit, scale in ((axes[0], pe, tolerance[0], "m", 1.0),

@@ -15,10 +15,13 @@ import numpy as np
 
 from cga_lessons import conformal as cga
 from cga_lessons import kinematics as kin
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons.checks import fail, flag, instance, integer, real, same_length
 from cga_lessons.kinematics import DHParameters
 
-from .future_work import as_points, metric_box
+from ._inputs import axes, colormap, coord, coords, floats, optional_text
+from ._inputs import color as a_color
+from ._inputs import figsize as fig_size
+from .future_work import metric_box
 
 __all__ = ["dh_home_points", "chain_points", "axis_segments", "draw_arm", "draw_frame", "arm_figure", "ik_figure"]
 
@@ -38,8 +41,7 @@ def dh_home_points(p: DHParameters):
     attached : ndarray (K,) of int
         Point j moves with joints 1..attached[j].
     """
-    if not isinstance(p, DHParameters):
-        raise InvalidInputError(f"dh_home_points: p: expected DHParameters, got {type(p).__name__}")
+    instance(p, "dh_home_points", "p", DHParameters, "DHParameters")
     F = cga.G41.scalar(1.0)
     pts, attached = [np.zeros(3)], [0]
     for i, (d, a, alpha) in enumerate(zip(p.d, p.a, p.alpha)):
@@ -61,8 +63,20 @@ def dh_home_points(p: DHParameters):
 
 
 def _check_chain(ch, func):
-    if not isinstance(ch, kin.Chain):
-        raise InvalidInputError(f"{func}: chain: expected a kinematics.Chain, got {type(ch).__name__}")
+    instance(ch, func, "chain", kin.Chain, "a kinematics.Chain")
+
+
+def _configurations(q, func: str, name: str, n: int, *, batch: bool = True) -> np.ndarray:
+    """Joint values ``(n,)``, or ``(N, n)`` when ``batch``: finite, within +-1e6 (radians or metres)."""
+    try:
+        ndim = np.ndim(q)
+    except ValueError:  # ragged rows: refused by floats below
+        ndim = 1
+    a = floats(q, func, name, (None, None) if batch and ndim == 2 else (None,))
+    if a.shape[-1] != n or np.abs(a).max(initial=0.0) > 1e6:
+        want = f"({n},) or (N, {n})" if batch else f"({n},)"
+        raise fail(func, name, f"expected finite values of shape {want} within +-1e6, got {a.shape}")
+    return a
 
 
 def _default_points(ch):
@@ -79,18 +93,25 @@ def chain_points(ch, q, points=None, attached=None) -> np.ndarray:
     """
     func = "chain_points"
     _check_chain(ch, func)
-    try:
-        qa = np.asarray(q, dtype=float)
-    except (TypeError, ValueError):
-        raise InvalidInputError(f"{func}: q: expected joint values of shape ({ch.n},) or (N, {ch.n})") from None
-    if qa.ndim not in (1, 2) or qa.shape[-1] != ch.n or not np.all(np.isfinite(qa)):
-        raise InvalidInputError(f"{func}: q: expected finite values of shape ({ch.n},) or (N, {ch.n}), got {qa.shape}")
+    qa = _configurations(q, func, "q", ch.n)
+    pts, att = _link_points(ch, points, attached, func)
+    return _chain_points(ch, qa, pts, att)
+
+
+def _link_points(ch, points, attached, func: str) -> tuple[np.ndarray, np.ndarray]:
+    """The home points (K, 3) and how many joints move each (K,), checked; the default ones for ``points=None``."""
     if points is None:
-        points, attached = _default_points(ch)
-    pts = as_points(points, func, "points", 3, at_least=1)
-    att = np.asarray(attached if attached is not None else np.zeros(len(pts), int))
-    if att.shape != (len(pts),) or att.dtype.kind not in "iu" or att.min() < 0 or att.max() > ch.n:
-        raise InvalidInputError(f"{func}: attached: expected {len(pts)} integers in 0..{ch.n}")
+        if attached is not None:
+            raise fail(func, "attached", "given without points: attached says which joints move each point")
+        return _default_points(ch)
+    pts = coords(points, func, "points", (None, 3), at_least=1)
+    att = np.zeros(len(pts), int) if attached is None else floats(attached, func, "attached", (len(pts),))
+    if np.any(att != np.round(att)) or att.min() < 0 or att.max() > ch.n:
+        raise fail(func, "attached", f"expected {len(pts)} integers in 0..{ch.n}")
+    return pts, att.astype(int)
+
+
+def _chain_points(ch, qa: np.ndarray, pts: np.ndarray, att: np.ndarray) -> np.ndarray:
     q2 = qa.reshape(-1, ch.n)
     out = np.broadcast_to(pts, (len(q2), len(pts), 3)).copy()
     for k in np.unique(att[att > 0]):
@@ -102,7 +123,14 @@ def chain_points(ch, q, points=None, attached=None) -> np.ndarray:
 
 def draw_arm(ax, pts, color="tab:blue", lw: float = 3.0, alpha: float = 1.0, label=None):
     """The skeleton (K, 3) on a 3D axes: links as a thick polyline, joints as dots.  Returns the Line3D."""
-    p = as_points(pts, "draw_arm", "pts", 3, at_least=2)
+    func = "draw_arm"
+    ax, p = axes(ax, func, three_d=True, optional=False), coords(pts, func, "pts", (None, 3), at_least=2)
+    color, label = a_color(color, func), optional_text(label, func)
+    lw, alpha = real(lw, func, "lw", low=0.0, high=100.0), real(alpha, func, "alpha", low=0.0, high=1.0)
+    return _draw_arm(ax, p, color, lw, alpha, label)
+
+
+def _draw_arm(ax, p, color, lw, alpha, label):
     (line,) = ax.plot(*p.T, "-", color=color, lw=lw, alpha=alpha, solid_capstyle="round", label=label)
     ax.scatter(*p[:-1].T, s=14, color="k", alpha=alpha, depthshade=False)
     ax.scatter(*p[-1], s=30, marker="s", color=color, alpha=alpha, depthshade=False)
@@ -110,10 +138,15 @@ def draw_arm(ax, pts, color="tab:blue", lw: float = 3.0, alpha: float = 1.0, lab
 
 
 def draw_frame(ax, H, length: float = 0.1, lw: float = 2.0):
-    """A 4x4 pose as three arrows x (red), y (green), z (blue) from its origin."""
-    H = np.asarray(H, dtype=float)
-    if H.shape != (4, 4) or not np.all(np.isfinite(H)):
-        raise InvalidInputError(f"draw_frame: H: expected a finite 4x4 matrix, got {H.shape}")
+    """A 4x4 pose as three arrows x (red), y (green), z (blue) from its origin, ``length`` long."""
+    func = "draw_frame"
+    ax, H = axes(ax, func, three_d=True, optional=False), coords(H, func, "H", (4, 4))
+    length = coord(length, func, "length", low=0.0, strict_low=True)
+    lw = real(lw, func, "lw", low=0.0, high=100.0)
+    _draw_frame(ax, H, length, lw)
+
+
+def _draw_frame(ax, H, length, lw):
     for k, col in enumerate(("tab:red", "tab:green", "tab:blue")):
         ax.quiver(*H[:3, 3], *(length * H[:3, k]), color=col, lw=lw, arrow_length_ratio=0.25)
 
@@ -127,8 +160,14 @@ def axis_segments(ch, q, pts, half: float = 0.12) -> np.ndarray:
     """
     func = "axis_segments"
     _check_chain(ch, func)
-    P = as_points(pts, func, "pts", 3, at_least=1)
-    J = kin.spatial_jacobian(ch, np.asarray(q, dtype=float))
+    q = _configurations(q, func, "q", ch.n, batch=False)
+    P = coords(pts, func, "pts", (None, 3), at_least=1)
+    half = coord(half, func, "half", low=0.0, strict_low=True)
+    return _axis_segments(ch, q, P, half)
+
+
+def _axis_segments(ch, q, P, half):
+    J = kin.spatial_jacobian(ch, q)
     out = []
     for w, v in zip(J[:3].T, J[3:].T):
         if np.linalg.norm(w) < 0.5:  # a slide: its direction is v, drawn through the skeleton's first point
@@ -152,20 +191,27 @@ def arm_figure(ch, qs, points=None, attached=None, n_drawn: int = 6, title=None,
     """
     func = "arm_figure"
     _check_chain(ch, func)
-    q = as_points(qs, func, "qs", ch.n, at_least=2)
-    if not (isinstance(n_drawn, (int, np.integer)) and 1 <= n_drawn <= len(q)):
-        raise InvalidInputError(f"{func}: n_drawn: expected an integer in 1..{len(q)}, got {n_drawn!r}")
-    P = chain_points(ch, q, points, attached)
+    q = _configurations(qs, func, "qs", ch.n)
+    if q.ndim != 2 or len(q) < 2:
+        raise fail(func, "qs", f"expected at least 2 configurations (N, {ch.n}), got {q.shape}")
+    if isinstance(n_drawn, (bool, np.bool_)) or not isinstance(n_drawn, (int, np.integer)):
+        raise fail(func, "n_drawn", f"expected an integer in 1..{len(q)}, got {n_drawn!r}")
+    n_drawn = integer(n_drawn, func, "n_drawn", low=1, high=len(q))
+    pts, att = _link_points(ch, points, attached, func)
+    title, cmap, axes_on = optional_text(title, func, "title"), colormap(cmap, func), flag(axes, func, "axes")
+    elev, azim = real(elev, func, "elev", low=-1e6, high=1e6), real(azim, func, "azim", low=-1e6, high=1e6)
+    figsize = fig_size(figsize, func)
+    P = _chain_points(ch, q, pts, att)
     fig = plt.figure(figsize=figsize)
     ax = fig.add_subplot(projection="3d")
     colors = plt.get_cmap(cmap)(np.linspace(0.0, 0.9, n_drawn))
     picks = np.round(np.linspace(0, len(q) - 1, n_drawn)).astype(int)
     for c, i in zip(colors, picks):
-        draw_arm(ax, P[i], color=c, alpha=0.9)
+        _draw_arm(ax, P[i], c, 3.0, 0.9, None)
     ax.plot(*P[:, -1].T, "--", color="tab:red", lw=1.5, label="tool path")
     boxed = P.reshape(-1, 3)
-    if axes:
-        segs = axis_segments(ch, q[0], P[0])
+    if axes_on:
+        segs = _axis_segments(ch, q[0], P[0], 0.12)
         for k, seg in enumerate(segs):
             ax.plot(*seg.T, ":", color="k", lw=1.2, label="joint axes (first pose)" if k == 0 else None)
         boxed = np.vstack([boxed, segs.reshape(-1, 3)])
@@ -185,25 +231,29 @@ def ik_figure(ch, q_start, q_end, target, position_errors, rotation_errors, poin
     and the errors per iteration (m, rad; log scale).  Returns the figure."""
     func = "ik_figure"
     _check_chain(ch, func)
-    pe = as_points(np.reshape(np.asarray(position_errors, float), (-1, 1)), func, "position_errors", 1, at_least=1)
-    re = as_points(np.reshape(np.asarray(rotation_errors, float), (-1, 1)), func, "rotation_errors", 1)
-    if len(re) != len(pe):
-        raise InvalidInputError(f"{func}: rotation_errors: expected {len(pe)} values, got {len(re)}")
-    fig = plt.figure(figsize=figsize)
+    qa, qb = (_configurations(v, func, k, ch.n, batch=False) for k, v in (("q_start", q_start), ("q_end", q_end)))
+    target = coords(target, func, "target", (4, 4))
+    pe = coords(position_errors, func, "position_errors", (None,), at_least=1)
+    re = coords(rotation_errors, func, "rotation_errors", (None,))
+    same_length(func, position_errors=pe, rotation_errors=re)
+    if np.any(pe < 0) or np.any(re < 0):
+        raise fail(func, "position_errors" if np.any(pe < 0) else "rotation_errors", "errors must be >= 0")
+    pts, att = _link_points(ch, points, attached, func)
+    elev, azim = real(elev, func, "elev", low=-1e6, high=1e6), real(azim, func, "azim", low=-1e6, high=1e6)
+    fig = plt.figure(figsize=fig_size(figsize, func))
     ax = fig.add_subplot(1, 2, 1, projection="3d")
-    a = chain_points(ch, np.asarray(q_start, float), points, attached)
-    b = chain_points(ch, np.asarray(q_end, float), points, attached)
-    draw_arm(ax, a, color="0.6", label="start")
-    draw_arm(ax, b, color="tab:blue", label="solution")
-    draw_frame(ax, target, length=0.12)
+    a, b = _chain_points(ch, qa, pts, att), _chain_points(ch, qb, pts, att)
+    _draw_arm(ax, a, "0.6", 3.0, 1.0, "start")
+    _draw_arm(ax, b, "tab:blue", 3.0, 1.0, "solution")
+    _draw_frame(ax, target, 0.12, 2.0)
     ax.plot([], [], color="tab:red", label="target frame (x red, y green, z blue)")
-    metric_box(ax, np.vstack([a, b, np.asarray(target, float)[None, :3, 3]]), pad=0.08)
+    metric_box(ax, np.vstack([a, b, target[None, :3, 3]]), pad=0.08)
     ax.view_init(elev=elev, azim=azim)
     ax.legend(loc="upper left", fontsize=8)
     ax2 = fig.add_subplot(1, 2, 2)
     it = np.arange(len(pe))
-    ax2.semilogy(it, np.maximum(pe[:, 0], 1e-17), "o-", label="position error (m)")
-    ax2.semilogy(it, np.maximum(re[:, 0], 1e-17), "s-", label="rotation error (rad)")
+    ax2.semilogy(it, np.maximum(pe, 1e-17), "o-", label="position error (m)")
+    ax2.semilogy(it, np.maximum(re, 1e-17), "s-", label="rotation error (rad)")
     ax2.set_xlabel("iteration")
     ax2.set_ylabel("error")
     ax2.grid(True, which="major", alpha=0.3)

@@ -14,10 +14,12 @@ import numpy as np
 from matplotlib.patches import Patch
 
 from cga_lessons import stereo as st
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons.checks import fail, integer, real
 from cga_lessons.stereo import label_image
 
-from .future_work import as_points, metric_box
+from ._inputs import coords, floats, optional_text, relabel, texts
+from ._inputs import figsize as fig_size
+from .future_work import metric_box
 
 __all__ = ["PALETTE", "detections_figure", "detections_on_image", "depth_noise", "depth_noise_figure"]
 
@@ -26,15 +28,19 @@ _KINDS = ("plane", "sphere", "circle", "line")
 CLUTTER, UNMATCHED = (0.72, 0.72, 0.72, 1.0), (0.0, 0.0, 0.0, 1.0)
 
 
-def _entities(entities, n_points, func):
+def _entities(entities, n_points, func, points: str = "points"):
+    """Detections (:class:`~cga_lessons.stereo.DetectedEntity`: a kind, params, inliers into ``n_points``)."""
+    if not isinstance(entities, (list, tuple)):
+        raise fail(func, "entities", f"expected a list of detected entities, got {type(entities).__name__}")
     ents = list(entities)
     for k, e in enumerate(ents):
         idx = getattr(e, "inliers", None)
-        if getattr(e, "kind", None) not in _KINDS or idx is None:
-            raise InvalidInputError(f"{func}: entities[{k}]: expected a DetectedEntity, got {type(e).__name__}")
+        if getattr(e, "kind", None) not in _KINDS or idx is None or not isinstance(getattr(e, "params", None), dict):
+            raise fail(func, f"entities[{k}]", f"expected a DetectedEntity, got {type(e).__name__}")
         idx = np.asarray(idx)
         if idx.ndim != 1 or idx.dtype.kind not in "iu" or (len(idx) and (idx.min() < 0 or idx.max() >= n_points)):
-            raise InvalidInputError(f"{func}: entities[{k}].inliers: expected indices into {n_points} points")
+            raise fail(func, f"entities[{k}].inliers", f"expected indices into the {n_points} rows of {points}")
+        real(getattr(e, "rms", 0.0), func, f"entities[{k}].rms", low=0.0)
     return ents
 
 
@@ -60,6 +66,21 @@ def _count(n: int, kind: str) -> str:
     return f"{n} {kind}" + ("" if n == 1 else "s")
 
 
+def _matches(matches, ents: list, kinds: list, func: str) -> dict:
+    """detection index -> truth index, from ``(detection, truth, ...)`` pairs of the same kind."""
+    if not isinstance(matches, (list, tuple, np.ndarray)):
+        raise fail(func, "matches", f"expected (detection index, truth index, ...) pairs, got {type(matches).__name__}")
+    to_truth = {}
+    for m in matches:
+        if not isinstance(m, (list, tuple, np.ndarray)) or len(m) < 2:
+            raise fail(func, "matches", f"expected (detection index, truth index, ...) pairs, got {m!r}")
+        i, j = integer(m[0], func, "matches"), integer(m[1], func, "matches")
+        if not (0 <= i < len(ents) and 0 <= j < len(kinds)) or ents[i].kind != kinds[j]:
+            raise fail(func, "matches", f"({i}, {j}) pairs no detection with a true entity of its kind")
+        to_truth[i] = j
+    return to_truth
+
+
 def detections_figure(points, labels, truth, entities, matches=(), elev=22.0, azim=-170.0,
                       figsize=(13.0, 6.2)):  # fmt: skip
     """Ground truth (left) and detections (right) of a cloud (N, 3) in 3D.
@@ -71,21 +92,21 @@ def detections_figure(points, labels, truth, entities, matches=(), elev=22.0, az
     holds the points of detection i.  Returns the figure.
     """
     func = "detections_figure"
-    X = as_points(points, func, "points", 3, at_least=1)
-    lab = np.asarray(labels)
+    X = coords(points, func, "points", (None, 3), at_least=1)
+    if not isinstance(truth, (list, tuple)):
+        raise fail(func, "truth", f"expected a list of true entities (TruthEntity), got {type(truth).__name__}")
     truth = list(truth)
     if not all(getattr(t, "kind", None) in _KINDS and isinstance(getattr(t, "params", None), dict) for t in truth):
-        raise InvalidInputError(f"{func}: truth: expected entities with a kind and params (TruthEntity)")
+        raise fail(func, "truth", "expected entities with a kind and params (TruthEntity)")
     kinds = [t.kind for t in truth]
-    if lab.shape != (len(X),) or lab.dtype.kind not in "iu" or lab.min() < -1 or lab.max() >= len(kinds):
-        raise InvalidInputError(f"{func}: labels: expected {len(X)} integers in -1..{len(kinds) - 1}")
+    lab = floats(labels, func, "labels", (len(X),))
+    if np.any(lab != np.round(lab)) or lab.min() < -1 or lab.max() >= len(kinds):
+        raise fail(func, "labels", f"expected {len(X)} integers in -1..{len(kinds) - 1}")
+    lab = lab.astype(int)
     ents = _entities(entities, len(X), func)
-    to_truth = {}
-    for m in matches:
-        i, j = int(m[0]), int(m[1])
-        if not (0 <= i < len(ents) and 0 <= j < len(kinds)) or ents[i].kind != kinds[j]:
-            raise InvalidInputError(f"{func}: matches: ({i}, {j}) pairs no detection with a true entity of its kind")
-        to_truth[i] = j
+    to_truth = _matches(matches, ents, kinds, func)
+    elev, azim = real(elev, func, "elev", low=-1e6, high=1e6), real(azim, func, "azim", low=-1e6, high=1e6)
+    figsize = fig_size(figsize, func)
     fig = plt.figure(figsize=figsize)
     left, right = fig.add_subplot(1, 2, 1, projection="3d"), fig.add_subplot(1, 2, 2, projection="3d")
     left.scatter(*X[lab < 0].T, s=2, color=CLUTTER, depthshade=False)
@@ -120,17 +141,20 @@ def detections_on_image(image, pixels, entities, step: int = 1, names=None, titl
     ``names[i]``), number of points and RMS distance.  Returns the figure.
     """
     func = "detections_on_image"
-    img = np.asarray(image)
-    if img.ndim != 3 or img.shape[2] != 3:
-        raise InvalidInputError(f"{func}: image: expected an RGB image (H, W, 3), got {img.shape}")
-    px = as_points(pixels, func, "pixels", 2)
-    ents = _entities(entities, len(px), func)
-    if names is not None and len(names) != len(ents):
-        raise InvalidInputError(f"{func}: names: expected {len(ents)} names, got {len(names)}")
+    img = floats(image, func, "image", (None, None, 3))
+    if not img.size or img.min() < 0 or img.max() > 255:
+        raise fail(func, "image", f"expected an RGB image (H, W, 3) of values 0..255, got {img.shape}")
+    px = coords(pixels, func, "pixels", (None, 2))
+    ents = _entities(entities, len(px), func, "pixels")
+    if names is not None:
+        names = texts(names, func, "names", len(ents))
+    step = integer(step, func, "step", low=1, high=1000)
+    title, figsize = optional_text(title, func, "title"), fig_size(figsize, func)
     labels = np.full(len(px), -1)
     for i, e in enumerate(ents):
         labels[e.inliers] = i
-    painted = label_image(img.shape[:2], px, labels, step)
+    with relabel(func, "pixels"):
+        painted = label_image(img.shape[:2], px, labels, step)
     grey = img.astype(float).mean(axis=2, keepdims=True) / 255.0
     over = np.repeat(0.3 + 0.7 * grey, 3, axis=2)
     handles = []
@@ -159,15 +183,29 @@ def depth_noise(z, baseline: float, focal_px: float, sigma_d: float = 1.0) -> np
     0.008333333333333333
     """
     func = "depth_noise"
-    for name, v in (("baseline", baseline), ("focal_px", focal_px), ("sigma_d", sigma_d)):
-        if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)) or not (v > 0):
-            raise InvalidInputError(f"{func}: {name}: expected a number > 0, got {v!r}")
+    baseline, focal_px, sigma_d = _head(func, baseline, focal_px, sigma_d)
+    return _depth_noise(_depths(z, func, "z"), baseline, focal_px, sigma_d)
+
+
+def _head(func: str, baseline, focal_px, sigma_d, where: str = "") -> tuple[float, float, float]:
+    """A baseline in (0, 1e3] m, a focal length in (0, 1e6] px and a disparity noise in (0, 1e3] px."""
+    return tuple(real(v, func, f"{where}{k}", low=0.0, strict_low=True, high=hi) for k, v, hi in
+                 (("baseline", baseline, 1e3), ("focal_px", focal_px, 1e6), ("sigma_d", sigma_d, 1e3)))  # fmt: skip
+
+
+def _depths(z, func: str, name: str) -> np.ndarray:
+    """Depths (a number or an array of them) in (0, 1e6] m."""
     try:
-        z = np.asarray(z, dtype=float)
-    except (TypeError, ValueError):
-        raise InvalidInputError(f"{func}: z: expected depths (numbers)") from None
-    if not np.all(np.isfinite(z)) or np.any(z <= 0):
-        raise InvalidInputError(f"{func}: z: expected finite depths > 0")
+        ndim = np.ndim(z)
+    except ValueError:  # ragged rows: refused by floats below
+        ndim = 1
+    a = np.asarray(real(z, func, name)) if ndim == 0 else floats(z, func, name, (None,) * ndim)
+    if np.any(a <= 0) or np.any(a > 1e6):
+        raise fail(func, name, "expected finite depths in (0, 1e6] m")
+    return a
+
+
+def _depth_noise(z: np.ndarray, baseline: float, focal_px: float, sigma_d: float) -> np.ndarray:
     return z**2 * sigma_d / (focal_px * baseline)
 
 
@@ -179,20 +217,25 @@ def depth_noise_figure(heads: dict, sigma_d: float = 1.0, figsize=(7.0, 3.8)):
     """
     func = "depth_noise_figure"
     if not isinstance(heads, dict) or not heads:
-        raise InvalidInputError(f"{func}: heads: expected a non-empty dict label -> (baseline, focal_px, (near, far))")
-    fig, ax = plt.subplots(figsize=figsize)
+        raise fail(func, "heads", "expected a non-empty dict label -> (baseline, focal_px, (near, far))")
+    sigma_d = real(sigma_d, func, "sigma_d", low=0.0, strict_low=True, high=1e3)
+    checked = {}
+    for label, head in heads.items():
+        where = f"heads[{label!r}]"
+        if not isinstance(label, str) or not isinstance(head, (list, tuple)) or len(head) != 3:
+            raise fail(func, where, "expected a label (str) -> (baseline, focal_px, (near, far))")
+        baseline, focal, _ = _head(func, head[0], head[1], sigma_d, f"{where} ")
+        near, far = floats(head[2], func, f"{where} (near, far)", (2,))
+        if not (0 < near < far <= 1e6):
+            raise fail(func, where, f"expected 0 < near < far <= 1e6, got ({near}, {far})")
+        checked[label] = (baseline, focal, near, far)
+    fig, ax = plt.subplots(figsize=fig_size(figsize, func))
     z = np.linspace(0.3, 3.0, 200)
-    for k, (label, head) in enumerate(heads.items()):
-        try:
-            baseline, focal, (near, far) = head
-        except (TypeError, ValueError):
-            raise InvalidInputError(f"{func}: heads[{label!r}]: expected (baseline, focal_px, (near, far))") from None
-        if not (0 < near < far):
-            raise InvalidInputError(f"{func}: heads[{label!r}]: expected 0 < near < far, got ({near}, {far})")
+    for k, (label, (baseline, focal, near, far)) in enumerate(checked.items()):
         col = PALETTE[2 * k % len(PALETTE)]
-        ax.plot(z, 100 * depth_noise(z, baseline, focal, sigma_d), color=col, lw=1, alpha=0.6)
+        ax.plot(z, 100 * _depth_noise(z, baseline, focal, sigma_d), color=col, lw=1, alpha=0.6)
         zz = np.linspace(near, far, 50)
-        ax.plot(zz, 100 * depth_noise(zz, baseline, focal, sigma_d), color=col, lw=4, label=label)
+        ax.plot(zz, 100 * _depth_noise(zz, baseline, focal, sigma_d), color=col, lw=4, label=label)
     ax.set_xlabel("depth z (m)")
     ax.set_ylabel(f"depth noise (cm), disparity noise {sigma_d:.2g} px")
     ax.grid(alpha=0.3)

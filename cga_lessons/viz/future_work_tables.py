@@ -11,31 +11,42 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from cga_lessons.algebra import InvalidInputError
+import numpy as np
+
+from cga_lessons.checks import fail, integer
 
 __all__ = ["read_record", "mcl_table", "kinematics_table", "stereo_table"]
 
 
 def read_record(path):
-    """The JSON record at ``path`` (a dict), or None when there is no such file."""
+    """The JSON record at ``path`` (a dict), or None when there is no such file (nothing at ``path``)."""
+    func = "read_record"
+    if not isinstance(path, (str, Path)) or (isinstance(path, str) and not path):
+        raise fail(func, "path", f"expected a path, got {path!r}")
     p = Path(path)
-    if not p.is_file():
+    if not p.exists():
         return None
+    if not p.is_file():
+        raise fail(func, "path", f"is not a file: {p}")
     try:
         record = json.loads(p.read_text(encoding="utf-8"))
-    except json.JSONDecodeError as exc:
-        raise InvalidInputError(f"read_record: {p}: not JSON ({exc})") from None
+    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
+        raise fail(func, "path", f"{p}: not JSON ({exc})") from None
     if not isinstance(record, dict):
-        raise InvalidInputError(f"read_record: {p}: expected a JSON object, got {type(record).__name__}")
+        raise fail(func, "path", f"{p}: expected a JSON object, got {type(record).__name__}")
     return record
 
 
 def _need(record, keys, func):
     if not isinstance(record, dict):
-        raise InvalidInputError(f"{func}: record: expected a dict (a benchmark's JSON), got {type(record).__name__}")
+        raise fail(func, "record", f"expected a dict (a benchmark's JSON), got {type(record).__name__}")
     missing = [k for k in keys if k not in record]
     if missing:
-        raise InvalidInputError(f"{func}: record: missing {missing}; was it written by the right benchmark?")
+        raise fail(func, "record", f"missing {missing}; was it written by the right benchmark?")
+
+
+def _malformed(func: str, where: str, exc: Exception):
+    return fail(func, where, f"missing or malformed field ({type(exc).__name__}: {exc})")
 
 
 def _at(d: dict, k: int):
@@ -55,6 +66,8 @@ def mcl_table(record) -> str:
     rows = [f"{'log':<13} {'seqs':>5} | {'MCL@1':>6} {'@3':>6} {'@10':>6} {'wrong':>7} {'parts':>6} {'ms':>5} | "
             f"{'ch5@1':>6} {'@3':>6} {'@10':>6} {'seq3':>6}"]  # fmt: skip
     rows.append("-" * len(rows[0]))
+    if not isinstance(record["logs"], dict):
+        raise fail(func, "record['logs']", "expected a dict log name -> results")
     for name, s in record["logs"].items():
         try:
             loc, single = s["located"], s["single"]
@@ -64,8 +77,8 @@ def mcl_table(record) -> str:
                 f"{s['later_ms']:5.1f} | {100 * _at(single, 1):5.1f}% {100 * _at(single, 3):5.1f}% "
                 f"{100 * _at(single, 10):5.1f}% {100 * s['seq3']:5.1f}%"
             )
-        except (KeyError, TypeError) as exc:
-            raise InvalidInputError(f"{func}: record['logs'][{name!r}]: missing or malformed field {exc}") from None
+        except (KeyError, TypeError, ValueError, AttributeError) as exc:
+            raise _malformed(func, f"record['logs'][{name!r}]", exc) from None
     return "\n".join(rows)
 
 
@@ -73,6 +86,13 @@ def kinematics_table(record) -> str:
     """Forward kinematics timings of one arm, motors against 4x4 matrices (``benchmarks/bench_kinematics.py``)."""
     func = "kinematics_table"
     _need(record, ("cases", "floor", "configurations", "max_deviation"), func)
+    try:
+        return _kinematics_rows(record)
+    except (KeyError, TypeError, ValueError, AttributeError) as exc:
+        raise _malformed(func, "record", exc) from None
+
+
+def _kinematics_rows(record) -> str:
     width = max(len(k) for k in record["cases"])
     rows = [f"{record.get('arm', 'arm')}, {record['configurations']:,} configurations at once; "
             f"'x floor' = time / time of '{record['floor']}' (median over rounds)", "",
@@ -91,8 +111,18 @@ def stereo_table(record, section: int) -> str:
     """Precision / recall per kind of one section (1-based) of ``benchmarks/bench_stereo_detect.py --out``."""
     func = "stereo_table"
     _need(record, ("sections", "kinds"), func)
-    if isinstance(section, bool) or not isinstance(section, int) or not 1 <= section <= len(record["sections"]):
-        raise InvalidInputError(f"{func}: section: expected 1..{len(record['sections'])}, got {section!r}")
+    if not isinstance(record["sections"], list) or not isinstance(record["kinds"], list):
+        raise fail(func, "record", "expected lists under 'sections' and 'kinds'")
+    if not isinstance(section, (int, np.integer)) or not record["sections"]:
+        raise fail(func, "section", f"expected a whole number 1..{len(record['sections'])}, got {section!r}")
+    section = integer(section, func, "section", low=1, high=len(record["sections"]))
+    try:
+        return _stereo_rows(record, section)
+    except (KeyError, TypeError, ValueError, AttributeError, IndexError) as exc:
+        raise _malformed(func, f"record['sections'][{section - 1}]", exc) from None
+
+
+def _stereo_rows(record, section: int) -> str:
     sec = record["sections"][section - 1]
     kinds = record["kinds"]
     rows = [sec["title"], f"{'':<27}" + " ".join(f"{k:^13}" for k in kinds) + f" {'points':>7} {'s/cloud':>8}",

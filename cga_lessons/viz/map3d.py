@@ -14,9 +14,11 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons.checks import flag, instance, real
 from cga_lessons.map3d import FusedMap, Robot, RobotState
 
+from ._inputs import axes, optional_text, relabel, slash_path
+from ._inputs import figsize as fig_size
 from .scene3d import Box, Cylinder, Frame, PointCloud, Polyline, Quad, Sphere, draw_matplotlib, scene_bounds
 
 __all__ = [
@@ -48,10 +50,22 @@ def robot_primitives(robot: Robot, state: RobotState | None = None, *, prefix: s
     -------
     list of scene3d primitives named ``prefix/...``
     """
-    if not isinstance(robot, Robot):
-        raise InvalidInputError(f"robot_primitives: expected a Robot, got {type(robot).__name__}")
+    func = "robot_primitives"
+    _robot(robot, state, func)
+    prefix, frames = slash_path(prefix, func, "prefix"), flag(frames, func, "frames")
+    return _robot_primitives(robot, prefix, frames)
+
+
+def _robot(robot, state, func: str) -> None:
+    """Check the robot and put it at ``state`` (if given)."""
+    instance(robot, func, "robot", Robot, "a Robot")
     if state is not None:
-        robot.set_state(state)
+        instance(state, func, "state", RobotState, "a RobotState or None")
+        with relabel(func, "state"):
+            robot.set_state(state)
+
+
+def _robot_primitives(robot: Robot, prefix: str, frames: bool) -> list:
     g = robot.geometry
     F = robot.frames()
     Hb, Hl, Hh, Hc = F["base"], F["laser"], F["head"], F["camera_left"]
@@ -99,8 +113,14 @@ def map_primitives(fused: FusedMap, *, virtual_walls: bool = True, scans: bool =
     points : bool
         Also the triangulated stereo points of each object (unified frame).
     """
-    if not isinstance(fused, FusedMap):
-        raise InvalidInputError(f"map_primitives: expected a FusedMap, got {type(fused).__name__}")
+    func = "map_primitives"
+    instance(fused, func, "fused", FusedMap, "a FusedMap (map3d.build_fused_map)")
+    options = [flag(v, func, k) for k, v in (("virtual_walls", virtual_walls), ("scans", scans), ("path", path),
+                                             ("points", points))]  # fmt: skip
+    return _map_primitives(fused, *options, slash_path(prefix, func, "prefix"))
+
+
+def _map_primitives(fused: FusedMap, virtual_walls: bool, scans: bool, path: bool, points: bool, prefix: str):
     out = []
     for k, w in enumerate(fused.virtual_walls):
         out.append(Polyline(f"{prefix}/laser_lines/{k}", np.array([w.start, w.end]), _LINE, 3.0))
@@ -138,6 +158,11 @@ def map_primitives(fused: FusedMap, *, virtual_walls: bool = True, scans: bool =
 
 def truth_primitives(fused: FusedMap, prefix: str = "truth"):
     """The true objects as faint wireframes (for comparison; not something the robot knows)."""
+    instance(fused, "truth_primitives", "fused", FusedMap, "a FusedMap (map3d.build_fused_map)")
+    return _truth_primitives(fused, slash_path(prefix, "truth_primitives", "prefix"))
+
+
+def _truth_primitives(fused: FusedMap, prefix: str) -> list:
     out = []
     for o in fused.tour.world.objects:
         t = o.truth()
@@ -163,11 +188,20 @@ def plot_fused_map(fused: FusedMap, ax=None, *, robot: Robot | None = None, stat
                    virtual_walls: bool = True, truth: bool = False, elev: float = 38.0, azim: float = -62.0,
                    title: str | None = None):  # fmt: skip
     """The fused map in a matplotlib 3D axis (equal scale), optionally with the robot and the truth."""
-    prims = map_primitives(fused, virtual_walls=virtual_walls)
+    func = "plot_fused_map"
+    instance(fused, func, "fused", FusedMap, "a FusedMap (map3d.build_fused_map)")
+    virtual_walls, truth = flag(virtual_walls, func, "virtual_walls"), flag(truth, func, "truth")
+    elev, azim = real(elev, func, "elev", low=-1e6, high=1e6), real(azim, func, "azim", low=-1e6, high=1e6)
+    ax, title = axes(ax, func, three_d=True), optional_text(title, func, "title")
     if robot is not None:
-        prims += robot_primitives(robot, state, frames=False)
+        _robot(robot, state, func)
+    elif state is not None:
+        instance(state, func, "state", RobotState, "a RobotState or None")  # drawn only with a robot
+    prims = _map_primitives(fused, virtual_walls, False, True, False, "map")
+    if robot is not None:
+        prims += _robot_primitives(robot, "robot", False)
     if truth:
-        prims += truth_primitives(fused)
+        prims += _truth_primitives(fused, "truth")
     if ax is None:
         ax = plt.figure(figsize=(9, 6.5)).add_subplot(projection="3d")
     ax.computed_zorder = False  # draw in list order: walls, then objects, then the robot on top
@@ -186,17 +220,22 @@ def plot_fused_map(fused: FusedMap, ax=None, *, robot: Robot | None = None, stat
 
 def plot_robot(robot: Robot, state: RobotState | None = None, ax=None, *, elev: float = 22.0, azim: float = -55.0):
     """Geometer alone (figure 4.1): its solids and the base, laser and camera frames (x red, y green, z blue)."""
+    func = "plot_robot"
+    _robot(robot, state, func)
+    ax = axes(ax, func, three_d=True)
+    elev, azim = real(elev, func, "elev", low=-1e6, high=1e6), real(azim, func, "azim", low=-1e6, high=1e6)
     if ax is None:
         ax = plt.figure(figsize=(5.5, 5.5)).add_subplot(projection="3d")
     ax.computed_zorder = False  # list order: the body first, the sensors on top of it
-    draw_matplotlib(ax, robot_primitives(robot, state), pad=0.02)
+    draw_matplotlib(ax, _robot_primitives(robot, "robot", True), pad=0.02)
     ax.view_init(elev=elev, azim=azim)
     return ax
 
 
 def plot_virtual_walls(fused: FusedMap, figsize=(13, 5.5)):
     """Figure 4.5: the same map without and with virtual walls."""
-    fig = plt.figure(figsize=figsize)
+    instance(fused, "plot_virtual_walls", "fused", FusedMap, "a FusedMap (map3d.build_fused_map)")
+    fig = plt.figure(figsize=fig_size(figsize, "plot_virtual_walls"))
     for i, (vw, title) in enumerate(((False, "laser lines only"), (True, "with virtual walls"))):
         plot_fused_map(fused, fig.add_subplot(1, 2, i + 1, projection="3d"), virtual_walls=vw, title=title)
     fig.tight_layout()

@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import base64
 import html as _html
+import os
+import tempfile
 import warnings
 from pathlib import Path
 
@@ -20,8 +22,11 @@ import numpy as np
 import umsgpack
 
 from cga_lessons.algebra import InvalidInputError
+from cga_lessons.checks import fail, flag, instance, integer, new_path, real, text
 from cga_lessons.viz.meshcat_server import Viewer, ViewerError, close_viewer, open_viewer
 from cga_lessons.viz.scene3d import Box, Cylinder, Frame, PointCloud, Polyline, Quad, Sphere, check_scene, scene_bounds
+
+from ._inputs import LIMIT, coords
 
 with warnings.catch_warnings():  # meshcat 0.3.2 imports a pyzmq module that warns it is deprecated; harmless here
     warnings.filterwarnings("ignore", message="zmq.eventloop.ioloop is deprecated", category=DeprecationWarning)
@@ -105,8 +110,9 @@ def show(vis, primitives, *, clear: bool = False):
     None, so a notebook cell ending in ``show(...)`` stores no output (the viewer's repr names its pid
     and port, which change every run).
     """
+    _visualizer(vis, "show")
     prims = check_scene(primitives, "show")
-    if clear:
+    if flag(clear, "show", "clear"):
         vis.delete()
     for p in prims:
         _upload(vis[p.name], p)
@@ -121,12 +127,15 @@ def set_camera(vis, lo, hi, *, direction=(1.0, -1.4, 0.9), distance: float = 1.3
     relative positions stay exact.  The camera then sits at ``distance`` times the box's largest side
     along ``direction``.  Returns None.
     """
-    lo, hi = np.asarray(lo, float), np.asarray(hi, float)
-    d = np.asarray(direction, float)
-    if lo.shape != (3,) or hi.shape != (3,) or d.shape != (3,) or not np.all(np.isfinite([*lo, *hi, *d])):
-        raise InvalidInputError("set_camera: lo, hi and direction must be finite 3-vectors")
-    if np.linalg.norm(d) == 0 or not distance > 0 or not grid > 0:
-        raise InvalidInputError("set_camera: direction must be non-zero, distance and grid positive")
+    func = "set_camera"
+    _visualizer(vis, func)
+    lo, hi, d = coords(lo, func, "lo", (3,)), coords(hi, func, "hi", (3,)), coords(direction, func, "direction", (3,))
+    if np.any(hi < lo):
+        raise fail(func, "hi", f"must be >= lo on every axis, got lo {lo.tolist()} and hi {hi.tolist()}")
+    if not np.linalg.norm(d) > 0:
+        raise fail(func, "direction", "must not be the zero vector")
+    distance = real(distance, func, "distance", low=0.0, strict_low=True, high=1e6)
+    grid = real(grid, func, "grid", low=1e-6, high=LIMIT)
     centre = (lo + hi) / 2
     shift = np.array([*(np.round(centre[:2] / grid) * grid), 0.0])
     reach = distance * max(float(np.max(hi - lo)), 0.5)
@@ -191,9 +200,12 @@ class _RecordingWindow:
         )
 
 
-def _check_distance(value, func: str) -> None:
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating)) or not 0 < value < np.inf:
-        raise InvalidInputError(f"{func}: camera_distance must be a positive number, got {value!r}")
+def _visualizer(vis, func: str):
+    return instance(vis, func, "vis", Visualizer, "a meshcat Visualizer (open_viewer())")
+
+
+def _check_distance(value, func: str) -> float:
+    return real(value, func, "camera_distance", low=0.0, strict_low=True, high=1e6)
 
 
 def scene_html(primitives, *, frame_camera: bool = True, camera_distance: float = 1.3) -> str:
@@ -204,10 +216,20 @@ def scene_html(primitives, *, frame_camera: bool = True, camera_distance: float 
     in the page, which replays them on load (what ``Visualizer.static_html()`` does with a server).
     ``camera_distance`` is :func:`set_camera`'s ``distance`` (times the scene's largest side).
     """
-    prims = check_scene(primitives, "scene_html")
+    func = "scene_html"
+    prims = _nonempty(primitives, func)
+    return _page(prims, flag(frame_camera, func, "frame_camera"), _check_distance(camera_distance, func))
+
+
+def _nonempty(primitives, func: str) -> list:
+    prims = check_scene(primitives, func)
     if not prims:
-        raise InvalidInputError("scene_html: the scene is empty")
-    _check_distance(camera_distance, "scene_html")
+        raise fail(func, "primitives", "the scene is empty")
+    return prims
+
+
+def _page(prims: list, frame_camera: bool, camera_distance: float) -> str:
+    """The page of checked primitives."""
     vis = Visualizer(window=_RecordingWindow())
     show(vis, prims)
     if frame_camera:
@@ -215,19 +237,25 @@ def scene_html(primitives, *, frame_camera: bool = True, camera_distance: float 
     return vis.window.html()
 
 
-def export_html(primitives, path, *, force: bool = False, frame_camera: bool = True) -> Path:
+def export_html(primitives, path, *, overwrite: bool = False, frame_camera: bool = True, force=None) -> Path:
     """Write the scene to a self-contained HTML file that opens offline in a browser; return its path.
 
-    Refuses to replace an existing file unless ``force=True`` (raises ``FileExistsError``).  The
-    parent folder must exist.  No server process is started.
+    Refuses to replace an existing file unless ``overwrite=True`` (``force=True``, its older name, too).  The
+    parent folder must exist.  The page is written to a temporary file beside ``path`` and renamed onto it, so a
+    failed export leaves no partial file.  No server process is started.
     """
-    path = Path(path)
-    if path.exists() and not force:
-        raise FileExistsError(f"export_html: {path} already exists; pass force=True to overwrite it")
-    if not path.parent.is_dir():
-        raise FileNotFoundError(f"export_html: folder {path.parent} does not exist")
-    text = scene_html(primitives, frame_camera=frame_camera)
-    path.write_text(text, encoding="utf-8")
+    func = "export_html"
+    overwrite = flag(overwrite, func, "overwrite") or (force is not None and flag(force, func, "force"))
+    path = new_path(path, func, "path", overwrite=overwrite)
+    page = _page(_nonempty(primitives, func), flag(frame_camera, func, "frame_camera"), 1.3)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as out:
+            out.write(page)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
     return path
 
 
@@ -240,6 +268,13 @@ _HIDDEN_NOTE = (
 )
 
 
+def _height(value, func: str) -> int:
+    """A height in whole pixels, 100 to 4000 (an int: a float is a mistake for a pixel count)."""
+    if not isinstance(value, (int, np.integer)) or isinstance(value, (bool, np.bool_)):
+        raise fail(func, "height", f"must be a whole number of pixels from 100 to 4000, got {value!r}")
+    return integer(value, func, "height", low=100, high=4000)
+
+
 class EmbeddedScene:
     """A scene for a notebook cell's output: meshcat's offline page inside an ``<iframe srcdoc>``.
 
@@ -249,7 +284,10 @@ class EmbeddedScene:
     """
 
     def __init__(self, html: str, n_primitives: int, height: int):
-        self.html, self.n_primitives, self.height = html, n_primitives, height
+        func = "EmbeddedScene"
+        self.html = text(html, func, "html")
+        self.n_primitives = integer(n_primitives, func, "n_primitives", low=0)
+        self.height = _height(height, func)
 
     def _repr_html_(self) -> str:
         return self.html
@@ -270,14 +308,12 @@ def scene_iframe(
     ``camera_distance``: see :func:`scene_html`.  Each call inlines one copy of meshcat's library (about
     0.85 MB): embed a notebook's scene once.
     """
-    if isinstance(height, bool) or not isinstance(height, (int, np.integer)) or not 100 <= height <= 4000:
-        raise InvalidInputError(f"scene_iframe: height must be a whole number of pixels from 100 to 4000, got "
-                                f"{height!r}")  # fmt: skip
-    _check_distance(camera_distance, "scene_iframe")
-    prims = check_scene(primitives, "scene_iframe")
-    if not prims:
-        raise InvalidInputError("scene_iframe: the scene is empty")
-    page = scene_html(prims, frame_camera=frame_camera, camera_distance=camera_distance)
+    func = "scene_iframe"
+    height = _height(height, func)
+    camera_distance = _check_distance(camera_distance, func)
+    frame_camera = flag(frame_camera, func, "frame_camera")
+    prims = _nonempty(primitives, func)
+    page = _page(prims, frame_camera, camera_distance)
     note = _HIDDEN_NOTE.format(n=len(prims))
     box = (
         f'<div class="cga-lessons-scene" style="position: relative; width: 100%; height: {int(height)}px; '

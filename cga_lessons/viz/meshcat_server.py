@@ -37,10 +37,9 @@ import time
 import warnings
 import weakref
 
-import numpy as np
 import zmq
 
-from cga_lessons.algebra import InvalidInputError
+from cga_lessons.checks import fail, instance, real
 from cga_lessons.paths import PROJECT_ROOT
 
 with warnings.catch_warnings():  # meshcat 0.3.2 imports a pyzmq module that warns it is deprecated; harmless here
@@ -280,8 +279,7 @@ def open_viewer(*, start_timeout: float = 30.0, reply_timeout: float = 10.0):
         A ``meshcat.Visualizer`` subclass; ``vis.window.server_proc`` is the server's ``Popen``.
     """
     for name, value in (("start_timeout", start_timeout), ("reply_timeout", reply_timeout)):
-        if not (isinstance(value, (int, float)) and np.isfinite(value) and value > 0):
-            raise InvalidInputError(f"open_viewer: {name} must be a positive number of seconds, got {value!r}")
+        real(value, "open_viewer", name, low=0.0, strict_low=True, high=86400.0)
     proc, zmq_url, web_url = _start_server(start_timeout)
     try:
         window = _LoopbackWindow(proc, zmq_url, web_url, reply_timeout)
@@ -293,9 +291,9 @@ def open_viewer(*, start_timeout: float = 30.0, reply_timeout: float = 10.0):
 
 def close_viewer(vis) -> None:
     """Stop the viewer's server (if this module started it) and close its socket; safe to call twice."""
-    window = getattr(vis, "window", None)
+    window = getattr(instance(vis, "close_viewer", "vis", Visualizer, "a meshcat Visualizer"), "window", None)
     if window is None:
-        raise InvalidInputError(f"close_viewer: expected a meshcat Visualizer, got {type(vis).__name__}")
+        raise fail("close_viewer", "vis", "this Visualizer has no window to close")
     if hasattr(window, "_finalizer"):
         window.close()
         return

@@ -6,6 +6,12 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.collections import LineCollection
 
+from cga_lessons.checks import fail, real, text
+
+from ._inputs import axes, coords, floats, index_pairs, optional_text, scan_pair, trajectory, vector
+from ._inputs import colors as some_colors
+from ._inputs import dpi as fig_dpi
+from ._inputs import figsize as fig_size
 from .laser import draw_scan, draw_walls, new_axes
 
 __all__ = [
@@ -29,19 +35,24 @@ def hough_figure(M_h, L_h=None, turned=None, turn=None, ax=None):
     """Figure 5.1: the map's lines as points ``(theta, rho)``, theta cyclic on [0, 360) degrees.
 
     Optionally the scan's lines ``L_h`` and the same lines after the robot
-    turned by ``turn`` radians (they move along theta only).
+    turned by ``turn`` radians (they move along theta only).  Each set is ``(rho, theta)`` rows (k, 2).
     """
-    if ax is None:
+    func = "hough_figure"
+    M_h = coords(M_h, func, "M_h", (None, 2), limit=1e6)
+    L_h = None if L_h is None else coords(L_h, func, "L_h", (None, 2), limit=1e6)
+    if turned is not None:
+        turned = coords(turned, func, "turned", (None, 2), limit=1e6)
+        if L_h is None or len(turned) != len(L_h):
+            raise fail(func, "turned", "expected the rows of L_h after the turn: as many as L_h")
+    turn = None if turn is None else real(turn, func, "turn", low=-1e6, high=1e6)
+    if axes(ax, func) is None:
         _, ax = plt.subplots(figsize=(8, 3.6), dpi=80)
-    M_h = np.asarray(M_h, float)
     ax.scatter(np.degrees(M_h[:, 1]), M_h[:, 0], s=14, color="k", label=f"map M_h ({len(M_h)} lines)")
     if L_h is not None and len(L_h):
-        L_h = np.asarray(L_h, float)
         ax.scatter(
             np.degrees(L_h[:, 1]), L_h[:, 0], s=40, marker="o", facecolor="none", color="tab:blue", label="scan L_h"
         )
     if turned is not None and len(turned):
-        turned = np.asarray(turned, float)
         lab = "scan after turning" + (f" {np.degrees(turn):.0f} deg" if turn is not None else "")
         ax.scatter(np.degrees(turned[:, 1]), turned[:, 0], s=40, marker="x", color="tab:red", label=lab)
         for a, b in zip(L_h, turned):
@@ -80,9 +91,17 @@ def steps_figure(walls, map_segments, scan, truth, scan_segments, placed, pairs=
     pairs : ndarray (k, 2), optional
         ``(map index, scan index)`` correspondences drawn in (d).
     """
-    fig, axs = plt.subplots(2, 2, figsize=figsize, dpi=dpi)
+    func = "steps_figure"
+    walls = coords(walls, func, "walls", (None, 2, 2))
+    map_segments = coords(map_segments, func, "map_segments", (None, 2, 2))
+    ranges, angles = scan_pair(scan, func)
+    truth = vector(truth, func, "truth", (3,))
+    scan_segments = coords(scan_segments, func, "scan_segments", (None, 2, 2))
+    placed = coords(placed, func, "placed", (None, 2, 2), at_least=1)
+    if pairs is not None:
+        pairs = index_pairs(pairs, func, "pairs", ("map_segments", len(map_segments)), ("placed", len(placed)))
+    fig, axs = plt.subplots(2, 2, figsize=fig_size(figsize, func), dpi=fig_dpi(dpi, func))
     axs = axs.ravel()
-    ranges, angles = scan
     a = new_axes(ax=axs[0], title="(a) the robot measures its surroundings")
     draw_walls(walls, ax=a, lw=2)
     draw_scan(ranges, angles, truth, ax=a, s=2, rays=True)
@@ -96,10 +115,9 @@ def steps_figure(walls, map_segments, scan, truth, scan_segments, placed, pairs=
     d = new_axes(ax=axs[3], title="(d) L after the rotor and the translator (zoomed)")
     _lines(d, map_segments, "k", 1.0)
     if pairs is not None and len(pairs):
-        ms = np.asarray(map_segments, float)
-        _lines(d, ms[np.asarray(pairs, int)[:, 0]], "tab:green", 6.0, label="matched map lines", zorder=4)
+        _lines(d, map_segments[pairs[:, 0]], "tab:green", 6.0, label="matched map lines", zorder=4)
     _lines(d, placed, "tab:red", 2.0, label="L placed")
-    pts = np.asarray(placed, float).reshape(-1, 2)
+    pts = placed.reshape(-1, 2)
     lo, hi = pts.min(axis=0) - 1.5, pts.max(axis=0) + 1.5
     d.set_xlim(lo[0], hi[0])
     d.set_ylim(lo[1], hi[1])
@@ -109,9 +127,11 @@ def steps_figure(walls, map_segments, scan, truth, scan_segments, placed, pairs=
 
 
 def votes_figure(V, ax=None, title="The vote matrix V (5.6)"):
-    """The vote matrix as an image, map lines down, scan lines across, the column maxima circled."""
-    V = np.asarray(V)
-    if ax is None:
+    """The vote matrix as an image, map lines down, scan lines across, the column maxima circled (title None: none)."""
+    func = "votes_figure"
+    V = coords(V, func, "V", (None, None))
+    title = optional_text(title, func, "title")
+    if axes(ax, func) is None:
         _, ax = plt.subplots(figsize=(4.5, 6), dpi=80)
     im = ax.imshow(V, aspect="auto", cmap="viridis", interpolation="nearest")
     if V.size:
@@ -126,13 +146,24 @@ def votes_figure(V, ax=None, title="The vote matrix V (5.6)"):
 
 
 def placements_figure(map_segments, scan, poses, ax=None, colors=None, title=None, figsize=(8, 5), dpi=80, walls=None):
-    """The map with the scan's points placed at several poses (a dict label -> pose)."""
-    ax = ax or new_axes(figsize=figsize, dpi=dpi, title=title)
+    """The map with the scan's points placed at several poses (a dict label -> pose); one colour per pose."""
+    func = "placements_figure"
+    map_segments = coords(map_segments, func, "map_segments", (None, 2, 2))
+    ranges, angles = scan_pair(scan, func)
+    if not isinstance(poses, dict) or not poses:
+        raise fail(func, "poses", "expected a non-empty dict label -> pose (x, y, theta)")
+    poses = {text(k, func, "poses", empty=True): vector(v, func, f"poses[{k!r}]", (3,)) for k, v in poses.items()}
+    colors = ["tab:green", "tab:red", "tab:orange", "tab:purple"] if colors is None else some_colors(colors, func)
+    if len(colors) < len(poses):
+        raise fail(func, "colors", f"expected a colour for each of the {len(poses)} poses, got {len(colors)}")
+    if walls is not None:
+        walls = coords(walls, func, "walls", (None, 2, 2))
+    title, figsize, dpi = optional_text(title, func, "title"), fig_size(figsize, func), fig_dpi(dpi, func)
+    if axes(ax, func) is None:
+        ax = new_axes(figsize=figsize, dpi=dpi, title=title)
     if walls is not None:
         draw_walls(walls, ax=ax, lw=2, alpha=0.3)
     _lines(ax, map_segments, "k", 0.8, zorder=2)
-    colors = colors or ["tab:green", "tab:red", "tab:orange", "tab:purple"]
-    ranges, angles = scan
     for (label, pose), col in zip(poses.items(), colors):
         draw_scan(ranges, angles, pose, ax=ax, s=2, color=col)
         ax.scatter([], [], color=col, label=label)
@@ -141,8 +172,24 @@ def placements_figure(map_segments, scan, poses, ax=None, colors=None, title=Non
 
 
 def rates_figure(x, series, xlabel, ax=None, title=None, counts=None):
-    """Success rates (a dict label -> rates) against ``x``; optional sample counts written under the points."""
-    if ax is None:
+    """Success rates (a dict label -> rates in [0, 1], NaN where there is no sample) against ``x``; optional sample
+    counts written under the points."""
+    func = "rates_figure"
+    x = coords(x, func, "x", (None,), at_least=1)
+    if not isinstance(series, dict) or not 1 <= len(series) <= 5:
+        raise fail(func, "series", "expected a dict of 1 to 5 labels -> rates (one per x)")
+    for label, y in series.items():
+        text(label, func, "series", empty=True)
+        y = floats(y, func, f"series[{label!r}]", x.shape, finite=False)  # NaN: no sample, not drawn
+        if np.any(np.isinf(y)) or np.any(y[~np.isnan(y)] < 0) or np.any(y[~np.isnan(y)] > 1):
+            raise fail(func, f"series[{label!r}]", "rates must lie in [0, 1] (NaN: no sample)")
+    xlabel, title = text(xlabel, func, "xlabel", empty=True), optional_text(title, func, "title")
+    if counts is not None:
+        counts = floats(counts, func, "counts", x.shape)
+        if np.any(counts < 0) or np.any(counts != np.round(counts)) or np.any(counts > 1e15):
+            raise fail(func, "counts", "expected whole numbers from 0 to 1e15, one per x")
+        counts = counts.astype(int)
+    if axes(ax, func) is None:
         _, ax = plt.subplots(figsize=(5.5, 3.5), dpi=80)
     for (label, y), m in zip(series.items(), "osd^v"):
         ax.plot(x, y, marker=m, label=label)
@@ -159,6 +206,21 @@ def rates_figure(x, series, xlabel, ax=None, title=None, counts=None):
     return ax
 
 
+def _history(history, n_scans: int, func: str) -> None:
+    """Answers after each scan (``Relocalizer.add``): a trajectory of a pose per scan, candidates with scores."""
+    if not isinstance(history, (list, tuple)) or not history:
+        raise fail(func, "history", "expected a non-empty list of answers (Relocalizer.add's return values)")
+    for k, h in enumerate(history):
+        if not all(hasattr(h, a) for a in ("trajectory", "candidates", "status")):
+            raise fail(func, f"history[{k}]", f"expected a SequenceRelocalization, got {type(h).__name__}")
+        for c in h.candidates[:6]:
+            vector(getattr(c, "pose", None), func, f"history[{k}]", (3,))
+            real(getattr(c, "score", None), func, f"history[{k}]")
+    if len(history[-1].trajectory) < n_scans:
+        raise fail(func, "history", f"the last answer places {len(history[-1].trajectory)} scans, not {n_scans}")
+    trajectory(history[-1].trajectory, func, "history")
+
+
 def look_around_figure(map_segments, scans, history, truth=None, figsize=(12, 4.8), dpi=70):
     """A look around: the scans placed at the best chain's poses, and the candidates' scores scan by scan.
 
@@ -171,7 +233,15 @@ def look_around_figure(map_segments, scans, history, truth=None, figsize=(12, 4.
     truth : ndarray (n, 3), optional
         The true poses, drawn as small triangles.
     """
-    fig, (ax, bx) = plt.subplots(1, 2, figsize=figsize, dpi=dpi, gridspec_kw={"width_ratios": [1.7, 1]})
+    func = "look_around_figure"
+    map_segments = coords(map_segments, func, "map_segments", (None, 2, 2))
+    if not isinstance(scans, (list, tuple)) or not scans:
+        raise fail(func, "scans", "expected a non-empty list of scans (ranges, angles)")
+    scans = [scan_pair(sc, func, f"scans[{j}]") for j, sc in enumerate(scans)]
+    _history(history, len(scans), func)
+    truth = None if truth is None else trajectory(truth, func, "truth", at_least=1)
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=fig_size(figsize, func), dpi=fig_dpi(dpi, func),
+                                 gridspec_kw={"width_ratios": [1.7, 1]})  # fmt: skip
     _lines(ax, map_segments, "k", 0.8, zorder=2)
     final = history[-1]
     cols = ["tab:green", "tab:blue", "tab:orange", "tab:purple", "tab:brown", "tab:pink"]

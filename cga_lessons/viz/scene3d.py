@@ -10,9 +10,11 @@ Every primitive has a ``name``: a slash path such as ``"robot/base"`` or
 ``"walls/3"`` (the meshcat scene-tree path; objects under a common prefix can
 be hidden together there).  Colours are ``(r, g, b)`` floats in ``[0, 1]``.
 Constructors copy and validate their arrays (shapes, finiteness, degenerate
-sizes) and raise :class:`~cga_lessons.algebra.InvalidInputError` or
+sizes) with :mod:`cga_lessons.checks` and raise
+:class:`~cga_lessons.algebra.InvalidInputError` or
 :class:`~cga_lessons.algebra.DegenerateGeometryError` with a message naming
-the primitive and the field.
+the class, the field and the primitive (``"Box: size: edge lengths must be >
+0, got [...] (primitive 'robot/base')"``).
 
 >>> b = Box("robot/base", center=(0, 0, 0.1), size=(0.4, 0.3, 0.2), color=(0.2, 0.4, 0.8))
 >>> b.center.tolist(), b.rotation.shape
@@ -24,13 +26,16 @@ the primitive and the field.
 
 from __future__ import annotations
 
-import re
 from collections.abc import Iterable
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
+from cga_lessons.algebra import GeometryError
+from cga_lessons.checks import degenerate, fail, flag, real, text
+
+from ._inputs import LIMIT, axes, coords, floats, slash_path
 
 __all__ = [
     "Box",
@@ -47,67 +52,51 @@ __all__ = [
     "set_equal_3d",
 ]
 
-_NAME_RE = re.compile(r"^[A-Za-z0-9_.\-]+(/[A-Za-z0-9_.\-]+)*$")
 _ORTHO_TOL = 1e-6
 
 
-# ---------------------------------------------------------------- validation helpers
-def _where(obj, fld):
-    return f"{type(obj).__name__}({getattr(obj, 'name', '?')!r}).{fld}"
-
-
+# ---------------------------------------------------------------- validation (the shared checking layer)
 def _check_name(obj):
-    name = obj.name
-    if not isinstance(name, str) or not _NAME_RE.match(name):
-        raise InvalidInputError(
-            f"{type(obj).__name__}: name must be a slash path of letters, digits, '_', '.', '-' "
-            f"such as 'robot/base' (no empty parts, no leading/trailing '/'), got {name!r}"
-        )
+    slash_path(obj.name, type(obj).__name__)
 
 
-def _array(obj, fld, shape):
-    """Copy ``obj.fld`` to a read-only float array of ``shape`` (``None`` = any length), finite."""
-    value = getattr(obj, fld)
+@contextmanager
+def _naming(obj):
+    """Add the primitive's name to the errors of its checks: ``"Box: center: contains NaN ... (primitive 'b')"``."""
     try:
-        arr = np.array(value, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise InvalidInputError(f"{_where(obj, fld)}: not numeric ({exc})") from None
-    if arr.ndim != len(shape) or any(s is not None and a != s for a, s in zip(arr.shape, shape)):
-        want = "(" + ", ".join("N" if s is None else str(s) for s in shape) + ("," if len(shape) == 1 else "") + ")"
-        raise InvalidInputError(f"{_where(obj, fld)}: expected shape {want}, got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise InvalidInputError(f"{_where(obj, fld)}: contains NaN or inf")
+        yield
+    except GeometryError as exc:
+        raise type(exc)(f"{exc} (primitive {obj.name!r})") from None
+
+
+def _array(obj, fld, shape, *, at_least: int = 0):
+    """Copy ``obj.fld`` to a read-only float array of ``shape`` (``None`` = any length), finite and drawable."""
+    arr = coords(getattr(obj, fld), type(obj).__name__, fld, shape, at_least=at_least).copy()
     arr.setflags(write=False)
     object.__setattr__(obj, fld, arr)
     return arr
 
 
 def _scalar(obj, fld, *, positive=False, lo=None, hi=None):
-    value = getattr(obj, fld)
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise InvalidInputError(f"{_where(obj, fld)}: expected a number, got {value!r}") from None
-    if not np.isfinite(x):
-        raise InvalidInputError(f"{_where(obj, fld)}: must be finite, got {value!r}")
+    func = type(obj).__name__
+    x = real(getattr(obj, fld), func, fld, low=lo, high=LIMIT if hi is None else hi)
     if positive and x <= 0:
-        raise DegenerateGeometryError(f"{_where(obj, fld)}: must be > 0, got {x}")
-    if (lo is not None and x < lo) or (hi is not None and x > hi):
-        raise InvalidInputError(f"{_where(obj, fld)}: must lie in [{lo}, {hi}], got {x}")
+        raise degenerate(func, fld, f"must be > 0, got {x}")
     object.__setattr__(obj, fld, x)
     return x
 
 
 def _color(obj, fld="color"):
-    arr = _array(obj, fld, (3,))
+    func = type(obj).__name__
+    arr = floats(getattr(obj, fld), func, fld, (3,))
     if np.any(arr < 0) or np.any(arr > 1):
-        raise InvalidInputError(f"{_where(obj, fld)}: colour components must be floats in [0, 1], got {arr.tolist()}")
+        raise fail(func, fld, f"colour components must be floats in [0, 1], got {arr.tolist()}")
     object.__setattr__(obj, fld, tuple(float(c) for c in arr))
 
 
 def _rotation(obj, fld, R):
     if np.abs(R.T @ R - np.eye(3)).max() > _ORTHO_TOL or np.linalg.det(R) < 0:
-        raise InvalidInputError(f"{_where(obj, fld)}: not a proper rotation (R^T R != I or det R < 0)")
+        raise fail(type(obj).__name__, fld, "not a proper rotation (R^T R != I or det R < 0)")
 
 
 # ---------------------------------------------------------------- primitives
@@ -124,13 +113,14 @@ class Box:
 
     def __post_init__(self):
         _check_name(self)
-        _array(self, "center", (3,))
-        size = _array(self, "size", (3,))
-        if np.any(size <= 0):
-            raise DegenerateGeometryError(f"{_where(self, 'size')}: edge lengths must be > 0, got {size.tolist()}")
-        _rotation(self, "rotation", _array(self, "rotation", (3, 3)))
-        _color(self)
-        _scalar(self, "opacity", lo=0.0, hi=1.0)
+        with _naming(self):
+            _array(self, "center", (3,))
+            size = _array(self, "size", (3,))
+            if np.any(size <= 0):
+                raise degenerate("Box", "size", f"edge lengths must be > 0, got {size.tolist()}")
+            _rotation(self, "rotation", _array(self, "rotation", (3, 3)))
+            _color(self)
+            _scalar(self, "opacity", lo=0.0, hi=1.0)
 
     def corners(self) -> np.ndarray:
         """The 8 corners (8, 3); index bits (x, y, z) = (i & 1, i & 2, i & 4) pick the + side."""
@@ -153,10 +143,11 @@ class Sphere:
 
     def __post_init__(self):
         _check_name(self)
-        _array(self, "center", (3,))
-        _scalar(self, "radius", positive=True)
-        _color(self)
-        _scalar(self, "opacity", lo=0.0, hi=1.0)
+        with _naming(self):
+            _array(self, "center", (3,))
+            _scalar(self, "radius", positive=True)
+            _color(self)
+            _scalar(self, "opacity", lo=0.0, hi=1.0)
 
     def extent(self) -> np.ndarray:
         return np.array([self.center - self.radius, self.center + self.radius])
@@ -173,13 +164,14 @@ class Quad:
 
     def __post_init__(self):
         _check_name(self)
-        c = _array(self, "corners", (4, 3))
-        area2 = np.linalg.norm(np.cross(c[2] - c[0], c[3] - c[1]))  # twice the (vector) area
-        scale = max(np.ptp(c, axis=0).max(), 1e-300)
-        if area2 <= 1e-12 * scale * scale:
-            raise DegenerateGeometryError(f"{_where(self, 'corners')}: the four corners enclose no area")
-        _color(self)
-        _scalar(self, "opacity", lo=0.0, hi=1.0)
+        with _naming(self):
+            c = _array(self, "corners", (4, 3))
+            area2 = np.linalg.norm(np.cross(c[2] - c[0], c[3] - c[1]))  # twice the (vector) area
+            scale = max(np.ptp(c, axis=0).max(), 1e-300)
+            if area2 <= 1e-12 * scale * scale:
+                raise degenerate("Quad", "corners", "the four corners enclose no area")
+            _color(self)
+            _scalar(self, "opacity", lo=0.0, hi=1.0)
 
     def normal(self) -> np.ndarray:
         """Unit normal (3,) from the diagonals, right-handed with the corner order."""
@@ -204,12 +196,13 @@ class Cylinder:
 
     def __post_init__(self):
         _check_name(self)
-        a, b = _array(self, "start", (3,)), _array(self, "end", (3,))
-        if np.linalg.norm(b - a) <= 1e-12 * max(1.0, np.abs(a).max(), np.abs(b).max()):
-            raise DegenerateGeometryError(f"{_where(self, 'end')}: start and end coincide, the axis has no direction")
-        _scalar(self, "radius", positive=True)
-        _color(self)
-        _scalar(self, "opacity", lo=0.0, hi=1.0)
+        with _naming(self):
+            a, b = _array(self, "start", (3,)), _array(self, "end", (3,))
+            if np.linalg.norm(b - a) <= 1e-12 * max(1.0, np.abs(a).max(), np.abs(b).max()):
+                raise degenerate("Cylinder", "end", "start and end coincide, the axis has no direction")
+            _scalar(self, "radius", positive=True)
+            _color(self)
+            _scalar(self, "opacity", lo=0.0, hi=1.0)
 
     @property
     def length(self) -> float:
@@ -237,11 +230,12 @@ class Polyline:
 
     def __post_init__(self):
         _check_name(self)
-        p = _array(self, "points", (None, 3))
-        if len(p) < 2:
-            raise InvalidInputError(f"{_where(self, 'points')}: a polyline needs at least 2 points, got {len(p)}")
-        _color(self)
-        _scalar(self, "width", positive=True)
+        with _naming(self):
+            p = _array(self, "points", (None, 3))
+            if len(p) < 2:
+                raise fail("Polyline", "points", f"a polyline needs at least 2 points, got {len(p)}")
+            _color(self)
+            _scalar(self, "width", positive=True)
 
     def extent(self) -> np.ndarray:
         return self.points
@@ -258,11 +252,12 @@ class PointCloud:
 
     def __post_init__(self):
         _check_name(self)
-        p = _array(self, "points", (None, 3))
-        if len(p) < 1:
-            raise InvalidInputError(f"{_where(self, 'points')}: a point cloud needs at least one point")
-        _color(self)
-        _scalar(self, "size", positive=True)
+        with _naming(self):
+            p = _array(self, "points", (None, 3))
+            if len(p) < 1:
+                raise fail("PointCloud", "points", "a point cloud needs at least one point")
+            _color(self)
+            _scalar(self, "size", positive=True)
 
     def extent(self) -> np.ndarray:
         return self.points
@@ -278,11 +273,12 @@ class Frame:
 
     def __post_init__(self):
         _check_name(self)
-        T = _array(self, "pose", (4, 4))
-        if np.abs(T[3] - [0, 0, 0, 1]).max() > _ORTHO_TOL:
-            raise InvalidInputError(f"{_where(self, 'pose')}: last row must be [0, 0, 0, 1], got {T[3].tolist()}")
-        _rotation(self, "pose", T[:3, :3])
-        _scalar(self, "scale", positive=True)
+        with _naming(self):
+            T = _array(self, "pose", (4, 4))
+            if np.abs(T[3] - [0, 0, 0, 1]).max() > _ORTHO_TOL:
+                raise fail("Frame", "pose", f"last row must be [0, 0, 0, 1], got {T[3].tolist()}")
+            _rotation(self, "pose", T[:3, :3])
+            _scalar(self, "scale", positive=True)
 
     def axes(self) -> np.ndarray:
         """Segments (3, 2, 3): origin to the tip of the x, y and z axes."""
@@ -311,44 +307,52 @@ def check_scene(primitives, func: str = "check_scene") -> list:
     """Flatten nested lists of primitives into one list; reject unknown objects and duplicate names.
 
     Names must also not be a prefix path of one another (``"robot"`` and ``"robot/base"``), since in a
-    scene tree the first would own the second.
+    scene tree the first would own the second.  ``func`` is the name of the public function the scene was
+    given to, for the error messages.
     """
+    func = text(func, "check_scene", "func")
     out = []
 
-    def walk(item):
+    def walk(item, depth):
         if isinstance(item, PRIMITIVE_TYPES):
             out.append(item)
-        elif isinstance(item, Iterable) and not isinstance(item, (str, bytes, np.ndarray)):
+        elif isinstance(item, Iterable) and not isinstance(item, (str, bytes, np.ndarray, dict)) and depth < 32:
             for sub in item:
-                walk(sub)
+                walk(sub, depth + 1)
         else:
-            raise InvalidInputError(
-                f"{func}: expected primitives from cga_lessons.viz.scene3d "
-                f"({', '.join(t.__name__ for t in PRIMITIVE_TYPES)}), got {type(item).__name__}"
-            )
+            raise fail(func, "primitives", "expected primitives from cga_lessons.viz.scene3d "
+                       f"({', '.join(t.__name__ for t in PRIMITIVE_TYPES)}), got {type(item).__name__}")  # fmt: skip
 
-    walk(primitives)
+    walk(primitives, 0)
     names = sorted(p.name for p in out)
     for a, b in zip(names, names[1:]):
         if a == b:
-            raise InvalidInputError(f"{func}: two primitives are named {a!r}; names must be unique")
+            raise fail(func, "primitives", f"two primitives are named {a!r}; names must be unique")
         if b.startswith(a + "/"):
-            raise InvalidInputError(f"{func}: name {a!r} is a parent path of {b!r}; give {a!r} a leaf name")
+            raise fail(func, "primitives", f"name {a!r} is a parent path of {b!r}; give {a!r} a leaf name")
     return out
 
 
-def scene_bounds(primitives) -> tuple[np.ndarray, np.ndarray]:
-    """Axis-aligned bounds ``(lo (3,), hi (3,))`` of all primitives (a bounding box of each shape)."""
-    prims = check_scene(primitives, "scene_bounds")
+def _bounds(prims, func: str) -> tuple[np.ndarray, np.ndarray]:
     if not prims:
-        raise InvalidInputError("scene_bounds: the scene is empty")
+        raise fail(func, "primitives", "the scene is empty")
     pts = np.vstack([np.atleast_2d(p.extent()) for p in prims])
     return pts.min(axis=0), pts.max(axis=0)
 
 
-def set_equal_3d(ax, lo, hi, pad=0.05):
-    """Make a matplotlib 3D axis show the box ``lo..hi`` at 1:1:1 scale (a cube around its centre)."""
-    lo, hi = np.asarray(lo, float), np.asarray(hi, float)
+def scene_bounds(primitives) -> tuple[np.ndarray, np.ndarray]:
+    """Axis-aligned bounds ``(lo (3,), hi (3,))`` of all primitives (a bounding box of each shape)."""
+    return _bounds(check_scene(primitives, "scene_bounds"), "scene_bounds")
+
+
+def _box(lo, hi, pad, func: str):
+    lo, hi = coords(lo, func, "lo", (3,)), coords(hi, func, "hi", (3,))
+    if np.any(hi < lo):
+        raise fail(func, "hi", f"must be >= lo on every axis, got lo {lo.tolist()} and hi {hi.tolist()}")
+    return lo, hi, real(pad, func, "pad", low=0.0, high=10.0)
+
+
+def _equal_3d(ax, lo, hi, pad):
     centre = (lo + hi) / 2
     half = max(float(np.max(hi - lo)) / 2 * (1 + pad), 1e-3)
     ax.set_xlim(centre[0] - half, centre[0] + half)
@@ -356,6 +360,15 @@ def set_equal_3d(ax, lo, hi, pad=0.05):
     ax.set_zlim(centre[2] - half, centre[2] + half)
     ax.set_box_aspect((1, 1, 1))
     return ax
+
+
+def set_equal_3d(ax, lo, hi, pad=0.05):
+    """Make a matplotlib 3D axis show the box ``lo..hi`` at 1:1:1 scale (a cube around its centre).
+
+    ``pad`` widens the cube by that fraction (0 to 10).
+    """
+    ax = axes(ax, "set_equal_3d", three_d=True, optional=False)
+    return _equal_3d(ax, *_box(lo, hi, pad, "set_equal_3d"))
 
 
 # ---------------------------------------------------------------- matplotlib drawing
@@ -400,14 +413,23 @@ def draw_matplotlib(ax, primitives, *, limits=None, labels=True, pad=0.05):
     """
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
-    prims = check_scene(primitives, "draw_matplotlib")
+    func = "draw_matplotlib"
+    ax = axes(ax, func, three_d=True)
+    prims = check_scene(primitives, func)
+    if limits is None:
+        lo, hi = _bounds(prims, func) if prims else (np.zeros(3) - 1, np.zeros(3) + 1)
+    else:
+        box = floats(limits, func, "limits", (2, 3))
+        if np.any(box[1] < box[0]) or np.abs(box).max() > LIMIT:
+            raise fail(func, "limits", f"expected (lo, hi) with lo <= hi, drawable, got {box.tolist()}")
+        lo, hi = box
+    lo, hi, pad = _box(lo, hi, pad, func)
+    labels = flag(labels, func, "labels")
     if ax is None:
         import matplotlib.pyplot as plt
 
         fig = plt.figure(figsize=(6, 5), dpi=80)
         ax = fig.add_subplot(projection="3d")
-    if getattr(ax, "name", None) != "3d":
-        raise InvalidInputError("draw_matplotlib: ax must be a 3D axis (fig.add_subplot(projection='3d'))")
     for p in prims:
         if isinstance(p, Box):
             ax.add_collection3d(
@@ -430,9 +452,7 @@ def draw_matplotlib(ax, primitives, *, limits=None, labels=True, pad=0.05):
         elif isinstance(p, Frame):
             for seg, col in zip(p.axes(), FRAME_COLORS):
                 ax.plot(*seg.T, color=col, lw=1.5)
-    if limits is None:
-        limits = scene_bounds(prims) if prims else (np.zeros(3) - 1, np.zeros(3) + 1)
-    set_equal_3d(ax, *limits, pad=pad)
+    _equal_3d(ax, lo, hi, pad)
     if labels:
         ax.set_xlabel("x (m)")
         ax.set_ylabel("y (m)")

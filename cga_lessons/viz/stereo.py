@@ -6,6 +6,10 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from cga_lessons import stereo as st
+from cga_lessons.checks import fail, instance, real
+
+from ._inputs import axes, coords, floats, optional_text, relabel, texts
+from ._inputs import figsize as fig_size
 
 __all__ = [
     "plot_views",
@@ -18,8 +22,23 @@ __all__ = [
 _COLORS = plt.cm.tab10(np.arange(10))
 
 
+def _image(value, func: str, name: str) -> np.ndarray:
+    """An image (H, W) or (H, W, 3 or 4) of finite values 0..255 (floats: 0..1 is full scale), as given."""
+    try:
+        ndim = np.ndim(value)
+    except ValueError:
+        ndim = 2
+    img = floats(value, func, name, (None,) * (ndim if ndim in (2, 3) else 2))
+    if not img.size or (img.ndim == 3 and img.shape[2] not in (3, 4)) or img.min() < 0 or img.max() > 255:
+        raise fail(func, name, f"expected an image (H, W) or (H, W, 3 or 4) of values 0..255, got {img.shape}")
+    return np.asarray(value)
+
+
 def plot_views(left, right, titles=("left camera", "right camera"), figsize=(9, 3.4)):
-    """The two images side by side."""
+    """The two images side by side (each (H, W) or (H, W, 3 or 4): values 0-255, or 0-1 as floats)."""
+    func = "plot_views"
+    left, right = _image(left, func, "left"), _image(right, func, "right")
+    titles, figsize = texts(titles, func, "titles", 2), fig_size(figsize, func)
     fig, axes = plt.subplots(1, 2, figsize=figsize)
     for ax, img, t in zip(axes, (left, right), titles):
         ax.imshow(img)
@@ -43,10 +62,19 @@ def _draw_line(ax, line, w, h, **kw):
 
 def plot_epipolar_lines(left, right, x1, x2, F, figsize=(9, 3.4)):
     """Points of each view and their epipolar lines ``F x`` / ``F^T x'`` (A.6) in the other view."""
+    func = "plot_epipolar_lines"
+    left, right = _image(left, func, "left"), _image(right, func, "right")
+    x1, x2, F = coords(x1, func, "x1", (None, 2)), coords(x2, func, "x2", (None, 2)), coords(F, func, "F", (3, 3))
+    if len(x1) != len(x2):
+        raise fail(func, "x2", f"expected as many points as x1 ({len(x1)}), got {len(x2)}")
+    if not np.abs(F).max() > 0:
+        raise fail(func, "F", "the zero matrix is no fundamental matrix")
+    figsize = fig_size(figsize, func)
     h, w = left.shape[:2]
+    with relabel(func, "F"):
+        l2 = st.epipolar_lines(F, x1)
+        l1 = st.epipolar_lines(F.T, x2)
     fig, axes = plt.subplots(1, 2, figsize=figsize)
-    l2 = st.epipolar_lines(F, x1)
-    l1 = st.epipolar_lines(F.T, x2)
     for ax, img, pts, lines, t in (
         (axes[0], left, x1, l1, "left: x and F^T x'"),
         (axes[1], right, x2, l2, "right: x' and F x"),
@@ -67,10 +95,16 @@ def plot_epipolar_lines(left, right, x1, x2, F, figsize=(9, 3.4)):
 def plot_triangulation_curve(curve, theory=None, figsize=(6, 3.6)):
     """RMS 3D error against pixel noise for midpoint (A.14) and DLT triangulation.
 
+    ``curve`` holds arrays of one length under ``"noise_px"``, ``"midpoint"`` and ``"dlt"`` (metres);
     ``theory``, optional, is an array of the same length (metres) drawn as a dashed line.
     """
-    fig, ax = plt.subplots(figsize=figsize)
-    s = curve["noise_px"]
+    func = "plot_triangulation_curve"
+    if not isinstance(curve, dict) or any(k not in curve for k in ("noise_px", "midpoint", "dlt")):
+        raise fail(func, "curve", "expected a dict with 'noise_px', 'midpoint' and 'dlt' (triangulation_error_curve)")
+    s = coords(curve["noise_px"], func, "curve", (None,), at_least=1)
+    curve = {k: coords(curve[k], func, f"curve[{k!r}]", s.shape) for k in ("midpoint", "dlt")}
+    theory = None if theory is None else coords(theory, func, "theory", s.shape)
+    fig, ax = plt.subplots(figsize=fig_size(figsize, func))
     ax.plot(s, 1e3 * curve["midpoint"], "o-", label="midpoint (A.14, fig. A.4)")
     ax.plot(s, 1e3 * curve["dlt"], "s--", label="linear (DLT)", mfc="none")
     if theory is not None:
@@ -132,6 +166,15 @@ def plot_entities_3d(scene, estimates: dict, rig=None, ax=None, title=None, elev
         Camera centres are drawn when given.
     ax : Axes3D, optional
     """
+    func = "plot_entities_3d"
+    sc = instance(scene, func, "scene", st.StereoScene, "a StereoScene")
+    if not isinstance(estimates, dict) or not all(isinstance(e, dict) for e in estimates.values()):
+        raise fail(func, "estimates", "expected a dict label -> entity dict (reconstruct_entities)")
+    if rig is not None:
+        instance(rig, func, "rig", st.StereoRig, "a StereoRig or None")
+    ax, title = axes(ax, func, three_d=True), optional_text(title, func, "title")
+    elev, azim = real(elev, func, "elev", low=-1e6, high=1e6), real(azim, func, "azim", low=-1e6, high=1e6)
+    figsize = fig_size(figsize, func)  # for a new axes only
     if ax is None:
         fig = plt.figure(figsize=figsize)
         ax = fig.add_subplot(projection="3d")
@@ -153,7 +196,10 @@ def plot_entities_3d(scene, estimates: dict, rig=None, ax=None, title=None, elev
     ax.set_ylim(lo[1], hi[1])
     ax.set_zlim(max(lo[2], 0.0), hi[2])
     for i, (label, ent) in enumerate(estimates.items()):
-        _entities(ax, ent, _COLORS[(2 * i + 1) % 10], "-" if i == 0 else "--", label)
+        try:
+            _entities(ax, ent, _COLORS[(2 * i + 1) % 10], "-" if i == 0 else "--", str(label))
+        except (KeyError, TypeError, IndexError, ValueError, AttributeError) as exc:
+            raise fail(func, f"estimates[{label!r}]", f"not an entity dict of reconstruct_entities ({exc})") from None
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
     ax.set_zlabel("z (m)")
@@ -168,10 +214,25 @@ def plot_entities_3d(scene, estimates: dict, rig=None, ax=None, title=None, elev
 
 
 def plot_plane_segmentation(image, labels, fits, names=None, figsize=(5.4, 3.9)):
-    """Planes found in a real scene, painted over the (greyed) left image, with a legend (name, points, RMS)."""
+    """Planes found in a real scene, painted over the (greyed) left image, with a legend (name, points, RMS).
+
+    ``labels`` (H, W): the plane of each pixel (-1: none); ``fits``: one dict with ``inliers`` and ``rms`` per plane.
+    """
     from matplotlib.patches import Patch
 
-    fig, ax = plt.subplots(figsize=figsize)
+    func = "plot_plane_segmentation"
+    image = floats(image, func, "image", (None, None, 3))
+    if not image.size or image.min() < 0 or image.max() > 255:
+        raise fail(func, "image", f"expected an RGB image (H, W, 3) of values 0..255, got {image.shape}")
+    labels = floats(labels, func, "labels", image.shape[:2])
+    if not isinstance(fits, (list, tuple)):
+        raise fail(func, "fits", f"expected a list of plane fits (dicts: inliers, rms), got {type(fits).__name__}")
+    for i, f in enumerate(fits):
+        if not isinstance(f, dict) or "inliers" not in f or "rms" not in f:
+            raise fail(func, f"fits[{i}]", "expected a dict with 'inliers' and 'rms'")
+        real(f["inliers"], func, f"fits[{i}]", low=0), real(f["rms"], func, f"fits[{i}]", low=0)
+    names = None if names is None else texts(names, func, "names", len(fits))
+    fig, ax = plt.subplots(figsize=fig_size(figsize, func))
     grey = image.astype(float).mean(axis=2, keepdims=True) / 255.0  # grey photo: colours read as planes
     over = np.repeat(0.3 + 0.7 * grey, 3, axis=2)
     handles = []

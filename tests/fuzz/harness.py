@@ -29,6 +29,7 @@ import copy
 import dataclasses
 import gzip
 import inspect
+import itertools
 import math
 import numbers
 import signal
@@ -59,7 +60,8 @@ class Case:
     ``args``: keyword arguments of a valid call, or a function returning them (for values that a call changes).
     ``label``: the name the error message must contain (default: the function's or class's ``__name__``).
     ``positional``: names passed positionally, in this order (for positional-only parameters, ``self``, ``*args``).
-    ``skip``: argument -> why it is not spoiled (``self`` is never spoiled).
+    ``skip``: argument -> why the values its type suggests are not tried (its ``extra`` and ``kinds`` still are;
+    ``self`` is never spoiled).
     ``extra``: argument -> more bad values to try.
     ``kinds``: argument -> values of a wrong kind that must be refused (accepting one is a failure).
     ``nonfinite_ok``: why a NaN/inf in the result is the documented answer (``None``: it is not).
@@ -118,6 +120,7 @@ def time_limit(seconds: float):
 
 # ------------------------------------------------------------------ bad values by the type of the valid one
 _FILES = Path(tempfile.mkdtemp(prefix="cga-fuzz-"))
+_MISSING = itertools.count()
 
 
 def _bad_files() -> list:
@@ -130,8 +133,9 @@ def _bad_files() -> list:
     text.write_text("FLASER 3 not numbers here\nODOM x y\n\x00\n", encoding="utf-8")
     trunc = _FILES / "truncated.gz"
     trunc.write_bytes(gzip.compress(b"FLASER 180 " + b"1.0 " * 400)[:40])
+    missing = _FILES / f"no-such-file-{next(_MISSING)}.log"  # a new name each time: a writer may create it
     return [
-        ("a missing file", _FILES / "no-such-file.log"),
+        ("a missing file", missing),
         ("a folder", _FILES),
         ("an empty file", empty),
         ("binary garbage", garbage),
@@ -200,11 +204,13 @@ def bad_values(valid) -> list:
         return _multivector_variants(valid)
     if isinstance(valid, np.ndarray) and valid.dtype.kind in "biuf":
         return _array_variants(valid.astype(float))
-    if isinstance(valid, (list, tuple)) and valid and all(isinstance(v, numbers.Real) for v in np.ravel(valid)):
+    if isinstance(valid, (list, tuple)) and valid:
         try:
-            return _array_variants(np.asarray(valid, dtype=float))
-        except ValueError:  # ragged
-            pass
+            a = np.asarray(valid)
+        except ValueError:  # ragged: not one array
+            a = None
+        if a is not None and a.dtype.kind in "biuf":
+            return _array_variants(a.astype(float))
     return _plain([None, "text", 1.0])
 
 
@@ -290,7 +296,7 @@ def outcome(case: Case, arg: str, bad, *, must_refuse: bool = False, expected=fr
         msg = str(what)
         if not isinstance(what, GeometryError):
             return "unclear", f"{type(what).__name__}: {msg[:160]}"
-        label, named = case.the_label, arg.lstrip("*") in msg
+        label, named = case.the_label, shown_name(case.func, arg) in msg
         if label in msg and named:
             return "clear", msg
         missing = " and ".join(w for w, ok in ((repr(label), label in msg), (repr(arg), named)) if not ok)
@@ -301,6 +307,17 @@ def outcome(case: Case, arg: str, bad, *, must_refuse: bool = False, expected=fr
     if must_refuse:
         return "wrongly accepted", f"accepted {_describe(bad)}"
     return "accepted", f"returned {type(what).__name__}"
+
+
+def shown_name(func, arg: str) -> str:
+    """The name a message gives an argument: ``"*args"`` is the function's own name for its ``*parameter``."""
+    if arg != "*args":
+        return arg
+    try:
+        params = inspect.signature(func).parameters.values()
+    except (TypeError, ValueError):
+        return arg
+    return next((p.name for p in params if p.kind is inspect.Parameter.VAR_POSITIONAL), arg)
 
 
 def _describe(value) -> str:
@@ -336,10 +353,11 @@ def tries(case: Case):
     """Every ``(arg, description, bad value, must_refuse)`` the fuzz tries on a case."""
     valid = case.fresh_args()
     for arg, value in valid.items():
-        if arg == "self" or arg in case.skip:
+        if arg == "self":
             continue
         allowed = case.allow.get(arg, ())
-        for desc, bad in bad_values(value) + _plain(case.extra.get(arg, ())):
+        generated = [] if arg in case.skip else bad_values(value)
+        for desc, bad in generated + _plain(case.extra.get(arg, ())):
             yield arg, desc, bad, case.strict and desc not in allowed and wrong_type(value, bad)
         for bad in case.kinds.get(arg, ()):
             yield arg, _describe(bad), bad, True

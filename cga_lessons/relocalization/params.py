@@ -1,0 +1,242 @@
+"""The thresholds of :func:`~cga_lessons.relocalization.relocalize`, each field checked where it is set.
+
+:class:`RelocParams` holds them; :func:`resolve_params` replaces single fields
+by keyword overrides, checked in the name of the function the user called;
+:func:`noise_scaled` grows the distance thresholds with a scan's noise.
+"""
+
+from __future__ import annotations
+
+import inspect
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from cga_lessons import checks
+from cga_lessons.mapping2d import extract_segments
+
+from .inputs import MAX_COORDINATE
+
+__all__ = [
+    "STATUSES",
+    "RelocParams",
+    "check_param",
+    "check_score",
+    "resolve_params",
+    "check_extraction",
+    "check_relocalize_kw",
+    "noise_scaled",
+]
+
+#: The statuses of a relocalization.
+STATUSES = ("ok", "ambiguous", "failed")
+
+
+@dataclass(frozen=True)
+class RelocParams:
+    """Every threshold of :func:`relocalize`.
+
+    Attributes
+    ----------
+    xi_theta : float
+        Angle threshold (radians) of the votes (5.6) and of the rotation votes.
+    xi_rho : float
+        Offset threshold (m) of the votes (5.6) (the literal method only).
+    n_rotations : int
+        Rotation proposals taken from the angle votes (each gives two rotations).
+    parallel_tol : float
+        A scan line and a map line are parallel under a rotation within this (radians).
+    n_anchor_pairs : int
+        Pairs of non-parallel scan lines used to make translation hypotheses, per rotation.
+    min_anchor_angle : float
+        Smallest angle (radians) between the two lines of an anchor pair.
+    overlap_margin : float
+        A map segment's extent is widened by this (m) when a scan segment must lie on it.
+    min_overlap : float
+        Fraction of a scan segment that must lie within its map segment's extent.
+    line_tolerance : float
+        Midpoint-to-line distance (m) for a scan line to count as on a map line
+        (quick score, correspondences; grows to 5 times the scan's range noise).
+    slide_step, slide_below : float
+        When the scan lines across the longest one add up to less than
+        ``slide_below`` (m), positions ``slide_step`` (m) apart along its map
+        partners are tried as well (``slide_step`` 0 disables).  ``inf``: always.
+        The lines across may be there and still fix nothing: door frames,
+        cupboards and people that the map does not hold.  Measured on held-out
+        scans of the six CARMEN logs (every 7th, map from the rest): in
+        corridors no hypothesis came within 30 cm of the true pose because
+        every scan line matching the map there was parallel to the corridor
+        (ACES, the run ending at scan 276: 9 such lines, and 2.9 m of lines
+        across without any map partner, so the 1 m bar of old kept the slide
+        off); always sliding located 5 more of the 361 scans (ACES 3, CSAIL 1,
+        Orebro 1) and made none more confidently wrong.
+    rotation_vote_ratio : float
+        Rotations whose vote is below this fraction of the best are dropped.
+    quick_ratio : float
+        Hypotheses whose quick score (scan length on map segments) is below
+        this fraction of the best are dropped before the screening.
+    n_screen : int
+        At most this many hypotheses (one per 3 cm x 0.5 degree cell) are
+        screened against a subset of the beams.
+    screen_beams : int
+        About this many returned beams are used in the screening.
+    n_verify : int
+        Clearly different hypotheses refined and checked against the whole
+        scan: all within 90 % of the best screening score (up to four times
+        this), at least this many.
+    inlier_distance : float
+        A returned beam whose point lies within this (m) of the first map wall
+        along it supports the pose (grows to 4 times the scan's range noise).
+    ray_margin : float
+        A beam may end this far (m) behind a map wall before it counts against
+        the pose (grows to 5 times the scan's range noise).
+    ambiguity_ratio : float
+        A clearly different pose scoring at least this fraction of the best makes the answer ambiguous.
+    deficit_ratio : float
+        ... or one whose deficit ``1 - score`` is at most ``1 + deficit_ratio``
+        times the best's (:func:`~cga_lessons.relocalization.verify.tie_bar`).
+        1: measured on held-out scans of the Intel and ACES logs (every 7th,
+        map from the rest by chapter 3's builder, with its coverage grid), the
+        second-best pose of a confident wrong answer scored 0.43-0.96 of the
+        best (18 of 22 above 0.7), of a confident right one mostly below 0.7
+        (112 of 131); a rival failing to explain at most twice what the best
+        fails to explain (a deficit of 10 % against 5 %) is too close to call
+        on a map with holes.  0 gives the ratio rule alone.
+    distinct_position, distinct_heading : float
+        Poses further apart than this (m) or turned more than this (radians)
+        are clearly different; the best pose moved by these along its least
+        constrained direction is checked as a rival too.
+    min_score : float
+        Below this score (see :func:`~cga_lessons.relocalization.verify.score_poses`)
+        the result is a failure.  0: a pose that contradicts more beams than it
+        explains is no answer; above that the tie rule decides (a best pose
+        scoring ``s`` must leave its rivals below ``2 s - 1``).  A fixed bar of
+        0.5 refused right poses with no rival near them whose beams mostly
+        returned nothing (Freiburg: up to 78 % of the beams, a fifth of those
+        crossing a map wall), and scans of cluttered rooms: with 0, 3 more
+        of the 361 held-out scans and 5 more runs of three were located, none
+        more confidently wrong.
+    """
+
+    xi_theta: float = np.radians(3.0)
+    xi_rho: float = 0.2
+    n_rotations: int = 8
+    parallel_tol: float = np.radians(4.0)
+    n_anchor_pairs: int = 4
+    min_anchor_angle: float = np.radians(30.0)
+    overlap_margin: float = 0.3
+    min_overlap: float = 0.5
+    line_tolerance: float = 0.1
+    slide_step: float = 0.2
+    slide_below: float = np.inf
+    rotation_vote_ratio: float = 0.25
+    quick_ratio: float = 0.8
+    n_screen: int = 600
+    screen_beams: int = 24
+    n_verify: int = 12
+    inlier_distance: float = 0.06
+    ray_margin: float = 0.08
+    ambiguity_ratio: float = 0.98
+    deficit_ratio: float = 1.0
+    distinct_position: float = 0.2
+    distinct_heading: float = np.radians(4.0)
+    min_score: float = 0.0
+
+    def __post_init__(self):
+        for name in RelocParams.__dataclass_fields__:
+            object.__setattr__(self, name, check_param(name, getattr(self, name), "RelocParams"))
+
+
+#: The ranges of RelocParams' real fields (keywords of :func:`cga_lessons.checks.real`).
+_PARAM_RANGES = {
+    "xi_theta": dict(low=0.0, high=np.pi, strict_low=True),
+    "xi_rho": dict(low=0.0, strict_low=True, high=MAX_COORDINATE),
+    "parallel_tol": dict(low=0.0, high=np.pi / 2, strict_low=True),
+    "min_anchor_angle": dict(low=0.0, high=np.pi / 2),
+    "overlap_margin": dict(low=0.0, high=MAX_COORDINATE),
+    "min_overlap": dict(low=0.0, high=1.0),
+    "line_tolerance": dict(low=0.0, strict_low=True, high=MAX_COORDINATE),
+    "slide_step": dict(low=0.0, high=MAX_COORDINATE),
+    "slide_below": dict(low=0.0, high=MAX_COORDINATE),
+    "rotation_vote_ratio": dict(low=0.0, high=1.0),
+    "quick_ratio": dict(low=0.0, high=1.0),
+    "inlier_distance": dict(low=0.0, strict_low=True, high=MAX_COORDINATE),
+    "ray_margin": dict(low=0.0, high=MAX_COORDINATE),
+    "ambiguity_ratio": dict(low=0.0, high=1.0, strict_low=True),
+    "deficit_ratio": dict(low=0.0),
+    "distinct_position": dict(low=0.0, strict_low=True, high=MAX_COORDINATE),
+    "distinct_heading": dict(low=0.0, high=np.pi, strict_low=True),
+    "min_score": dict(high=1.0),
+}
+#: RelocParams' counts.
+_PARAM_COUNTS = ("n_rotations", "n_anchor_pairs", "n_screen", "screen_beams", "n_verify")
+
+
+def check_param(name: str, value, func: str):
+    """One field of :class:`RelocParams` checked in the name of ``func``: its counts are whole numbers >= 1,
+    its thresholds finite numbers in their ranges, distances (m) within
+    :data:`~cga_lessons.relocalization.inputs.MAX_COORDINATE` (``slide_below`` may be ``inf``: always slide)."""
+    if name in _PARAM_COUNTS:
+        return checks.integer(value, func, name, low=1)
+    if name == "slide_below" and isinstance(value, (float, np.floating)) and value == np.inf:
+        return float(value)
+    return checks.real(value, func, name, **_PARAM_RANGES[name])
+
+
+def check_score(value, func: str, name: str = "score", *, failed: bool = False) -> float:
+    """A score: a finite number, or ``-inf`` when ``failed`` (no candidate, no returned beam)."""
+    if failed and isinstance(value, (float, np.floating)) and value == -np.inf:
+        return float(value)
+    return checks.real(value, func, name)
+
+
+def noise_scaled(params: RelocParams, noise: float) -> RelocParams:
+    """The thresholds that are distances grown with the noise (they are set for about 1 cm).
+
+    ``noise``: the scan's range noise, or :func:`combined_noise` with the map's blur.
+    """
+    return replace(
+        params,
+        inlier_distance=max(params.inlier_distance, 4 * noise),
+        ray_margin=max(params.ray_margin, 5 * noise),
+        line_tolerance=max(params.line_tolerance, 5 * noise),
+    )
+
+
+def resolve_params(params: RelocParams | None, overrides: dict, func: str = "relocalize") -> RelocParams:
+    """``params`` (default :class:`RelocParams`) with single fields replaced by ``overrides``, checked in the
+    name of ``func``; unknown names raise."""
+    if params is None:
+        params = RelocParams()
+    checks.instance(params, func, "params", RelocParams, "a RelocParams or None")
+    bad = sorted(set(overrides) - set(RelocParams.__dataclass_fields__))
+    if bad:
+        raise checks.fail(func, ", ".join(bad), "unknown parameter (not a field of RelocParams)")
+    if not overrides:
+        return params
+    return replace(params, **{k: check_param(k, v, func) for k, v in overrides.items()})
+
+
+def check_extraction(extraction, func: str) -> dict:
+    """Keyword arguments for :func:`~cga_lessons.mapping2d.lines.extract_segments` (a dict of its settings)."""
+    if extraction is None:
+        return {}
+    checks.instance(extraction, func, "extraction", dict, "a dict of extract_segments' settings or None")
+    known = set(inspect.signature(extract_segments).parameters) - {"ranges", "angles"}
+    bad = sorted(map(str, set(extraction) - known))
+    if bad:
+        raise checks.fail(func, "extraction", f"unknown setting(s) of extract_segments: {', '.join(bad)}")
+    return extraction
+
+
+def check_relocalize_kw(kw: dict, func: str) -> dict:
+    """Keywords for :func:`~cga_lessons.relocalization.relocalize` (``params``, ``extraction`` and single
+    thresholds), checked in the name of ``func``."""
+    if "params" in kw:
+        resolve_params(kw["params"], {}, func)
+    if kw.get("extraction") is not None:
+        checks.instance(kw["extraction"], func, "extraction", dict, "a dict of extract_segments' settings")
+    for name, value in kw.items():
+        if name not in ("params", "extraction"):
+            resolve_params(None, {name: value}, func)
+    return kw
