@@ -19,11 +19,12 @@ from __future__ import annotations
 
 import math
 import numbers
+from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
 
-from cga_lessons.errors import DegenerateGeometryError, InvalidInputError
+from cga_lessons.errors import DegenerateGeometryError, GeometryError, InvalidInputError
 
 __all__ = [
     "fail",
@@ -40,9 +41,19 @@ __all__ = [
     "same_length",
     "instance",
     "finite_result",
+    "magnitude",
+    "MAX_MAGNITUDE",
+    "generator",
+    "seed",
+    "relabel",
     "existing_path",
     "new_path",
 ]
+
+#: The largest coordinate a geometric computation accepts by default: a float's range ends near 1.8e308, so the
+#: square of a number beyond about 1.3e154 overflows, and sums of a few such squares (a squared distance, the
+#: e+ and e- coefficients of a conformal point) need a little room below that.
+MAX_MAGNITUDE = 1e150
 
 
 def fail(func: str, name: str, problem: str) -> InvalidInputError:
@@ -296,3 +307,58 @@ def new_path(value, func: str, name: str, *, overwrite: bool = False) -> Path:
     if not p.parent.is_dir():
         raise fail(func, name, f"no such folder: {p.parent}")
     return p
+
+
+def magnitude(value, func: str, name: str, *, limit: float = MAX_MAGNITUDE, why: str = "squares overflow a float"):
+    """``value`` (an array or a number, already finite) if no entry exceeds ``limit`` in size; else an error saying
+    ``why`` such magnitudes cannot be computed with.
+
+    >>> magnitude([1e200, 0], "f", "x")
+    Traceback (most recent call last):
+    ...
+    cga_lessons.algebra.InvalidInputError: f: x: magnitudes up to 1e+200, beyond 1e+150: squares overflow a float
+    """
+    a = np.abs(np.asarray(value, dtype=float))
+    if a.size and float(np.max(a)) > limit:
+        raise fail(func, name, f"magnitudes up to {float(np.max(a)):.3g}, beyond {limit:.3g}: {why}")
+    return value
+
+
+def generator(value, func: str, name: str = "rng", *, seeds: bool = False, optional: bool = False):
+    """A :class:`numpy.random.Generator`: ``value`` itself; with ``seeds`` an int seed >= 0 makes one
+    (``numpy.random.default_rng(seed)``); with ``optional`` None stays None."""
+    if value is None and optional:
+        return None
+    if isinstance(value, np.random.Generator):
+        return value
+    if seeds and isinstance(value, numbers.Integral) and not _is_bool(value):
+        return np.random.default_rng(integer(value, func, name, low=0))
+    what = "a numpy.random.Generator (numpy.random.default_rng(seed))"
+    what += ", an int seed >= 0" if seeds else ""
+    what += " or None" if optional else ""
+    raise fail(func, name, f"expected {what}, got {type(value).__name__} {_short(value)}")
+
+
+def seed(value, func: str, name: str = "seed"):
+    """A random seed: None or a whole number >= 0."""
+    return None if value is None else integer(value, func, name, low=0)
+
+
+@contextmanager
+def relabel(func: str, name: str):
+    """Within the block, a package error raised by a call made with argument ``name`` of ``func`` is re-raised as
+    ``func``'s: ``"func: name: problem (said by inner)"``, so the user is told which of their calls was at fault.
+
+    >>> with relabel("outer", "point"):
+    ...     raise fail("down", "X", "is not null")
+    Traceback (most recent call last):
+    ...
+    cga_lessons.algebra.InvalidInputError: outer: point: is not null (said by down)
+    """
+    try:
+        yield
+    except GeometryError as exc:
+        parts = str(exc).split(": ", 2)
+        said = f" (said by {parts[0]})" if len(parts) == 3 and parts[0] != func else ""
+        problem = parts[-1] if len(parts) == 3 else str(exc)
+        raise type(exc)(f"{func}: {name}: {problem}{said}") from None
