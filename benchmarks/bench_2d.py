@@ -59,7 +59,7 @@ def main(quick=False):
     _, _, _, _, ms_plain, _ = run_scene("office", 0, "plain", n=60)
     print(f"\nmap building, office first 60 scans: plain {ms_plain:.1f} ms/scan, conformal {ms:.1f} ms/scan")
 
-    log = laser.read_carmen_log(data_path("carmen", "intel-corrected.log.gz"))
+    log = mapping2d.read_carmen_log(data_path("carmen", "intel-corrected.log.gz"))
     n = 300 if quick else len(log)
     cloud = laser.scans_to_world(log.scans[:n], log.poses[:n], max_range=8.0, step=3)
     print(f"\nIntel Research Lab, {n} scans, readings up to 8 m, odometry from the true poses by OdometryModel();")

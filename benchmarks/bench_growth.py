@@ -114,7 +114,7 @@ class StageTimer:
 
 def load(name, laps=1, seed=0, limit=None):
     """Scans, true poses and simulated odometry of a log, its first ``limit`` scans repeated ``laps`` times."""
-    log = laser.read_carmen_log(data_path("carmen", f"{name}-corrected.log.gz"))
+    log = mapping2d.read_carmen_log(data_path("carmen", f"{name}-corrected.log.gz"))
     n = len(log) if limit is None else min(limit, len(log))
     scans, truth = log.scans[:n] * laps, np.tile(log.poses[:n], (laps, 1))
     odometry = laser.simulate_odometry(truth, np.random.default_rng(seed))
@@ -165,7 +165,7 @@ def run(name, laps, seed, block, limit=None, profile=False):
 def quality(result, truth, odometry, name, limit=None, laps=1):
     odo, _ = mapping2d.pose_errors(odometry, truth)
     rmse, _ = mapping2d.pose_errors(result.poses, truth)
-    log = laser.read_carmen_log(data_path("carmen", f"{name}-corrected.log.gz"))
+    log = mapping2d.read_carmen_log(data_path("carmen", f"{name}-corrected.log.gz"))
     n = len(log) if limit is None else min(limit, len(log))
     cloud = laser.scans_to_world(log.scans[:n], log.poses[:n], max_range=MAX_RANGE, step=3)
     errors = mapping2d.map_point_errors(result.segments, cloud)

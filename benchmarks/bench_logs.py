@@ -54,7 +54,7 @@ def load(name: str, limit: int | None):
     """The log's scans, poses and the reference cloud (readings at the log's poses), read once per worker."""
     key = (name, limit)
     if key not in _CACHE:
-        log = laser.read_carmen_log(data_path("carmen", f"{name}-corrected.log.gz"))
+        log = mapping2d.read_carmen_log(data_path("carmen", f"{name}-corrected.log.gz"))
         n = len(log) if limit is None else min(limit, len(log))
         scans, truth = log.scans[:n], log.poses[:n]
         cloud = laser.scans_to_world(scans, truth, max_range=MAX_RANGE, step=3)

@@ -53,13 +53,20 @@ from pathlib import Path
 import numpy as np
 
 from cga_lessons import data_path
-from cga_lessons.mapping2d import laser
+from cga_lessons.mapping2d import laser, read_carmen_log, relative
 from cga_lessons.mapping2d.laser_facts import returns_reach
-from cga_lessons.relocalization import pose_error, relocalize
-from cga_lessons.relocalization.eval import HEADING_TOLERANCE, POSITION_TOLERANCE, reference_from_log
-from cga_lessons.relocalization.geometry import Observation, check_scan
-from cga_lessons.relocalization.likelihood import BeamModel
-from cga_lessons.relocalization.mcl import MCLConfig, MonteCarloLocalizer
+from cga_lessons.relocalization import (
+    HEADING_TOLERANCE,
+    POSITION_TOLERANCE,
+    BeamModel,
+    MCLConfig,
+    pose_error,
+    relocalize,
+)
+from cga_lessons.relocalization.eval import reference_from_log
+from cga_lessons.relocalization.geometry import Observation
+from cga_lessons.relocalization.inputs import check_scan
+from cga_lessons.relocalization.mcl import MonteCarloLocalizer
 from cga_lessons.relocalization.sampling import KLDConfig
 from cga_lessons.relocalization.sequence import relocalize_sequence
 from cga_lessons.relocalization.verify import refine_pose_points
@@ -87,7 +94,7 @@ def run_sequence(ref, scans, truth, odo, config, seed, walls=None):
     located, close, wrong, near, secs, counts, unknown, off_map = [], [], [], [], [], [], [], []
     for k, scan in enumerate(scans):
         unknown.append(unmapped_share(mcl.field, truth[k], scan))
-        u = np.zeros(3) if k == 0 else laser.relative(odo[k - 1], odo[k])
+        u = np.zeros(3) if k == 0 else relative(odo[k - 1], odo[k])
         t0 = time.perf_counter()
         e = mcl.update(u, scan)
         secs.append(time.perf_counter() - t0)
@@ -145,7 +152,7 @@ def log_task(args):
     """One fold of one log for one seed: the outcomes of its held-out sequences."""
     name, fold, seeds, options = args
     options = dict(options)
-    log = laser.read_carmen_log(data_path("carmen", f"{name}-corrected.log.gz"))
+    log = read_carmen_log(data_path("carmen", f"{name}-corrected.log.gz"))
     reach = options.pop("max_range", None) or returns_reach(log.ranges)
     block = np.arange(len(log)) // LENGTH
     held = np.unique(block[(block % FOLDS) == fold])
@@ -186,7 +193,7 @@ def task(args):
 
 def timing(n_particles=2000, n_updates=60, max_range=None):
     """ms per update of a tracking filter held at ``n_particles`` on Intel's map (no Hough proposal)."""
-    log = laser.read_carmen_log(data_path("carmen", "intel-corrected.log.gz"))
+    log = read_carmen_log(data_path("carmen", "intel-corrected.log.gz"))
     reach = max_range or returns_reach(log.ranges)
     ref = reference_from_log(log, np.arange(0, len(log), 2), max_range=reach)
     kld = KLDConfig(n_min=n_particles, n_max=n_particles)
@@ -197,7 +204,7 @@ def timing(n_particles=2000, n_updates=60, max_range=None):
     build = time.perf_counter() - t0
     secs = []
     for k in range(1, 1 + n_updates):
-        u = laser.relative(odo[2 * k - 1], odo[2 * k + 1])
+        u = relative(odo[2 * k - 1], odo[2 * k + 1])
         t0 = time.perf_counter()
         mcl.update(u, log.scans[2 * k + 1])
         secs.append(time.perf_counter() - t0)

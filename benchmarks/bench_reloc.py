@@ -22,7 +22,7 @@ import time
 import numpy as np
 
 from cga_lessons import data_path
-from cga_lessons.mapping2d import laser
+from cga_lessons.mapping2d import laser, read_carmen_log
 from cga_lessons.mapping2d.laser import Scene
 from cga_lessons.relocalization import pose_error, prepare_map, relocalize
 from cga_lessons.relocalization.eval import evaluate_log, evaluate_poses, random_free_poses
@@ -150,7 +150,7 @@ def success(quick):
         ev = evaluate_poses(office, ref, poses, np.random.default_rng(8), **kw)
         line(f"{kw.get('max_range', 5.0):.0f} m, 360 deg", ev.summary())
 
-    log = laser.read_carmen_log(data_path("carmen", "intel-corrected.log.gz"))
+    log = read_carmen_log(data_path("carmen", "intel-corrected.log.gz"))
     test = np.arange(7, len(log), 30 if quick else 15)
     ev, segs = evaluate_log(log, test, exclude=2, map_step=2)
     print(f"\nIntel log: {len(test)} held-out scans, map of {len(segs)} segments from every 2nd other scan (8 m)")

@@ -40,7 +40,7 @@ from pathlib import Path
 import numpy as np
 
 from cga_lessons import data_path
-from cga_lessons.mapping2d import laser
+from cga_lessons.mapping2d import laser, read_carmen_log
 from cga_lessons.mapping2d.laser_facts import returns_reach
 from cga_lessons.relocalization.eval import evaluate_log
 from cga_lessons.relocalization.lookaround import evaluate_log_sequences
@@ -65,7 +65,7 @@ def task(args):
     """One log's single scans (seed None) or one seed's runs of three: counts and times."""
     name, seed, sparse, before, reach, options = args
     kw = {**protocol(sparse), **(BEFORE if before else {}), **options}
-    log = laser.read_carmen_log(log_path(name))
+    log = read_carmen_log(log_path(name))
     reach = returns_reach(log.ranges) if reach is None else reach
     held = np.arange(max(FIRST, RUN - 1), len(log), EVERY)
     t0 = time.perf_counter()

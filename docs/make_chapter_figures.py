@@ -31,7 +31,7 @@ MAX_BYTES = 150_000
 PICTURES = {
     "00_start_here": ('boxes = {"01"', 0, "how the chapters depend on each other"),
     "01_geometric_algebra": ("a_num, b_num = G2.vector", 0, "bivectors: oriented areas, a ^ b = -b ^ a"),
-    "02_conformal_model": ("ch2.fig_entities(", 0, "the conformal entities of table 2.1"),
+    "02_conformal_model": ("ch2_3d.fig_entities(", 0, "the conformal entities of table 2.1"),
     "03_conformal_transformations": (
         "center, radius = np.array([0.3, 0.2, 0.0]), 1.0",
         0,

@@ -13,6 +13,7 @@ from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
 from cga_lessons.stereo import camera as cam
 from cga_lessons.stereo import epipolar as epi
 from cga_lessons.stereo import observe, random_rig, rotation_matrix
+from cga_lessons.stereo import triangulation as tri
 from cga_lessons.stereo.experiments import random_points_in_view
 
 SEEDS = range(8)
@@ -303,7 +304,7 @@ def test_cameras_from_fundamental_A10_A13(seed):
     for P1, P2 in (epi.cameras_from_fundamental(F), epi.cameras_from_fundamental(F, v, lam)):
         np.testing.assert_array_equal(P1, np.hstack([np.eye(3), np.zeros((3, 1))]))  # (A.10)
         np.testing.assert_allclose(epi.fundamental_from_cameras(P1, P2), F, atol=1e-9)  # the pair has F
-        Xp = cam.triangulate(P1, P2, x1, x2, method="dlt")  # a projective reconstruction
+        Xp = tri.triangulate(P1, P2, x1, x2, method="dlt")  # a projective reconstruction
         np.testing.assert_allclose(cam.project(P1, Xp), x1, atol=1e-6)
         np.testing.assert_allclose(cam.project(P2, Xp), x2, atol=1e-6)
         # ... equal to the true scene up to a projective transformation of space
@@ -322,7 +323,7 @@ def test_triangulate_noise_free_reproduces_truth(seed, method):
     rng = np.random.default_rng(seed)
     rig = random_rig(rng)
     X = random_points_in_view(rig, 50, rng)
-    Xt = cam.triangulate(rig.P1, rig.P2, *rig.project(X), method=method)
+    Xt = tri.triangulate(rig.P1, rig.P2, *rig.project(X), method=method)
     assert Xt.shape == (50, 3)
     np.testing.assert_allclose(Xt, X, rtol=0, atol=1e-9)
 
@@ -334,7 +335,7 @@ def test_dlt_matches_opencv_triangulatePoints(seed):
     X = random_points_in_view(rig, 40, rng)
     x1, x2 = observe(rig, X, 1.0, rng)
     ref = cv2.triangulatePoints(rig.P1, rig.P2, x1.T, x2.T)
-    np.testing.assert_allclose(cam.triangulate(rig.P1, rig.P2, x1, x2, "dlt"), (ref[:3] / ref[3]).T, atol=1e-8)
+    np.testing.assert_allclose(tri.triangulate(rig.P1, rig.P2, x1, x2, "dlt"), (ref[:3] / ref[3]).T, atol=1e-8)
 
 
 @pytest.mark.parametrize("seed", SEEDS)
@@ -343,7 +344,7 @@ def test_midpoint_is_the_middle_of_the_common_perpendicular_fig_A4(seed):
     rig = random_rig(rng)
     X = random_points_in_view(rig, 30, rng)
     x1, x2 = observe(rig, X, 2.0, rng)
-    Xm = cam.triangulate(rig.P1, rig.P2, x1, x2)
+    Xm = tri.triangulate(rig.P1, rig.P2, x1, x2)
     o1, d1 = cam.back_project(rig.P1, x1)
     o2, d2 = cam.back_project(rig.P2, x2)
     for i in range(len(X)):  # independent: least squares for the two ray parameters
@@ -351,7 +352,7 @@ def test_midpoint_is_the_middle_of_the_common_perpendicular_fig_A4(seed):
         q1, q2 = o1[i] + s * d1[i], o2[i] + t * d2[i]
         assert abs(np.dot(q2 - q1, d1[i])) < 1e-9 and abs(np.dot(q2 - q1, d2[i])) < 1e-9
         np.testing.assert_allclose(Xm[i], 0.5 * (q1 + q2), atol=1e-9)
-    assert np.median(np.linalg.norm(Xm - cam.triangulate(rig.P1, rig.P2, x1, x2, "dlt"), axis=1)) < 0.05
+    assert np.median(np.linalg.norm(Xm - tri.triangulate(rig.P1, rig.P2, x1, x2, "dlt"), axis=1)) < 0.05
 
 
 def test_triangulate_degenerate_input():
@@ -361,15 +362,15 @@ def test_triangulate_degenerate_input():
     x = np.array([[300.0, 200.0], [310.0, 250.0]])
     for method in ("midpoint", "dlt"):  # same pixel in a parallel rig: parallel rays
         with pytest.raises(DegenerateGeometryError, match="parallel rays"):
-            cam.triangulate(P1, P2, x, x, method=method)
+            tri.triangulate(P1, P2, x, x, method=method)
     for method in ("midpoint", "dlt"):  # both cameras at the same place
         with pytest.raises(DegenerateGeometryError, match="share their centre"):
-            cam.triangulate(P1, 2 * cam.projection_matrix(K, np.eye(3), [0.0, 1e-14, 0.0]), x, x + 5.0, method=method)
+            tri.triangulate(P1, 2 * cam.projection_matrix(K, np.eye(3), [0.0, 1e-14, 0.0]), x, x + 5.0, method=method)
     with pytest.raises(InvalidInputError, match="triangulate: method: must be one of 'midpoint', 'dlt'"):
-        cam.triangulate(P1, P2, x, x, method="mid")
+        tri.triangulate(P1, P2, x, x, method="mid")
     with pytest.raises(InvalidInputError, match="NaN"):
-        cam.triangulate(P1, P2, [[np.nan, 1.0]], x[:1])
+        tri.triangulate(P1, P2, [[np.nan, 1.0]], x[:1])
     with pytest.raises(InvalidInputError, match="triangulate: x1, x2: must have the same length, got 2 and 1"):
-        cam.triangulate(P1, P2, x, x[:1])
+        tri.triangulate(P1, P2, x, x[:1])
     with pytest.raises(InvalidInputError, match=r"triangulate: P2: expected shape \(3, 4\)"):
-        cam.triangulate(P1, P2[:, :3], x, x)
+        tri.triangulate(P1, P2[:, :3], x, x)

@@ -21,7 +21,7 @@ import pytest
 from cga_lessons import data_path, equations
 from cga_lessons.cli import SEGMENT_COLUMNS
 from cga_lessons.cli import commands as cli
-from cga_lessons.mapping2d import laser
+from cga_lessons.mapping2d import laser, read_carmen_log, wrap_angle
 
 ROOT = Path(__file__).resolve().parents[1]
 NO_RETURN = 81.83  # what the SICK scanners of the CARMEN logs report for no return
@@ -139,7 +139,7 @@ def test_map2d_intel_slice_matches_the_logs_own_points(tmp_path, capsys):
     rows = read_rows(tmp_path / "intel-slice_segments.csv")
     ends = np.array([[float(r["x_start"]), float(r["y_start"])] for r in rows])
     # truth: the same 50 scans placed at the log's SLAM poses, as plain trigonometry
-    parsed = laser.read_carmen_log(log)
+    parsed = read_carmen_log(log)
     pts = []
     for (ranges, angles), (x, y, th) in zip(parsed.scans[:n], parsed.poses[:n]):
         ok = ranges < 8.0
@@ -265,7 +265,7 @@ def test_map2d_simulated_odometry_prints_the_errors_against_the_logs_poses(room_
     assert np.allclose(traj.positions_xyz[:, :2], poses[:, :2], atol=1e-6)
     assert np.allclose(traj.timestamps[:3], [0, 0.2, 0.4])  # the log's own times
     # evo's RPE over 1 m of the log's path, per metre, is the printed RPE (cm/m)
-    ref = laser.read_carmen_log(path).poses
+    ref = read_carmen_log(path).poses
     quat = np.column_stack([np.cos(ref[:, 2] / 2), np.zeros((len(ref), 2)), np.sin(ref[:, 2] / 2)])
     ref_traj = PoseTrajectory3D(np.column_stack([ref[:, :2], np.zeros(len(ref))]), quat, traj.timestamps)
     rpe = metrics.RPE(metrics.PoseRelation.translation_part, 1.0, metrics.Unit.meters, pairs_from_reference=True)
@@ -356,7 +356,7 @@ def test_relocalize_finds_the_scans_pose_on_a_map_from_map2d(room_log, tmp_path,
     ]
     best = poses[0]
     assert np.hypot(best[0] - truth[k, 0], best[1] - truth[k, 1]) < 0.1
-    assert abs(laser.wrap_angle(best[2] - truth[k, 2])) < np.radians(2)
+    assert abs(wrap_angle(best[2] - truth[k, 2])) < np.radians(2)
 
 
 def test_relocalize_a_sequence_of_scans_with_the_logs_odometry(room_log, tmp_path, capsys):
@@ -369,7 +369,7 @@ def test_relocalize_a_sequence_of_scans_with_the_logs_odometry(room_log, tmp_pat
     assert "scans 20, 25, 30 (pose at scan 30)" in out
     x, y, t = re.findall(r"x = (-?[\d.]+) m, y = (-?[\d.]+) m, theta = (-?[\d.]+) deg", out)[0]
     assert np.hypot(float(x) - truth[30, 0], float(y) - truth[30, 1]) < 0.1
-    assert abs(laser.wrap_angle(np.radians(float(t)) - truth[30, 2])) < np.radians(2)
+    assert abs(wrap_angle(np.radians(float(t)) - truth[30, 2])) < np.radians(2)
 
 
 def test_relocalize_bad_inputs_are_clear_errors(room_log, tmp_path, capsys):
@@ -391,7 +391,7 @@ def test_relocalize_bad_inputs_are_clear_errors(room_log, tmp_path, capsys):
 
 
 def test_segments_csv_round_trip(tmp_path):
-    from cga_lessons.mapping2d.lines import Segment
+    from cga_lessons.mapping2d import Segment
 
     segs = [Segment([0.0, 0.0], [2.0, 1.0], 30, None, True, False), Segment([1.0, -1.0], [1.0, 3.0], 5)]
     cli.write_segments_csv(tmp_path / "s.csv", segs)

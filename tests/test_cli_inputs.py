@@ -17,8 +17,7 @@ from cga_lessons.algebra import InvalidInputError
 from cga_lessons.cli import SEGMENT_COLUMNS, segments_csv
 from cga_lessons.cli import commands as cli
 from cga_lessons.cli import io as cli_io
-from cga_lessons.mapping2d import laser
-from cga_lessons.mapping2d.lines import Segment
+from cga_lessons.mapping2d import Segment, laser
 
 HEADER = ",".join(SEGMENT_COLUMNS)
 

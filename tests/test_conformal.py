@@ -467,7 +467,7 @@ def test_point_pair_endpoints_order_eq_2_131_erratum():
 def test_point_input_is_refused_clearly():
     with pytest.raises(InvalidInputError, match=r"^up: x: must be real numbers, got complex"):
         cga.up([1.0 + 2j, 0.0, 0.0])  # was truncated to its real part
-    with pytest.raises(InvalidInputError, match=r"^up: x: coordinates too large"):
+    with pytest.raises(InvalidInputError, match=r"^up: x: magnitudes up to 1e\+200, beyond 1e\+153"):
         cga.up([[0.0, 0.0, 0.0], [1e200, 0.0, 0.0]])
     with pytest.raises(InvalidInputError, match=r"^sphere: radius: must be a real number"):
         cga.sphere([0, 0, 0], "1.0")  # was read as 1.0
@@ -501,7 +501,7 @@ def test_down_reads_points_only():
             cga.down(S)
     with pytest.raises(InvalidInputError, match=r"^down: X: expected a multivector of G\(4,1\), got ndarray"):
         cga.down(np.zeros(32))
-    with pytest.raises(InvalidInputError, match=r"^euclidean: X: the coefficients contain NaN"):
+    with pytest.raises(InvalidInputError, match=r"^euclidean: X: contains NaN or inf"):
         cga.euclidean(cga.Multivector(cga.G41, {1: np.nan}))
     with pytest.raises(InvalidInputError, match=r"^point_weight: X: expected a conformal point or sphere"):
         cga.point_weight(cga.line_from_points([0, 0, 0], [1, 0, 0]))
@@ -515,7 +515,7 @@ def test_fits_refuse_bad_input_by_name():
         cga.fit_sphere_kasa(np.ones((5, 3)))
     with pytest.raises(InvalidInputError, match=r"^fit_plane: X: must be an array of numbers"):
         cga.fit_plane([[0.0, 0.0, 0.0], [1.0, 0.0], [0.0, 1.0, 0.0]])
-    with pytest.raises(InvalidInputError, match=r"^fit_circle: X: coordinates too large"):
+    with pytest.raises(InvalidInputError, match=r"^fit_circle: X: magnitudes up to 1e\+300, beyond 1e\+153"):
         cga.fit_circle(ring * 1e300)
     sphere_pts = np.vstack([np.eye(3), -np.eye(3)])
     with pytest.raises(InvalidInputError, match=r"^fit_sphere_geometric: init: has no 'radius'"):

@@ -18,7 +18,7 @@ import sympy as sp
 
 from cga_lessons import conformal as cga
 from cga_lessons import exercises, mapping2d
-from cga_lessons.map3d import robot as rb
+from cga_lessons import map3d as rb
 from cga_lessons.map3d.tour import homogeneous_chains
 from cga_lessons.mapping2d import conformal as cmap
 from cga_lessons.mapping2d import laser, lines
@@ -48,7 +48,7 @@ def _corridor_left_over():
 
 
 def _closest_point():
-    seg = lines.Segment([2.0, 1.0], [0.0, 3.0])
+    seg = mapping2d.Segment([2.0, 1.0], [0.0, 3.0])
     return cmap.point_pair_structure(cmap.segment_point_pair(seg))["closest_point"]
 
 
@@ -164,7 +164,7 @@ def test_corridor_lines_leave_the_along_wall_direction_open():
 def test_hough_match_sphere_reject_example_is_case_5_of_the_library():
     g, local = ([0.0, 1.0], [2.0, 1.0]), RIGHT["ch3.6"]()
     assert cmap.sphere_case(*map(np.array, g), *local) == 5
-    s_g, s_l = lines.Segment(*g), lines.Segment(*local)
+    s_g, s_l = mapping2d.Segment(*g), mapping2d.Segment(*local)
     assert math.hypot(lines.diff_theta(s_g.theta, s_l.theta), s_g.rho - s_l.rho) < 1e-12
 
 

@@ -14,7 +14,7 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 from matplotlib.colors import to_rgba  # noqa: E402
 
-from cga_lessons.relocalization.eval import HEADING_TOLERANCE, POSITION_TOLERANCE  # noqa: E402
+from cga_lessons.relocalization import HEADING_TOLERANCE, POSITION_TOLERANCE  # noqa: E402
 from cga_lessons.relocalization.hough import hough_set  # noqa: E402
 from cga_lessons.viz.explore_relocalization import RelocalizationExplorer, true_partners  # noqa: E402
 

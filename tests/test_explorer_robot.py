@@ -13,7 +13,8 @@ import pytest  # noqa: E402
 
 from cga_lessons.algebra import InvalidInputError  # noqa: E402
 from cga_lessons.map3d import build_fused_map  # noqa: E402
-from cga_lessons.map3d.robot import Robot, RobotGeometry, RobotState  # noqa: E402
+from cga_lessons.map3d.robot import Robot  # noqa: E402
+from cga_lessons.map3d.state import RobotGeometry, RobotState  # noqa: E402
 from cga_lessons.map3d.tour import simulate_tour  # noqa: E402
 from cga_lessons.viz.explore_robot import RobotExplorer  # noqa: E402
 from cga_lessons.viz.meshcat_scene import Visualizer  # noqa: E402

@@ -168,8 +168,8 @@ def test_the_recovered_correction_is_the_inverse_of_the_error(correction, dx, dy
 
 def test_conformal_correction_of_parallel_lines_fixes_only_their_normal():
     """(3.9): with one direction of lines only the offset along their normal is determined; the rest is kept."""
+    from cga_lessons.mapping2d import Segment
     from cga_lessons.mapping2d import conformal as cmap
-    from cga_lessons.mapping2d.lines import Segment
 
     local = cmap.segment_point_pair([Segment([1.0, -1.0], [1.0, 1.0]), Segment([3.0, 1.0], [3.0, -1.0])])
     truth, believed = np.array([0.0, 0.0, 0.0]), np.array([0.3, 0.2, 0.0])

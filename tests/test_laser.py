@@ -9,19 +9,8 @@ from hypothesis import strategies as st
 
 from cga_lessons import data_path
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d.laser import (
-    OdometryModel,
-    Scene,
-    beam_angles,
-    compose,
-    invert,
-    load_scene,
-    read_carmen_log,
-    relative,
-    simulate_odometry,
-    simulate_scan,
-    wrap_angle,
-)
+from cga_lessons.mapping2d import compose, invert, read_carmen_log, relative, wrap_angle
+from cga_lessons.mapping2d.laser import OdometryModel, Scene, beam_angles, load_scene, simulate_odometry, simulate_scan
 
 poses = st.tuples(
     st.floats(-20, 20, allow_nan=False), st.floats(-20, 20, allow_nan=False), st.floats(-np.pi, np.pi)

@@ -7,7 +7,7 @@ import pytest
 
 from cga_lessons import data_path
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d.laser import read_carmen_log
+from cga_lessons.mapping2d import read_carmen_log
 from cga_lessons.mapping2d.laser_facts import no_return_codes, returns_reach
 
 

@@ -6,18 +6,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from cga_lessons.algebra import InvalidInputError
+from cga_lessons.mapping2d import TWO_PI, Segment
 from cga_lessons.mapping2d.laser import load_scene, simulate_scan
-from cga_lessons.mapping2d.lines import (
-    TWO_PI,
-    Segment,
-    diff_theta,
-    diff_theta_as_printed,
-    extract_segments,
-    fit_line,
-    line_through,
-    point_line_distance,
-    split_points,
-)
+from cga_lessons.mapping2d.lines import diff_theta, diff_theta_as_printed, extract_segments, split_points
+from cga_lessons.mapping2d.segment import fit_line, line_through, point_line_distance
 
 angles = st.floats(0, TWO_PI, exclude_max=True, allow_nan=False)
 

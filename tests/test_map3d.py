@@ -18,7 +18,8 @@ from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError  # no
 from cga_lessons.map3d import build_fused_map, entity_parameters, fit_line_3d, stereo_depth_limit  # noqa: E402
 from cga_lessons.map3d.eval import COLUMNS, match_board_segment, residual_table, view_errors  # noqa: E402
 from cga_lessons.map3d.laser import fit_post_center, laser_posts, virtual_wall  # noqa: E402
-from cga_lessons.map3d.robot import Robot, RobotGeometry, RobotState  # noqa: E402
+from cga_lessons.map3d.robot import Robot  # noqa: E402
+from cga_lessons.map3d.state import RobotGeometry, RobotState  # noqa: E402
 from cga_lessons.map3d.tour import homogeneous_chains, simulate_tour, waypoint_tour  # noqa: E402
 from cga_lessons.map3d.world import Board, Post, World3D, default_world  # noqa: E402
 from cga_lessons.mapping2d.laser import OdometryModel, simulate_scan  # noqa: E402
@@ -95,7 +96,7 @@ def test_odometry_alone_misplaces_the_objects(fused):
 
 def test_view_entities_are_the_fits_of_the_moved_points(fused):
     """(4.10) on the fitted entity equals the same fit of the points moved by the same motor (a rigid motion)."""
-    from cga_lessons.map3d.fuse import _fit
+    from cga_lessons.map3d.fits import fit_entity as _fit
 
     for e in fused.views[:8]:
         p = entity_parameters(e.kind, _fit(e.kind, e.points_world)["blade"])

@@ -10,28 +10,24 @@ from cga_lessons.mapping2d import (
     MapParams,
     PlainGeometry,
     PoseGraph,
+    Segment,
     SegmentSet,
     build_map,
+    compose,
     correspondences,
     map_errors,
     map_point_errors,
     pose_correction,
     pose_errors,
     proximity_matrix,
+    read_carmen_log,
+    relative,
     theta_correction,
     translation_correction,
 )
 from cga_lessons.mapping2d.hypotheses import loop_hypotheses
-from cga_lessons.mapping2d.laser import (
-    compose,
-    load_scene,
-    read_carmen_log,
-    relative,
-    scans_to_world,
-    simulate_odometry,
-    simulate_scans,
-)
-from cga_lessons.mapping2d.lines import Segment, diff_theta, extract_segments
+from cga_lessons.mapping2d.laser import load_scene, scans_to_world, simulate_odometry, simulate_scans
+from cga_lessons.mapping2d.lines import diff_theta, extract_segments
 
 
 def _set(*pairs):

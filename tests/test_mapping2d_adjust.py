@@ -4,12 +4,11 @@ import numpy as np
 import pytest
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d import MapParams, build_map, map_errors, pose_errors
+from cga_lessons.mapping2d import MapParams, Segment, build_map, compose, map_errors, pose_errors, relative
 from cga_lessons.mapping2d.adjust import AdjustParams, adjust_map
 from cga_lessons.mapping2d.corrections import chain_covariance
 from cga_lessons.mapping2d.geometry import SegmentSet
-from cga_lessons.mapping2d.laser import OdometryModel, compose, load_scene, relative, simulate_odometry, simulate_scans
-from cga_lessons.mapping2d.lines import Segment
+from cga_lessons.mapping2d.laser import OdometryModel, load_scene, simulate_odometry, simulate_scans
 
 MOUNT = np.array([0.2, 0.05, 0.1])
 
@@ -158,7 +157,7 @@ def test_adjust_map_and_learn_lag_refuse_bad_input():
 def test_the_adjustment_brings_a_real_log_closer_to_its_corrected_poses():
     """Intel's first 300 scans with drifting odometry: against the log's own corrected poses."""
     from cga_lessons import data_path
-    from cga_lessons.mapping2d.laser import read_carmen_log
+    from cga_lessons.mapping2d import read_carmen_log
 
     log = read_carmen_log(data_path("carmen", "intel-corrected.log.gz"))
     n = 300

@@ -10,20 +10,12 @@ import pytest
 
 from cga_lessons import data_path
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d import build_map, map_errors, pose_errors
+from cga_lessons.mapping2d import Segment, build_map, compose, map_errors, pose_errors, read_carmen_log, relative
 from cga_lessons.mapping2d import loops as mapping2d_loops
 from cga_lessons.mapping2d.estimation import Measurements, estimate_correction
 from cga_lessons.mapping2d.geometry import SegmentSet
-from cga_lessons.mapping2d.laser import (
-    compose,
-    load_scene,
-    read_carmen_log,
-    relative,
-    simulate_odometry,
-    simulate_scan,
-    simulate_scans,
-)
-from cga_lessons.mapping2d.lines import Segment, extract_segments
+from cga_lessons.mapping2d.laser import load_scene, simulate_odometry, simulate_scan, simulate_scans
+from cga_lessons.mapping2d.lines import extract_segments
 from cga_lessons.mapping2d.noise import InnovationModel, NoiseFloors, scan_range_noise, segment_residual_sigma
 
 

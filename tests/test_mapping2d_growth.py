@@ -4,10 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from cga_lessons.mapping2d import MapParams, PlainGeometry, SegmentSet
+from cga_lessons.mapping2d import MapParams, PlainGeometry, SegmentSet, compose, relative
 from cga_lessons.mapping2d.builder import MapBuilder
 from cga_lessons.mapping2d.graph import PoseGraph
-from cga_lessons.mapping2d.laser import compose, relative
 from cga_lessons.mapping2d.observations import Growing, PathLog
 
 

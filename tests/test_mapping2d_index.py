@@ -8,12 +8,12 @@ import numpy as np
 import pytest
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d import MapParams, PlainGeometry, SegmentSet
+from cga_lessons.mapping2d import MapParams, PlainGeometry, SegmentSet, compose
 from cga_lessons.mapping2d.builder import MapBuilder
 from cga_lessons.mapping2d.geometry import close_angle_pairs
 from cga_lessons.mapping2d.hypotheses import angle_density
 from cga_lessons.mapping2d.index import SegmentIndex, sphere_boxes
-from cga_lessons.mapping2d.laser import compose, load_scene, simulate_scans
+from cga_lessons.mapping2d.laser import load_scene, simulate_scans
 from cga_lessons.mapping2d.lines import extract_segments
 
 

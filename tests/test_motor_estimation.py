@@ -10,11 +10,11 @@ from cga_lessons import conformal as cga
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector
 from cga_lessons.conformal.motor_estimation import (
     mean_motor,
-    motor_from_lines,
     motor_from_points,
     quaternion_to_rotor,
     rotor_to_quaternion,
 )
+from cga_lessons.conformal.motor_lines import motor_from_lines
 
 seeds = st.integers(0, 2**32 - 1)
 unit_axis = st.tuples(*[st.floats(-1, 1)] * 3).filter(lambda v: np.linalg.norm(v) > 0.1)

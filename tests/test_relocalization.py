@@ -11,8 +11,9 @@ import pytest
 
 from cga_lessons import data_path
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
-from cga_lessons.mapping2d.laser import compose, load_scene, read_carmen_log, simulate_scan, wrap_angle
-from cga_lessons.mapping2d.lines import Segment, diff_theta, extract_segments
+from cga_lessons.mapping2d import Segment, compose, read_carmen_log, wrap_angle
+from cga_lessons.mapping2d.laser import load_scene, simulate_scan
+from cga_lessons.mapping2d.lines import diff_theta, extract_segments
 from cga_lessons.relocalization import ReferenceMap, prepare_map, relocalize
 from cga_lessons.relocalization.eval import evaluate_log, evaluate_poses, random_free_poses
 from cga_lessons.relocalization.geometry import MapLines, Observation, ScanLines, first_hits, pose_error

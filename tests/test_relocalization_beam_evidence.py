@@ -14,13 +14,15 @@ import numpy as np
 import pytest
 
 from cga_lessons import data_path
-from cga_lessons.mapping2d.laser import Scene, load_scene, read_carmen_log, simulate_scan
+from cga_lessons.mapping2d import read_carmen_log
+from cga_lessons.mapping2d.laser import Scene, load_scene, simulate_scan
 from cga_lessons.relocalization import RelocParams, pose_error, prepare_map, relocalize
 from cga_lessons.relocalization import verify as verify
+from cga_lessons.relocalization.candidates import tie_bar
 from cga_lessons.relocalization.coverage import FREE, UNKNOWN, WALL, Coverage
 from cga_lessons.relocalization.eval import held_out_map_indices, random_free_poses, reference_from_log
 from cga_lessons.relocalization.geometry import MapLines, Observation
-from cga_lessons.relocalization.verify import MIN_KNOWN, NO_RETURN_WEIGHT, score_poses, tie_bar
+from cga_lessons.relocalization.verify import MIN_KNOWN, NO_RETURN_WEIGHT, score_poses
 
 # --------------------------------------------------------------------------- the weights, closed forms
 

@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d.laser import OdometryModel, Scene, compose, relative, simulate_scan
+from cga_lessons.mapping2d import compose, relative
+from cga_lessons.mapping2d.laser import OdometryModel, Scene, simulate_scan
 from cga_lessons.relocalization.chain import refine_chains
 from cga_lessons.relocalization.geometry import Observation, prepare_map
 from cga_lessons.relocalization.odometry import odometry_misfit

@@ -6,15 +6,17 @@ import pytest
 
 from cga_lessons import data_path
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
-from cga_lessons.mapping2d.laser import CarmenLog, read_carmen_log, simulate_odometry
+from cga_lessons.mapping2d import CarmenLog, read_carmen_log
+from cga_lessons.mapping2d.laser import simulate_odometry
 from cga_lessons.relocalization import RelocParams, prepare_map, relocalize
 from cga_lessons.relocalization import verify as verify
+from cga_lessons.relocalization.candidates import tie_bar
 from cga_lessons.relocalization.coverage import FREE, UNKNOWN, WALL, build_coverage, map_noise
 from cga_lessons.relocalization.eval import evaluate_log, held_out_map_indices, reference_from_log
 from cga_lessons.relocalization.geometry import Observation, pose_error
 from cga_lessons.relocalization.logmap import merge_segments, robust_end
 from cga_lessons.relocalization.lookaround import evaluate_log_sequences
-from cga_lessons.relocalization.verify import score_poses, tie_bar
+from cga_lessons.relocalization.verify import score_poses
 
 # --------------------------------------------------------------------------- the coverage grid
 

@@ -9,10 +9,12 @@ import numpy as np
 import pytest
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d import laser
+from cga_lessons.mapping2d import laser, relative, wrap_angle
+from cga_lessons.relocalization import BeamModel, MCLConfig
+from cga_lessons.relocalization.beam import beam_likelihood
 from cga_lessons.relocalization.coverage import build_coverage
-from cga_lessons.relocalization.likelihood import BeamModel, LikelihoodField, beam_likelihood
-from cga_lessons.relocalization.mcl import MCLConfig, MonteCarloLocalizer
+from cga_lessons.relocalization.likelihood import LikelihoodField
+from cga_lessons.relocalization.mcl import MonteCarloLocalizer
 from cga_lessons.relocalization.sampling import KLDConfig, kld_bound, kld_resample, low_variance_indices
 
 TOL_XY, TOL_TH = 0.10, np.radians(2.0)
@@ -26,7 +28,7 @@ def office():
 
 def located(est, truth):
     err = np.hypot(*(est.pose[:2] - truth[:2]))
-    return err <= TOL_XY and abs(float(laser.wrap_angle(est.pose[2] - truth[2]))) <= TOL_TH
+    return err <= TOL_XY and abs(float(wrap_angle(est.pose[2] - truth[2]))) <= TOL_TH
 
 
 def drive(mcl, scene, truth, increments, rng):
@@ -145,7 +147,7 @@ def test_seeded_runs_repeat(office):
     for _ in range(2):
         mcl = MonteCarloLocalizer(office.walls, rng=7, initial_pose=truth[0])
         for k, s in enumerate(scans):
-            e = mcl.update(np.zeros(3) if k == 0 else laser.relative(truth[k - 1], truth[k]), s)
+            e = mcl.update(np.zeros(3) if k == 0 else relative(truth[k - 1], truth[k]), s)
         poses.append(e.pose)
     assert np.array_equal(poses[0], poses[1])
 
@@ -211,7 +213,7 @@ def test_coarse_search_finds_the_pose_and_weighs_back_to_the_uniform_prior(offic
     truth = office.trajectory[60]
     beams = field.select_beams(laser.simulate_scan(office, truth, rng))
     draws, log_q = search.sample(beams, 20_000, rng)
-    near = (np.hypot(*(draws[:, :2] - truth[:2]).T) < 0.2) & (np.abs(laser.wrap_angle(draws[:, 2] - truth[2])) < 0.05)
+    near = (np.hypot(*(draws[:, :2] - truth[:2]).T) < 0.2) & (np.abs(wrap_angle(draws[:, 2] - truth[2])) < 0.05)
     uniform = 20_000 * np.pi * 0.2**2 * 0.1 / (2 * np.pi * search.area)  # expected of a uniform draw, closed form
     assert uniform < 1.0 and near.sum() >= 50
     # a scan with no return scores every pose alike: the draw is uniform over (cell, heading) entries, and the
@@ -241,7 +243,7 @@ def test_a_symmetric_room_is_reported_ambiguous_not_converged():
     w /= w.sum()
     for pose in (truth[-1], twin):  # both places keep a share of the belief
         d = np.hypot(*(mcl.particles[:, :2] - pose[:2]).T)
-        turned = np.abs(laser.wrap_angle(mcl.particles[:, 2] - pose[2]))
+        turned = np.abs(wrap_angle(mcl.particles[:, 2] - pose[2]))
         assert w[(d < 0.3) & (turned < 0.1)].sum() > 0.1
 
 

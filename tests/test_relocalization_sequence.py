@@ -10,16 +10,8 @@ import pytest
 
 from cga_lessons import data_path
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d.laser import (
-    OdometryModel,
-    Scene,
-    compose,
-    invert,
-    load_scene,
-    read_carmen_log,
-    simulate_odometry,
-    simulate_scan,
-)
+from cga_lessons.mapping2d import compose, invert, read_carmen_log
+from cga_lessons.mapping2d.laser import OdometryModel, Scene, load_scene, simulate_odometry, simulate_scan
 from cga_lessons.relocalization import pose_error, relocalize
 from cga_lessons.relocalization.eval import held_out_map_indices, random_free_poses, reference_from_log
 from cga_lessons.relocalization.lookaround import evaluate_look_around, look_around

@@ -11,8 +11,10 @@ import numpy as np
 import pytest
 
 from cga_lessons import conformal as cga
+from cga_lessons import map3d as rb
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
-from cga_lessons.map3d import robot as rb
+from cga_lessons.map3d.chains import axes_nearest_point, to_unified
+from cga_lessons.map3d.robot import MOTOR_INPUTS
 from cga_lessons.mapping2d.conformal import laser_motor
 
 N = 1000
@@ -231,7 +233,7 @@ def test_update_recomputes_only_the_motors_it_touches(dof):
         else:
             assert M is before[name]  # untouched: the very same object
     fresh = rb.Robot(state=robot.state)
-    for name in rb.MOTOR_INPUTS:
+    for name in MOTOR_INPUTS:
         assert robot[name].isclose(fresh[name], atol=1e-14), name
     assert robot.update() == ()  # nothing changed, nothing recomputed
 
@@ -239,14 +241,14 @@ def test_update_recomputes_only_the_motors_it_touches(dof):
 def test_axes_nearest_point():
     L1 = cga.line_from_points([0.0, 0.0, 0.0], [0.0, 0.0, 1.0])
     L2 = cga.line_from_points([0.02, -1.0, 1.1], [0.02, 1.0, 1.1])
-    assert np.allclose(rb.axes_nearest_point(L1, L2), [0.01, 0.0, 1.1], atol=1e-12)
+    assert np.allclose(axes_nearest_point(L1, L2), [0.01, 0.0, 1.1], atol=1e-12)
     rng = np.random.default_rng(9)
     for _ in range(20):
         p1, d1, p2, d2 = rng.normal(size=(4, 3))
-        got = rb.axes_nearest_point(cga.line_from_points(p1, p1 + d1), cga.line_from_points(p2, p2 + d2))
+        got = axes_nearest_point(cga.line_from_points(p1, p1 + d1), cga.line_from_points(p2, p2 + d2))
         assert np.allclose(got, _nearest(p1, d1, p2, d2), atol=1e-9)
     with pytest.raises(DegenerateGeometryError, match="parallel"):
-        rb.axes_nearest_point(L1, cga.line_from_points([1.0, 0, 0], [1.0, 0, 2.0]))
+        axes_nearest_point(L1, cga.line_from_points([1.0, 0, 0], [1.0, 0, 2.0]))
 
 
 def test_stereo_rig_and_frames_match_the_chain():
@@ -281,7 +283,7 @@ def test_bad_input_raises():
     with pytest.raises(InvalidInputError, match="no motor"):
         robot["M_xyz"]
     with pytest.raises(InvalidInputError, match="Multivector"):
-        rb.to_unified(robot["M_lu"], np.zeros(3))
+        to_unified(robot["M_lu"], np.zeros(3))
     sphere = cga.sphere([0.0, 0.0, 0.0], 1.0)
     with pytest.raises(InvalidInputError, match="base_motor_as_printed: R_lsr: not an even versor"):
         rb.base_motor_as_printed(robot["T_pos"], sphere)  # a motor argument given a sphere

@@ -5,7 +5,7 @@ import pytest
 
 from cga_lessons import data_path
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
-from cga_lessons.mapping2d import laser
+from cga_lessons.mapping2d import laser, read_carmen_log, relative, wrap_angle
 from cga_lessons.mapping2d.scan_registration import IcpParams, register_scans
 
 
@@ -25,11 +25,11 @@ def test_simulated_scans_register_to_the_true_relative_pose(scene_name):
     for k in range(0, len(traj) - 1, max(1, len(traj) // 12)):
         a, b = traj[k], traj[k + 1]
         scans = [laser.simulate_scan(scene, p, rng, range_noise=0.01) for p in (a, b)]
-        truth = laser.relative(a, b)
+        truth = relative(a, b)
         start = truth + np.array([0.08, -0.06, np.radians(3.0)])  # an odometry guess off by 10 cm and 3 degrees
         reg = register_scans(_points(scans[1]), _points(scans[0]), initial=start)
         e = reg.pose - truth
-        errors.append((np.hypot(e[0], e[1]), abs(laser.wrap_angle(e[2]))))
+        errors.append((np.hypot(e[0], e[1]), abs(wrap_angle(e[2]))))
     errors = np.array(errors)
     # 1 cm range noise over hundreds of beams: the fit is good to millimetres and tenths of a degree.  Where the
     # scan sees parallel walls only, the position along them is not observable and stays near the start (10 cm
@@ -40,15 +40,15 @@ def test_simulated_scans_register_to_the_true_relative_pose(scene_name):
 
 def test_a_real_log_heading_is_recovered_better_than_the_odometry_guess():
     """Intel's consecutive scans from a drifting odometry guess: the registration's heading beats the guess's."""
-    log = laser.read_carmen_log(data_path("carmen", "intel-corrected.log.gz"))
+    log = read_carmen_log(data_path("carmen", "intel-corrected.log.gz"))
     truth = log.poses[:120]
     odo = laser.simulate_odometry(truth, np.random.default_rng(0))
     better = []
     for k in range(0, 119, 2):
-        guess = laser.relative(odo[k], odo[k + 1])
-        true = laser.relative(truth[k], truth[k + 1])
+        guess = relative(odo[k], odo[k + 1])
+        true = relative(truth[k], truth[k + 1])
         reg = register_scans(_points(log.scans[k + 1], 8.0), _points(log.scans[k], 8.0), initial=guess)
-        better.append(abs(laser.wrap_angle(reg.pose[2] - true[2])) < abs(laser.wrap_angle(guess[2] - true[2])))
+        better.append(abs(wrap_angle(reg.pose[2] - true[2])) < abs(wrap_angle(guess[2] - true[2])))
     assert np.mean(better) > 0.6
 
 

@@ -19,6 +19,7 @@ from cga_lessons.conformal import fitting as sf
 from cga_lessons.stereo import camera as cam
 from cga_lessons.stereo import experiments as ex
 from cga_lessons.stereo import real as real
+from cga_lessons.stereo import triangulation as tri
 from cga_lessons.stereo.render import render_views
 
 KEYS = ["points", "segment", "circle_key", "plane_key", "sphere_key"]
@@ -347,7 +348,7 @@ def test_motorcycle_conventions_and_disparity_is_triangulation():
     X, px = real.disparity_to_points(disp, calib, step=7)
     P1, P2 = real.motorcycle_cameras(calib)
     dd = disp[px[:, 1].astype(int), px[:, 0].astype(int)]
-    Xt = cam.triangulate(P1, P2, px, px - np.column_stack([dd, np.zeros_like(dd)]))  # (A.14)
+    Xt = tri.triangulate(P1, P2, px, px - np.column_stack([dd, np.zeros_like(dd)]))  # (A.14)
     np.testing.assert_allclose(Xt, X, atol=1e-9)
     assert 2.0 < X[:, 2].min() and X[:, 2].max() < 5.1
 

@@ -15,12 +15,12 @@ import pytest
 from cga_lessons import map3d
 from cga_lessons import stereo as st
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.stereo import camera as cam
 from cga_lessons.stereo import detect as sd
 from cga_lessons.stereo import detect_ml as dml
 from cga_lessons.stereo import detect_models as dm
 from cga_lessons.stereo import detect_noise as dn
 from cga_lessons.stereo import detect_scenes as ss
+from cga_lessons.stereo import triangulation as tri
 
 SEEDS = range(5)
 KINDS = ss.KINDS
@@ -224,7 +224,7 @@ def test_triangulation_covariance_matches_monte_carlo_and_the_parallel_rig_formu
     x1, x2 = rig.project(X[None])
     C = dn.triangulation_covariance(rig.P1, rig.P2, x1, x2, 1.0)[0]
     y1, y2 = st.observe(rig, np.repeat(X[None], 4000, axis=0), 1.0, rng)
-    Y = cam.triangulate(rig.P1, rig.P2, y1, y2)
+    Y = tri.triangulate(rig.P1, rig.P2, y1, y2)
     np.testing.assert_allclose(np.cov(Y.T), C, rtol=0.1, atol=0.05 * np.abs(C).max())
     Z = (X - rig.C1) @ rig.R1[2]  # depth; sigma_Z = sqrt(2) Z^2 sigma / (f b) for a parallel pair
     sz = np.sqrt(rig.R1[2] @ C @ rig.R1[2])

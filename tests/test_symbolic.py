@@ -14,7 +14,7 @@ import sympy as sp
 
 from cga_lessons import conformal as cga
 from cga_lessons import symbolic
-from cga_lessons.conformal.model import up
+from cga_lessons.conformal.points import up
 from cga_lessons.equations import REGISTRY, check_registry
 from cga_lessons.equations.registry import ch2_derivations
 from cga_lessons.symbolic.core import Ring, const, dot3, euclid, proportional, same

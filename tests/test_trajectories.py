@@ -15,17 +15,15 @@ from evo.tools import file_interface
 
 from cga_lessons import data_path
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d import laser
+from cga_lessons.mapping2d import compose, laser, read_carmen_log, wrap_angle, write_tum
 from cga_lessons.mapping2d.trajectories import (
     AbsoluteTrajectoryError,
     RelativePoseError,
-    TrajectoryFileExistsError,
     absolute_trajectory_error,
     odometry_repeats_poses,
-    read_tum,
     relative_pose_error,
-    write_tum,
 )
+from cga_lessons.mapping2d.tum import TrajectoryFileExistsError, read_tum
 
 LOGS = ("intel", "aces", "csail", "freiburg-101", "seattle", "orebro")
 
@@ -43,7 +41,7 @@ def odometry_walk(steps):
     """Poses from composing increments (x, y, theta) from the origin."""
     out = [np.zeros(3)]
     for inc in steps:
-        out.append(laser.compose(out[-1], inc))
+        out.append(compose(out[-1], inc))
     return np.array(out)
 
 
@@ -53,7 +51,7 @@ def wander():
     rng = np.random.default_rng(3)
     inc = np.column_stack([rng.uniform(0.2, 0.6, 150), rng.normal(0, 0.02, 150), rng.normal(0, 0.3, 150)])
     truth = odometry_walk(inc)
-    truth[:, 2] = laser.wrap_angle(truth[:, 2])
+    truth[:, 2] = wrap_angle(truth[:, 2])
     est = laser.simulate_odometry(truth, np.random.default_rng(4))
     return truth, est
 
@@ -78,11 +76,11 @@ def test_ate_of_a_shifted_trajectory_is_the_shift():
 def test_ate_se2_alignment_undoes_a_rigid_motion():
     truth = odometry_walk([[0.5, 0.0, 0.2], [0.4, 0.1, -0.1]] * 20)
     motion = np.array([2.0, -1.0, 0.7])
-    moved = laser.compose(motion, truth)  # the whole trajectory in another frame
+    moved = compose(motion, truth)  # the whole trajectory in another frame
     assert absolute_trajectory_error(moved, truth).position_rmse > 1.0
     ate = absolute_trajectory_error(moved, truth, align="se2")
     assert ate.position_rmse < 1e-12 and ate.heading_rmse < 1e-12
-    assert np.allclose(laser.compose(ate.alignment, motion), 0.0, atol=1e-12)  # the inverse motion
+    assert np.allclose(compose(ate.alignment, motion), 0.0, atol=1e-12)  # the inverse motion
 
 
 def test_ate_equals_evos_ape(wander):
@@ -165,12 +163,12 @@ def test_tum_round_trip_and_evo_reads_it(tmp_path, wander):
     path = write_tum(tmp_path / "truth.tum", truth, ts)
     poses, back_ts = read_tum(path)
     assert np.array_equal(back_ts, ts) and np.array_equal(poses[:, :2], truth[:, :2])
-    assert np.allclose(laser.wrap_angle(poses[:, 2] - truth[:, 2]), 0.0, atol=1e-12)
+    assert np.allclose(wrap_angle(poses[:, 2] - truth[:, 2]), 0.0, atol=1e-12)
     traj = file_interface.read_tum_trajectory_file(str(path))
     assert traj.check()[0] and np.array_equal(traj.timestamps, ts)
     assert np.allclose(traj.positions_xyz, np.column_stack([truth[:, :2], np.zeros(len(truth))]), atol=0)
     yaw = np.array([2 * math.atan2(q[3], q[0]) for q in traj.orientations_quat_wxyz])
-    assert np.allclose(laser.wrap_angle(yaw - truth[:, 2]), 0.0, atol=1e-12)
+    assert np.allclose(wrap_angle(yaw - truth[:, 2]), 0.0, atol=1e-12)
     assert [p.name for p in tmp_path.iterdir()] == ["truth.tum"]  # no temporary file left
     assert oct(path.stat().st_mode & 0o777) != oct(0o600)  # an ordinary file, not mkstemp's private one
 
@@ -274,7 +272,7 @@ def test_bad_inputs_raise_invalid_input_naming_function_and_argument(call, messa
 
 @pytest.mark.parametrize("name", LOGS)
 def test_the_corrected_logs_repeat_their_poses_as_odometry(name):
-    log = laser.read_carmen_log(data_path("carmen", f"{name}-corrected.log.gz"))
+    log = read_carmen_log(data_path("carmen", f"{name}-corrected.log.gz"))
     assert odometry_repeats_poses(log)
     # one odometry pose moved by a millimetre, or turned by a milliradian, and they no longer repeat
     log.odometry[len(log) // 2, 0] += 1e-3

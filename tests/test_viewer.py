@@ -27,15 +27,13 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError  # noqa: E402
 from cga_lessons.viz.meshcat_scene import (  # noqa: E402
-    ViewerError,
     Visualizer,
-    close_viewer,
     export_html,
-    open_viewer,
     scene_html,
     set_camera,
     show,
 )
+from cga_lessons.viz.meshcat_server import ViewerError, close_viewer, open_viewer  # noqa: E402
 from cga_lessons.viz.scene3d import (  # noqa: E402
     Box,
     Cylinder,
@@ -45,9 +43,9 @@ from cga_lessons.viz.scene3d import (  # noqa: E402
     Quad,
     Sphere,
     check_scene,
-    draw_matplotlib,
     scene_bounds,
 )
+from cga_lessons.viz.scene3d_matplotlib import draw_matplotlib  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 needs_proc = pytest.mark.skipif(not Path("/proc/self/net/tcp").exists(), reason="needs Linux /proc")
@@ -409,7 +407,7 @@ def test_closed_or_dead_viewer_raises_instead_of_hanging():
 
 CHILD = """
 import sys, threading, time
-from cga_lessons.viz.meshcat_scene import open_viewer
+from cga_lessons.viz.meshcat_server import open_viewer
 box = {}
 def start():
     box["vis"] = open_viewer()
@@ -465,7 +463,7 @@ def test_server_dies_with_a_jupyter_kernel_stopped_like_nbval():
     try:
         kc.wait_for_ready(timeout=60)
         out = []
-        code = "from cga_lessons.viz.meshcat_scene import open_viewer\nvis = open_viewer()\n"
+        code = "from cga_lessons.viz.meshcat_server import open_viewer\nvis = open_viewer()\n"
         code += "print(vis.window.server_proc.pid, vis.url().rsplit(':', 1)[1].split('/')[0])"
         reply = kc.execute_interactive(code, timeout=60, output_hook=lambda m: out.append(m))
         assert reply["content"]["status"] == "ok", reply["content"]

@@ -22,10 +22,11 @@ from cga_lessons.kinematics.arms import UR5_DH as UR5_TABLE  # noqa: E402
 from cga_lessons.kinematics.arms import panda, ur5  # noqa: E402
 from cga_lessons.map3d import geometer_chains  # noqa: E402
 from cga_lessons.mapping2d import laser  # noqa: E402
-from cga_lessons.relocalization.mcl import MCLConfig, MonteCarloLocalizer  # noqa: E402
+from cga_lessons.relocalization import MCLConfig  # noqa: E402
+from cga_lessons.relocalization.mcl import MonteCarloLocalizer  # noqa: E402
 from cga_lessons.relocalization.sampling import KLDConfig  # noqa: E402
-from cga_lessons.stereo.detect import DetectedEntity  # noqa: E402
 from cga_lessons.stereo.detect_scenes import TruthEntity  # noqa: E402
+from cga_lessons.stereo.detect_search import DetectedEntity  # noqa: E402
 from cga_lessons.viz import future_work as fw  # noqa: E402
 from cga_lessons.viz import future_work_arms as fwa  # noqa: E402
 from cga_lessons.viz import future_work_stereo as fws  # noqa: E402
@@ -334,7 +335,7 @@ def test_tables_format_the_records(tmp_path):
         (lambda: fw.mcl_figure(np.ones((1, 2, 2)), [["x"]]), "mcl_figure: rows"),
         (lambda: fw.error_trace_figure([1.0], [1.0, 2.0], [True]), "error_trace_figure: heading_error"),
         (lambda: fwa.chain_points("arm", np.zeros(6)), "chain_points: chain"),
-        (lambda: fwa.chain_points(ur5(), np.zeros(5)), r"chain_points: q: expected finite values of shape \(6,\)"),
+        (lambda: fwa.chain_points(ur5(), np.zeros(5)), r"chain_points: q: expected shape \(6,\) or \(N, 6\)"),
         (lambda: fwa.chain_points(ur5(), np.zeros(6), np.zeros((2, 3)), [0, 9]), "chain_points: attached"),
         (lambda: fwa.dh_home_points({"d": [1]}), "dh_home_points: p"),
         (lambda: fwa.arm_figure(ur5(), np.zeros((4, 6)), n_drawn=9), "arm_figure: n_drawn"),

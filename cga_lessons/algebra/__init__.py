@@ -16,6 +16,8 @@ modules:
 * :mod:`~cga_lessons.algebra.exponential_coefficients`: The scalar coefficients of the closed-form exponential of a
   bivector (2.37)
 * :mod:`~cga_lessons.algebra.inverse`: Norms and the inverse of a multivector (2.19)
+* :mod:`~cga_lessons.algebra.motor_matrices`: Motors of G(4,1) in closed form: their rotor and translation read off
+  the coefficients, and their matrices built from (R, t) in the null basis (2.102, 2.141-2.144)
 * :mod:`~cga_lessons.algebra.multivector`: The Multivector type of :mod:`cga_lessons.algebra` and its operators
 * :mod:`~cga_lessons.algebra.operands`: The checks of the algebra's operands (on :mod:`cga_lessons.checks`): what
   the operators refuse, and what they check where
@@ -30,8 +32,9 @@ from cga_lessons.errors import DegenerateGeometryError, GeometryError, InvalidIn
 from .coefficients import REAL_TYPES, absmax, all_finite, any_sympy, is_real_batch, is_real_single, is_sympy
 from .core import Algebra
 from .exponential import exp
+from .motor_matrices import motor_tolerance
 from .multivector import Multivector, commutator
-from .versor_matrices import motor_tolerance
+from .operands import finite_multivector
 
 __all__ = [
     "Algebra",
@@ -41,6 +44,7 @@ __all__ = [
     "InvalidInputError",
     "commutator",
     "exp",
+    "finite_multivector",
     "REAL_TYPES",
     "absmax",
     "all_finite",

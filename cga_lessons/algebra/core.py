@@ -56,6 +56,7 @@ from there.  The code lives in one module per idea::
     operands.py                 the checks of operands: what the operators and methods refuse
     products.py                 cached product terms, compiled straight-line code, float tables
     versor_matrices.py          versor matrices per grade in closed form (2.82), apply_matrices
+    motor_matrices.py           motors' matrices from (R, t) in the null basis (2.141-2.144), motor_tolerance
     inverse.py                  norms and the inverse (2.19)
     display.py                  text and LaTeX display, SymPy helpers (simplify, expand, subs)
     exponential.py              exp of a bivector (2.37)
@@ -78,6 +79,7 @@ from .coefficients import (
     is_sympy,
     is_zero,
 )
+from .motor_matrices import MotorMatricesMixin
 from .multivector import Multivector
 from .operands import AlgebraKind, BladeNameError, blade_bitmaps, coefficient, coefficient_array
 from .products import ProductTermsMixin
@@ -118,7 +120,7 @@ def _reorder_sign(a: int, b: int) -> int:
     return -1 if swaps & 1 else 1
 
 
-class Algebra(ProductTermsMixin, VersorMatricesMixin, AlgebraKind):
+class Algebra(ProductTermsMixin, VersorMatricesMixin, MotorMatricesMixin, AlgebraKind):
     """The geometric algebra G(p, q, r), equations (2.9)-(2.10).
 
     Parameters
@@ -140,7 +142,8 @@ class Algebra(ProductTermsMixin, VersorMatricesMixin, AlgebraKind):
     -1.0
 
     The products come from :class:`~cga_lessons.algebra.products.ProductTermsMixin`,
-    the versor matrices from :class:`~cga_lessons.algebra.versor_matrices.VersorMatricesMixin`;
+    the versor matrices from :class:`~cga_lessons.algebra.versor_matrices.VersorMatricesMixin` and
+    :class:`~cga_lessons.algebra.motor_matrices.MotorMatricesMixin`;
     this class holds the sign table and the caches they read.
     """
 
@@ -273,11 +276,8 @@ class Algebra(ProductTermsMixin, VersorMatricesMixin, AlgebraKind):
             if len(arr) != self.n:
                 raise fail(func, "coeffs", f"expected {self.n} coefficients, got {len(arr)}")
             return Multivector(self, {1 << i: c for i, c in enumerate(arr) if not is_zero(c)})
-        try:
-            obj = np.asarray(coeffs)
-        except ValueError:  # ragged: coefficient_array says so
-            obj = None
-        if obj is not None and obj.dtype == object and obj.ndim and any(is_sympy(v) for v in obj.flat):
+        obj = coeffs if isinstance(coeffs, np.ndarray) else np.asarray(coeffs, dtype=object)  # ragged rows: lists
+        if obj.dtype == object and obj.ndim and any(is_sympy(v) for v in obj.flat):
             if obj.shape[-1] != self.n:
                 raise fail(func, "coeffs", f"the last axis must have length {self.n}, got shape {obj.shape}")
             return Multivector(self, {1 << i: obj[..., i] if obj.ndim > 1 else obj[i] for i in range(self.n)})

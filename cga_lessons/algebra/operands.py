@@ -25,7 +25,7 @@ import numbers
 
 import numpy as np
 
-from cga_lessons.checks import degenerate, fail, instance, integer, is_symbolic, real
+from cga_lessons.checks import array, degenerate, fail, instance, integer, is_symbolic, real
 from cga_lessons.errors import InvalidInputError
 
 from .coefficients import all_finite, is_sympy
@@ -152,8 +152,14 @@ def finite_out(out, func: str, name: str = "other"):
 
 
 def finite_multivector(X, func: str, name: str):
-    """``X`` if none of its coefficients (floats or arrays) is NaN or inf; for functions' entries."""
-    for b, v in X._c.items():
+    """``X`` (a multivector) if none of its coefficients (floats or arrays) is NaN or inf; for functions' entries.
+
+    ``func`` and ``name`` are the caller's: the error names the public function and the argument that held ``X``.
+    """
+    coeffs = getattr(X, "_c", None)
+    if not isinstance(coeffs, dict):
+        raise fail(func, name, f"expected a Multivector, got {type(X).__name__}")
+    for b, v in coeffs.items():
         t = type(v)
         if t is float or t is np.float64:
             ok = math.isfinite(v)
@@ -162,7 +168,7 @@ def finite_multivector(X, func: str, name: str):
         else:
             continue
         if not ok:
-            raise fail(func, name, f"coefficient of {X.algebra.blade_names[b]} is NaN or inf")
+            raise fail(func, name, f"contains NaN or inf (the coefficient of {X.algebra.blade_names[b]})")
     return X
 
 
@@ -209,18 +215,8 @@ def coefficient(value, func: str, name: str):
 
 def coefficient_array(value, func: str, name: str, length: int, per: str = "") -> np.ndarray:
     """``value`` as a finite float array whose last axis has ``length`` entries (one item or a batch of any shape)."""
-    if value is None or isinstance(value, (str, bytes)):
-        raise fail(func, name, f"must be numbers, got {_short(value)}")
-    try:
-        if np.iscomplexobj(value):
-            raise fail(func, name, "must be real numbers, got complex ones")
-        a = np.asarray(value, dtype=float)
-    except OverflowError:
-        raise fail(func, name, "contains NaN or inf (a number too large for a float)") from None
-    except (TypeError, ValueError) as exc:
-        if isinstance(exc, InvalidInputError):
-            raise
-        raise fail(func, name, f"must be an array of numbers (not ragged), got {_short(value)}") from None
+    ndim = value.ndim if isinstance(value, np.ndarray) else np.asarray(value, dtype=object).ndim  # ragged: lists
+    a = array(value, func, name, (None,) * ndim, finite=False)  # numbers, real, rows of one length
     if a.ndim == 0 or a.shape[-1] != length:
         raise fail(func, name, f"the last axis must have length {length}{per}, got shape {a.shape}")
     if not all_finite(a):

@@ -371,7 +371,16 @@ def build_parser() -> argparse.ArgumentParser:
         description="Conformal geometric algebra for robot mapping: the course's command line.",
     )
     sub = ap.add_subparsers(dest="command", metavar="COMMAND")
+    _add_lab_parser(sub)
+    _add_map2d_parser(sub)
+    _add_relocalize_parser(sub)
+    _add_equations_parser(sub)
+    _add_export_html_parser(sub)
+    return ap
 
+
+def _add_lab_parser(sub) -> None:
+    """The ``lab`` command's arguments."""
     p = sub.add_parser("lab", help="open the course in JupyterLab", description="Open the notebooks in JupyterLab.")
     p.add_argument("--notebook-dir", help="the notebooks folder (default: the checkout's notebooks/)")
     p.add_argument("--port", type=int, help="port to listen on (default: JupyterLab's choice)")
@@ -379,6 +388,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--dry-run", action="store_true", help="print the command instead of running it")
     p.set_defaults(func=_cmd_lab)
 
+
+def _add_map2d_parser(sub) -> None:
+    """The ``map2d`` command's arguments."""
     p = sub.add_parser(
         "map2d",
         help="build a line map from a CARMEN laser log",
@@ -416,6 +428,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--force", action="store_true", help="overwrite existing output files")
     p.set_defaults(func=_cmd_map2d)
 
+
+def _add_relocalize_parser(sub) -> None:
+    """The ``relocalize`` command's arguments."""
     p = sub.add_parser(
         "relocalize",
         help="locate one scan of a log on a saved line map (chapter 5)",
@@ -434,6 +449,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--max-range", type=_positive(float), default=8.0, help="drop readings beyond this (m; default 8)")
     p.set_defaults(func=_cmd_relocalize)
 
+
+def _add_equations_parser(sub) -> None:
+    """The ``equations`` command's arguments."""
     p = sub.add_parser("equations", help="the equation registry as a table", description="The coverage table.")
     p.add_argument("--format", choices=("markdown", "text"), default="text", help="output format (default text)")
     p.add_argument("--todo", action="store_true", help="list only the equations still todo")
@@ -442,6 +460,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--readme", help="README to write or check (default: the checkout's README.md)")
     p.set_defaults(func=_cmd_equations)
 
+
+def _add_export_html_parser(sub) -> None:
+    """The ``export-html`` command's arguments."""
     p = sub.add_parser(
         "export-html",
         help="the executed notebooks as a static site",
@@ -458,7 +479,6 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--force", action="store_true", help="overwrite existing pages")
     p.set_defaults(func=_cmd_export_html)
-    return ap
 
 
 def main(argv=None) -> int:

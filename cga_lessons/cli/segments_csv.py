@@ -94,8 +94,8 @@ def _point_count(text: str) -> int:
 
 
 def _even_sums(x0, y0, x1, y1, n):
-    """The point sums of :class:`cga_lessons.mapping2d.lines.Segment` for n points spread evenly from start to end (what
-    it computes from the n points themselves), in closed form: no array of n points, whatever n is."""
+    """The point sums of :class:`cga_lessons.mapping2d.segment.Segment` for n points spread evenly from start to end
+    (what it computes from the n points themselves), in closed form: no array of n points, whatever n is."""
     vx, vy = x1 - x0, y1 - y0
     st, stt = n / 2, n * (2 * n - 1) / (6 * (n - 1))  # sums of t and t^2 over t = k / (n - 1), k = 0 .. n - 1
     return [
@@ -109,7 +109,7 @@ def _even_sums(x0, y0, x1, y1, n):
 
 
 def read_segments_csv(path) -> list:
-    """Read a segments CSV written by ``map2d``: a list of :class:`cga_lessons.mapping2d.lines.Segment`.
+    """Read a segments CSV written by ``map2d``: a list of :class:`cga_lessons.mapping2d.segment.Segment`.
 
     Raises :class:`InputFileError` (a :class:`~cga_lessons.cli.CLIError`) naming the file and line when it is
     missing, not UTF-8 text (binary, UTF-16) or malformed (a field beyond the csv module's limit, a point count

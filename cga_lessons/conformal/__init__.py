@@ -1,14 +1,17 @@
 """The conformal model G(4,1): one import for the whole of chapter 2.
 
 ``from cga_lessons import conformal as cga`` gives the basis and constants and
-up/down (:mod:`cga_lessons.conformal.model`, 2.52-2.67, 2.111-2.114), the entities of
-table 2.1 and their properties (:mod:`cga_lessons.conformal.entities`, section 2.4) and
+up/down (:mod:`cga_lessons.conformal.model`, 2.52-2.60, and :mod:`cga_lessons.conformal.points`, 2.61-2.67,
+2.111-2.114), the entities of
+table 2.1 and their properties (:mod:`cga_lessons.conformal.entities`, :mod:`cga_lessons.conformal.lines_circles`,
+section 2.4) and
 the versors of table 2.2 (:mod:`cga_lessons.conformal.versors`, 2.82-2.110, 2.135-2.145),
 and beyond the thesis the logarithm, roots and interpolation of motors and the
 dilator (:mod:`cga_lessons.conformal.versor_log`), contractions, duals, meet and join,
 projections and the classification of blades (:mod:`cga_lessons.conformal.blades`,
 :mod:`cga_lessons.conformal.blades_classify`), motors estimated from corresponding points
-or lines, their mean, and quaternions (:mod:`cga_lessons.conformal.motor_estimation`),
+or lines, their mean, and quaternions (:mod:`cga_lessons.conformal.motor_estimation`,
+:mod:`cga_lessons.conformal.motor_lines`),
 and the motor between two objects (:mod:`cga_lessons.conformal.object_motors`).
 
 Basis vectors ``e1 e2 e3`` (Euclidean), ``ep`` (e+, squares to +1) and ``em``
@@ -45,27 +48,44 @@ from .fitting import (  # noqa: F401
     fit_sphere_kasa,
     segment_planes,
 )
+from .lines_circles import *  # noqa: F403
+from .lines_circles import __all__ as _lines_circles_all
 from .model import *  # noqa: F403
 from .model import __all__ as _model_all
-from .model import point_weight  # noqa: F401
 from .motor_estimation import *  # noqa: F403
 from .motor_estimation import __all__ as _motor_estimation_all
+from .motor_lines import motor_from_lines  # noqa: F401
 from .object_motors import motor_between  # noqa: F401
+from .points import *  # noqa: F403
+from .points import __all__ as _points_all
+from .points import point_weight  # noqa: F401
 from .versor_log import *  # noqa: F403
 from .versor_log import __all__ as _versor_log_all
 from .versors import *  # noqa: F403
 from .versors import __all__ as _versors_all
-from .versors_rigid import why_not_motor  # noqa: F401
+from .versors_build import motor, rotor, rotor_about_line, screw, translator  # noqa: F401
+from .versors_rigid import (  # noqa: F401
+    decompose_motor,
+    matrix_to_motor,
+    motor_to_matrix,
+    rotor_angle_axis,
+    why_not_motor,  # noqa: F401
+)
 
 __all__ = (
     list(_model_all)
+    + list(_points_all)
     + ["point_weight", "Multivector", "exp", "GeometryError", "DegenerateGeometryError", "InvalidInputError"]
     + list(_entities_all)
+    + list(_lines_circles_all)
     + list(_versors_all)
+    + ["translator", "rotor", "rotor_about_line", "motor", "screw"]
+    + ["rotor_angle_axis", "decompose_motor", "motor_to_matrix", "matrix_to_motor"]
     + list(_versor_log_all)
     + list(_blades_all)
     + list(_blades_classify_all)
     + list(_motor_estimation_all)
+    + ["motor_from_lines"]
     + ["motor_between", "why_not_motor"]
     + ["fit_sphere", "fit_sphere_kasa", "fit_sphere_geometric", "fit_plane", "fit_plane_euclidean"]
     + ["fit_circle", "fit_circle_euclidean", "segment_planes"]

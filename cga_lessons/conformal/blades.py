@@ -31,7 +31,7 @@ from cga_lessons import checks
 from cga_lessons.algebra import Algebra, DegenerateGeometryError, InvalidInputError, Multivector
 
 from .model import G41, Ic
-from .multivector_checks import finite_multivector, multivector
+from .multivector_checks import multivector, result_finite
 
 __all__ = [
     "require_blade",
@@ -149,7 +149,7 @@ def left_contraction(A, B) -> Multivector:
     (1 e2, 0)
     """
     A, B = _check(A, "left_contraction", "A"), _check(B, "left_contraction", "B")
-    return finite_multivector(_left_contraction(A, B), "left_contraction", A=A, B=B)
+    return result_finite(_left_contraction(A, B), "left_contraction", A=A, B=B)
 
 
 def _left_contraction(A: Multivector, B: Multivector) -> Multivector:
@@ -171,7 +171,7 @@ def right_contraction(A, B) -> Multivector:
     (1 e1, 0)
     """
     A, B = _check(A, "right_contraction", "A"), _check(B, "right_contraction", "B")
-    return finite_multivector(~_left_contraction(~B, ~A), "right_contraction", A=A, B=B)
+    return result_finite(~_left_contraction(~B, ~A), "right_contraction", A=A, B=B)
 
 
 def scalar_product(A, B) -> float:
@@ -226,7 +226,7 @@ def regressive_product(A, B) -> Multivector:
     -1 e2+-
     """
     A, B = _check(A, "regressive_product", "A"), _check(B, "regressive_product", "B")
-    return finite_multivector(((A * _IC_INV) ^ (B * _IC_INV)) * Ic, "regressive_product", A=A, B=B)
+    return result_finite(((A * _IC_INV) ^ (B * _IC_INV)) * Ic, "regressive_product", A=A, B=B)
 
 
 def is_blade(A, tol: float = 1e-6) -> bool:
@@ -303,7 +303,7 @@ def join(A, B, tol: float = 1e-10) -> Multivector:
     tol = _tol(tol, "join")
     A, ka = require_blade(A, "join", "A")
     B, kb = require_blade(B, "join", "B")
-    return finite_multivector(_join(A, ka, B, kb, tol), "join", A=A, B=B)
+    return result_finite(_join(A, ka, B, kb, tol), "join", A=A, B=B)
 
 
 def meet(A, B, tol: float = 1e-10) -> Multivector:
@@ -333,14 +333,14 @@ def meet(A, B, tol: float = 1e-10) -> Multivector:
     B, kb = require_blade(B, "meet", "B")
     J = _join(A, ka, B, kb, tol)
     if J.grades_present() == [5]:
-        return finite_multivector(((B * _IC_INV) ^ (A * _IC_INV)) * Ic, "meet", A=A, B=B)
+        return result_finite(((B * _IC_INV) ^ (A * _IC_INV)) * Ic, "meet", A=A, B=B)
     JJ = float((J * ~J).scalar())
     if abs(JJ) > tol * _norm(J) ** 2:
         M = _left_contraction(_left_contraction(B, ~J * (1.0 / JJ)), A)
     else:  # a null join: the subspace is metric-free, take it in the Euclidean metric
         AE, BE, JE = (Multivector(_E5, dict(X.coeffs)) for X in (A, B, J))
         M = Multivector(G41, dict(((BE << JE.inv()) << AE).coeffs))
-    return _check(finite_multivector(M, "meet", A=A, B=B), "meet", "A, B")
+    return _check(result_finite(M, "meet", A=A, B=B), "meet", "A, B")
 
 
 def _invertible(B, func: str):
@@ -363,7 +363,7 @@ def project(A, B) -> Multivector:
     """
     A, _ = require_blade(A, "project", "A")
     B, Binv = _invertible(B, "project")
-    return finite_multivector(_left_contraction(A, B) * Binv, "project", A=A, B=B)
+    return result_finite(_left_contraction(A, B) * Binv, "project", A=A, B=B)
 
 
 def reject(A, B) -> Multivector:
@@ -378,7 +378,7 @@ def reject(A, B) -> Multivector:
     """
     A, _ = require_blade(A, "reject", "A")
     B, Binv = _invertible(B, "reject")
-    return finite_multivector((A ^ B) * Binv, "reject", A=A, B=B)
+    return result_finite((A ^ B) * Binv, "reject", A=A, B=B)
 
 
 def is_versor(V, tol: float = 1e-9) -> bool:

@@ -29,24 +29,9 @@ from cga_lessons import checks
 from cga_lessons.algebra import Multivector, any_sympy, is_sympy
 
 from . import entities_frame as _F
-from .model import (
-    COORD_LIMIT,
-    G41,
-    IE,
-    E,
-    Ic,
-    check_multivector,
-    check_points,
-    checked,
-    einf,
-    ep,
-    euclidean,
-    exact_constants,
-    normalize_point,
-    read_point,
-    up,
-    vector,
-)
+from .model import G41, IE, E, Ic, einf, ep, exact_constants
+from .multivector_checks import COORD_LIMIT, check_points, multivector
+from .points import euclidean, normalize_point, read_point, up, vector
 
 __all__ = [
     "point_pair",
@@ -59,28 +44,19 @@ __all__ = [
     "plane",
     "plane_from_points",
     "plane_normal_distance",
-    "line_from_points",
-    "normalize_line",
-    "line_direction",
-    "line_moment",
-    "line_closest_point",
-    "point_line_distance",
-    "circle_from_points",
-    "circle_center_radius",
-    "circle_plane",
     "standard_form",
     "dual_form",
 ]
 
 
-def _c(X: Multivector):
+def constants_of(X: Multivector):
     """Constants matching the coefficient kind of X (exact for SymPy)."""
     if any_sympy(X):
         return exact_constants()
     return {"einf": einf, "E": E, "IE": IE, "Ic": Ic, "ep": ep}
 
 
-def _require_nonzero(X: Multivector, func: str, args: str, what: str) -> Multivector:
+def require_nonzero(X: Multivector, func: str, args: str, what: str) -> Multivector:
     """X, unless it simplifies to zero (symbolic input)."""
     if not X.simplify()._c:
         raise checks.degenerate(func, args, what)
@@ -93,7 +69,7 @@ def grade_of(X: Multivector, func: str, allowed: tuple[int, ...], arg: str | Non
     ``arg`` names the argument in the message (give it: without it the message says "the entity").
     """
     name = arg or "the entity"
-    check_multivector(X, func, name)
+    multivector(X, func, name, nonzero=False)
     gs = X.grades_present()
     if len(gs) != 1 or gs[0] not in allowed:
         raise checks.fail(func, name, f"expected a blade of grade {' or '.join(map(str, allowed))}, got grades {gs}")
@@ -102,14 +78,14 @@ def grade_of(X: Multivector, func: str, allowed: tuple[int, ...], arg: str | Non
 
 def standard_form(X: Multivector) -> Multivector:
     """The standard form X = X* Ic of a dual-form entity (inverse of 2.31)."""
-    check_multivector(X, "standard_form", "X")
-    return X * _c(X)["Ic"]
+    multivector(X, "standard_form", "X", nonzero=False)
+    return X * constants_of(X)["Ic"]
 
 
 def dual_form(X: Multivector) -> Multivector:
     """The dual X* = X Ic^-1 (2.31)."""
-    check_multivector(X, "dual_form", "X")
-    return X * (-_c(X)["Ic"])  # Ic^2 = -1, so Ic^-1 = -Ic
+    multivector(X, "dual_form", "X", nonzero=False)
+    return X * (-constants_of(X)["Ic"])  # Ic^2 = -1, so Ic^-1 = -Ic
 
 
 def _per_item(value, func: str, name: str, batch: tuple, *, low: float | None = None):
@@ -118,7 +94,7 @@ def _per_item(value, func: str, name: str, batch: tuple, *, low: float | None = 
     if is_sympy(value):
         return value
     if isinstance(value, (list, tuple)) or (isinstance(value, np.ndarray) and value.ndim > 0):
-        a = checked(checks.array, value, func, name, (None,))
+        a = checks.array(value, func, name, (None,))
         if batch[1] is not None and np.ndim(batch[1]) == 2:
             checks.same_length(func, **{batch[0]: batch[1], name: a})
         if low is not None and np.any(a < low):
@@ -127,7 +103,7 @@ def _per_item(value, func: str, name: str, batch: tuple, *, low: float | None = 
     return checks.real(value, func, name, low=low)
 
 
-def _euclid_point(x, func: str):
+def euclid_point(x, func: str):
     """Float coordinates of x (Euclidean, or a conformal point); None when symbolic."""
     if isinstance(x, Multivector):
         return None if any_sympy(x) else read_point(x, func, "x")
@@ -135,7 +111,7 @@ def _euclid_point(x, func: str):
     return None if pts is None else pts[0]
 
 
-def _exact_up(x) -> Multivector:
+def exact_up(x) -> Multivector:
     """up(x) of a point given with SymPy entries, every entry made exact (ints as integers, floats as the simplest
     rational that rounds to them), so that one float among symbols does not turn the result into floats."""
     import sympy
@@ -157,7 +133,7 @@ def point_pair(a, b) -> Multivector:
     """
     pts = _F.points("point_pair", "a, b", a, b)
     if pts is None:
-        return _require_nonzero(_exact_up(a) ^ _exact_up(b), "point_pair", "a, b", "the two points coincide")
+        return require_nonzero(exact_up(a) ^ exact_up(b), "point_pair", "a, b", "the two points coincide")
     return _F.point_pair(*pts, "point_pair")
 
 
@@ -208,7 +184,7 @@ def point_pair_endpoints(PP: Multivector, min_separation: float | None = None):
     if any_sympy(B):
         import sympy
 
-        c = _c(B)
+        c = constants_of(B)
         root = sympy.sqrt(sympy.factor(sympy.simplify((B * B).scalar())))
         inv = (B | c["einf"]).inv()
 
@@ -240,7 +216,7 @@ def point_pair_sphere(PP: Multivector) -> Multivector:
     g = grade_of(PP, "point_pair_sphere", (2, 3), "PP")
     B = PP if g == 2 else dual_form(PP)
     if any_sympy(B):
-        S = (B * (B ^ _c(B)["einf"]).inv()).grade(1)
+        S = (B * (B ^ constants_of(B)["einf"]).inv()).grade(1)
         return normalize_point(S, "point_pair_sphere")
     m, h2, _, tol = _F.read_pair(B, "point_pair_sphere", "PP")
     if np.any(h2 < -(tol + 1e-12)):
@@ -261,9 +237,9 @@ def sphere(center, radius) -> Multivector:
     radius = _per_item(radius, "sphere", "radius", ("center", None if pts is None else pts[0]), low=0)
     if pts is None or is_sympy(radius):
         return up(center) - exact_constants()["einf"] * (radius**2 / 2)
-    r = np.asarray(radius, dtype=float)
-    if np.any(r > COORD_LIMIT):
-        raise checks.fail("sphere", "radius", f"too large ({float(np.max(r)):.3g}): its square overflows")
+    r = np.asarray(
+        checks.magnitude(radius, "sphere", "radius", limit=COORD_LIMIT, why="its square overflows a float"), dtype=float
+    )
     p = pts[0]
     return _F.sphere_std(p, _F.dot(p, p) - r * r, 1.0, "sphere", "center, radius")
 
@@ -280,8 +256,8 @@ def sphere_from_points(a, b, c, d) -> Multivector:
     """
     pts = _F.points("sphere_from_points", "a, b, c, d", a, b, c, d)
     if pts is None:
-        S = _exact_up(a) ^ _exact_up(b) ^ _exact_up(c) ^ _exact_up(d)
-        return _require_nonzero(
+        S = exact_up(a) ^ exact_up(b) ^ exact_up(c) ^ exact_up(d)
+        return require_nonzero(
             S, "sphere_from_points", "a, b, c, d", "the 4 points are coplanar, concyclic or coincident"
         )
     return dual_form(_F.sphere_from_points(*pts, "sphere_from_points"))
@@ -313,7 +289,7 @@ def sphere_center_radius(S: Multivector):
         import sympy
 
         s = normalize_point(s, "sphere_center_radius")
-        c = _c(s)
+        c = constants_of(s)
         return euclidean((s ^ c["E"]) * c["E"]), sympy.sqrt(sympy.simplify((s * s).scalar()))
     p, r2, _, tol = _F.read_sphere(s, "sphere_center_radius", "S")
     if np.any(r2 < -(tol + 1e-12)):
@@ -334,7 +310,7 @@ def point_sphere_side(x, S: Multivector, atol: float = 1e-9):
     g = grade_of(S, "point_sphere_side", (1, 4), "S")
     atol = checks.real(atol, "point_sphere_side", "atol", low=0)
     s = S if g == 1 else standard_form(S)
-    xe = _euclid_point(x, "point_sphere_side")
+    xe = euclid_point(x, "point_sphere_side")
     if xe is None or any_sympy(s):
         X = up(x) if not isinstance(x, Multivector) else normalize_point(x, "point_sphere_side")
         v = np.asarray((X | normalize_point(s, "point_sphere_side")).scalar(), dtype=float)
@@ -379,8 +355,8 @@ def plane_from_points(a, b, c) -> Multivector:
     """
     pts = _F.points("plane_from_points", "a, b, c", a, b, c)
     if pts is None:
-        P = exact_constants()["einf"] ^ _exact_up(a) ^ _exact_up(b) ^ _exact_up(c)
-        return _require_nonzero(P, "plane_from_points", "a, b, c", "the 3 points are collinear")
+        P = exact_constants()["einf"] ^ exact_up(a) ^ exact_up(b) ^ exact_up(c)
+        return require_nonzero(P, "plane_from_points", "a, b, c", "the 3 points are collinear")
     return _F.plane(*pts, "plane_from_points")
 
 
@@ -407,193 +383,3 @@ def plane_normal_distance(P: Multivector):
     if np.any(norm <= 1e-300):
         raise checks.degenerate("plane_normal_distance", "P", "the input has no normal (not a plane)")
     return n / norm[..., None], _F.out(delta / norm)
-
-
-# --------------------------------------------------------------------- lines
-def line_from_points(a, b) -> Multivector:
-    """Line through two points in dual form L* = e ^ a ^ b, Eq. (2.81).
-
-    In floats: the closed form ``(q x d) ^ e + d E`` (2.81, e M + r E) with
-    ``d = b - a`` and q the point nearer the origin.  Raises
-    :class:`DegenerateGeometryError` when a and b coincide.
-    """
-    pts = _F.points("line_from_points", "a, b", a, b)
-    if pts is None:
-        L = exact_constants()["einf"] ^ _exact_up(a) ^ _exact_up(b)
-        return _require_nonzero(L, "line_from_points", "a, b", "the two points coincide")
-    return _F.line(*pts, "line_from_points")
-
-
-def as_dual_line(L: Multivector, func: str) -> Multivector:
-    g = grade_of(L, func, (2, 3), "L")
-    return L if g == 3 else dual_form(L)
-
-
-def normalize_line(L: Multivector) -> Multivector:
-    """Unit line L* / sqrt(L* L*), Eq. (2.126) (L* L* = |a - b|^2 by 2.125).
-
-    Accepts the dual form (grade 3) or the standard form (grade 2) and
-    returns the same form.  In floats ``sqrt(L* L*)`` is read as the length of
-    the E part d (2.81), not summed from the squares of the coefficients.
-    """
-    Ld = as_dual_line(L, "normalize_line")
-    if any_sympy(Ld):
-        import sympy
-
-        return L / sympy.sqrt((Ld * Ld).scalar())
-    d, _ = _F.read_line(Ld, "normalize_line", "L")
-    return L / _F.out(_F.norm(d))
-
-
-def line_direction(L: Multivector):
-    """Unit direction r = L* . E of a line, Eq. (2.127) (L normalised first, 2.126).
-
-    For ``line_from_points(a, b)`` this is ``(b - a)/|b - a|``.  Raises
-    :class:`InvalidInputError` for a circle (or any round).
-    """
-    Ld = as_dual_line(L, "line_direction")
-    if any_sympy(Ld):
-        Ln = normalize_line(L)
-        return euclidean(as_dual_line(Ln, "line_direction") | _c(Ln)["E"])
-    d, _ = _F.read_line(Ld, "line_direction", "L")
-    return d / _F.norm(d)[..., None]
-
-
-def line_moment(L: Multivector):
-    """Moment vector m = e+ . (L* Ic^-1) = -e+ . L of a unit line, Eq. (2.128), corrected.
-
-    For the unit line through a with direction r this is the Pluecker moment
-    ``m = a x r``.  The printed ``m = e+ L`` (a geometric product, with the
-    standard form L = L* Ic of 2.31) gives -(a x r) as its vector part and
-    adds other grades; see the erratum in the registry.  In floats: the e
-    part of L* (``a x d``) over |d|.
-    """
-    Ld = as_dual_line(L, "line_moment")
-    if any_sympy(Ld):
-        Ln = normalize_line(Ld)
-        return -euclidean(_c(Ln)["ep"] | standard_form(Ln))
-    d, mu = _F.read_line(Ld, "line_moment", "L")
-    return mu / _F.norm(d)[..., None]
-
-
-def line_closest_point(L: Multivector):
-    """Point of the line closest to the origin, p = -r . M with M = m I_E, Eq. (2.129) (= r x m)."""
-    Ld = as_dual_line(L, "line_closest_point")
-    if not any_sympy(Ld):
-        d, mu = _F.read_line(Ld, "line_closest_point", "L")
-        return np.cross(d, mu) / _F.dot(d, d)[..., None]
-    r, m = line_direction(L), line_moment(L)
-    c = exact_constants()
-    return -euclidean(vector(list(r)) | (vector(list(m)) * c["IE"])).applyfunc(lambda v: v.simplify())
-
-
-def point_line_distance(x, L: Multivector):
-    """Distance from point(s) x to a line, Eq. (2.130).
-
-    ``rho^2 = ((L* . x) / (L* . x . e))^2``: L* . x is the circle through x
-    centred on the line, L* . x . e its plane; their quotient squared is the
-    squared radius.  SymPy input takes that formula; floats take the same
-    distance at the point, ``|(x - p0) x r|`` with p0 the line's closest point
-    to the origin (2.129) and r its direction (2.127), which loses nothing to
-    the distance from the origin (the formula above loses eps |x|^2 / rho).
-    Returns a float (or an (N,) array); 0 for points on the line.
-    """
-    Ld = as_dual_line(L, "point_line_distance")
-    xe = _euclid_point(x, "point_line_distance")
-    if not (xe is None or any_sympy(Ld)):
-        d, mu = _F.read_line(Ld, "point_line_distance", "L")
-        nd = _F.norm(d)
-        p0 = np.cross(d, mu) / (nd * nd)[..., None]
-        return _F.out(_F.norm(np.cross(xe - p0, d / nd[..., None])))
-    import sympy
-
-    Ln = normalize_line(Ld)
-    X = up(x) if not isinstance(x, Multivector) else normalize_point(x, "point_line_distance")
-    z = Ln | X
-    q = z * (z | _c(Ln)["einf"]).inv()
-    return sympy.sqrt(sympy.simplify((q * q).scalar()))
-
-
-# ------------------------------------------------------------------- circles
-def circle_from_points(a, b, c) -> Multivector:
-    """Circle through three points in dual form z* = a ^ b ^ c, Eq. (2.80).
-
-    In floats: from the circumcentre p, rho^2 and ``N = (b - a) x (c - a)``
-    in closed form, ``(p . N) e123 + xi ^ e + N ^ e0 + (p x N) E`` with
-    ``xi = (rho^2 - p^2) N/2 + (p . N) p`` (bivectors written as their dual
-    vectors), its e0 part N stored exactly.  Raises
-    :class:`DegenerateGeometryError` when the points are collinear (the blade
-    would be a line) or coincide.
-    """
-    pts = _F.points("circle_from_points", "a, b, c", a, b, c)
-    if pts is None:
-        Z = _require_nonzero(
-            _exact_up(a) ^ _exact_up(b) ^ _exact_up(c),
-            "circle_from_points",
-            "a, b, c",
-            "the 3 points are collinear or coincide",
-        )
-        if not (Z ^ exact_constants()["einf"]).simplify().coeffs:  # z* ^ e = 0: a flat, the points are collinear
-            raise checks.degenerate("circle_from_points", "a, b, c", "the 3 points are collinear (a line, no circle)")
-        return Z
-    return _F.circle(*pts, "circle_from_points")
-
-
-def circle_plane(Z: Multivector) -> Multivector:
-    """Plane of a circle, P_z* = z* ^ e (dual form), Eq. (2.119).
-
-    Accepts the dual form (grade 3) or the standard form (grade 2) of a real circle; refuses a line (no e0 part,
-    ``z* ^ e = 0``) and an imaginary circle (such as a point pair read as a circle), as
-    :func:`circle_center_radius` does.
-    """
-    Zd = _circle_dual(Z, "circle_plane")
-    return Zd ^ _c(Zd)["einf"]
-
-
-def _circle_dual(Z: Multivector, func: str) -> Multivector:
-    """The dual form of a circle, checked to be one (in floats: a round with rho^2 >= 0)."""
-    g = grade_of(Z, func, (2, 3), "Z")
-    Zd = Z if g == 3 else dual_form(Z)
-    if not any_sympy(Zd):
-        _, r2, _, tol = _F.read_circle(Zd, func, "Z")
-        if np.any(r2 < -(tol + 1e-12)):
-            raise checks.degenerate(func, "Z", "rho^2 < 0, the circle is imaginary")
-    return Zd
-
-
-def circle_center_radius(Z: Multivector):
-    """Centre, radius and unit normal of a circle, Eqs. (2.119)-(2.124).
-
-    Accepts the dual form z* = a ^ b ^ c (grade 3) or the standard form z
-    (grade 2).  The sphere with the circle's centre and radius is
-    ``s_z = (e . z) z`` (2.123, with z the standard form); its centre and
-    radius come from :func:`sphere_center_radius`.  The radius agrees with the
-    corrected (2.122), ``rho^2 = -z^2 / (e ^ z)^2``.  SymPy input takes that
-    route; floats read the same centre and radius from the null parts of z*
-    (see :func:`circle_from_points`): ``p = ((p . N) N + N x (p x N)) / |N|^2``
-    without cancellation, rho^2 to about ``8 eps (|p|^2 + rho^2 + 1)``
-    absolute and the normal to ``~eps (|p|^2 + 1)``: limits of the storage.
-
-    Returns
-    -------
-    center : array (3,) or (N, 3)
-    radius : float or (N,)
-    normal : array (3,) or (N, 3), unit normal of the circle's plane (2.119),
-        along (b - a) x (c - a) for ``circle_from_points(a, b, c)``.
-
-    Raises
-    ------
-    DegenerateGeometryError
-        For a line (``z* ^ e = 0``) or an imaginary circle.
-    """
-    g = grade_of(Z, "circle_center_radius", (2, 3), "Z")
-    Zd = Z if g == 3 else dual_form(Z)
-    if any_sympy(Zd):
-        z = standard_form(Zd)
-        center, radius = sphere_center_radius(((_c(z)["einf"] | z) * z).grade(1))
-        n, _ = plane_normal_distance(-circle_plane(z))  # z* ^ e = -(e ^ a ^ b ^ c)
-        return center, radius, n
-    p, r2, n, tol = _F.read_circle(Zd, "circle_center_radius", "Z")
-    if np.any(r2 < -(tol + 1e-12)):
-        raise checks.degenerate("circle_center_radius", "Z", "rho^2 < 0, the circle is imaginary")
-    return p, _F.out(np.sqrt(np.maximum(r2, 0.0))), n

@@ -34,7 +34,8 @@ import numpy as np
 from cga_lessons.algebra import DegenerateGeometryError, Multivector
 from cga_lessons.checks import degenerate, fail
 
-from .model import G41, check_points
+from .model import G41
+from .multivector_checks import check_points
 
 EPS = float(np.finfo(float).eps)
 _VEC = [1, 2, 4]

@@ -32,7 +32,7 @@ import numpy as np
 from cga_lessons import checks
 from cga_lessons import conformal as cga
 
-from .model import COORD_LIMIT, checked
+from .multivector_checks import COORD_LIMIT, COORD_WHY
 
 __all__ = [
     "fit_sphere",
@@ -52,9 +52,7 @@ _BLADES = [1, 2, 4, 8, 16]  # e1 e2 e3 e+ e-
 
 def _points(X, func: str, at_least: int) -> np.ndarray:
     """The points (N, 3) through the checks layer: numbers, finite, not so large that their squares overflow."""
-    X = checked(checks.rows, X, func, "X", 3)
-    if X.size and np.max(np.abs(X)) > COORD_LIMIT:
-        raise checks.fail(func, "X", f"coordinates too large (> {COORD_LIMIT:.0e}): their squares overflow")
+    X = checks.magnitude(checks.rows(X, func, "X", 3), func, "X", limit=COORD_LIMIT, why=COORD_WHY)
     if len(X) < at_least:
         raise checks.degenerate(func, "X", f"need at least {at_least} points, got {len(X)}")
     return X
@@ -347,7 +345,7 @@ def ransac_plane(X, rng: np.random.Generator, threshold: float, iterations: int 
 
 
 def _ransac_settings(rng, threshold, iterations, func: str):
-    checks.instance(rng, func, "rng", np.random.Generator, "a numpy.random.Generator (np.random.default_rng(seed))")
+    rng = checks.generator(rng, func)
     threshold = checks.real(threshold, func, "threshold", low=0, strict_low=True)
     return rng, threshold, checks.integer(iterations, func, "iterations", low=1)
 

@@ -1,4 +1,5 @@
-"""Motors from data: least-squares motors from points and lines, averages of motors, quaternions.
+"""Motors from data: least-squares motors from points (from lines: :mod:`cga_lessons.conformal.motor_lines`),
+averages of motors, quaternions.
 
 The rotor part is found the way Valkenburg and Dorst do it in CGA [VD11]: the cost is a quadratic form in the
 rotor's four coefficients ``r = (r0, r1, r2, r3)`` of ``R = r0 + r1 e23 + r2 e31 + r3 e12`` (the even subalgebra
@@ -10,7 +11,7 @@ form (Eqs. 2.100-2.103: ``M = T R``).  The symmetric matrix is built with geomet
 
 Quaternions (:func:`rotor_to_quaternion`): Hamilton's, active, ``q = (w, x, y, z)`` scalar first by default
 (``scalar_first=False`` gives SciPy's ``(x, y, z, w)``).  With ``R = cos(theta/2) - sin(theta/2) n I_E`` of
-:func:`~cga_lessons.conformal.versors.rotor` and ``n I_E = n1 e23 + n2 e31 + n3 e12`` (2.96)::
+:func:`~cga_lessons.conformal.versors_build.rotor` and ``n I_E = n1 e23 + n2 e31 + n3 e12`` (2.96)::
 
     w = <R>_0,   x = -<R>_e23,   y = -<R>_e31,   z = -<R>_e12       (i = e32, j = e13, k = e21)
 
@@ -28,22 +29,21 @@ References
 
 from __future__ import annotations
 
-import numbers
 from functools import lru_cache
 from itertools import product
 
 import numpy as np
 
 from cga_lessons import checks
-from cga_lessons.algebra import DegenerateGeometryError, GeometryError, InvalidInputError, Multivector
+from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector
 
-from .entities import line_direction, line_moment
 from .model import G41, e1, e2, e3
 from .multivector_checks import multivector
-from .versors import apply_to_points, decompose_motor, motor_to_matrix, rotor, translator
-from .versors_rigid import why_not_motor
+from .versors import apply_to_points
+from .versors_build import translator
+from .versors_rigid import decompose_motor, why_not_motor
 
-__all__ = ["rotor_to_quaternion", "quaternion_to_rotor", "motor_from_points", "motor_from_lines", "mean_motor"]
+__all__ = ["rotor_to_quaternion", "quaternion_to_rotor", "motor_from_points", "mean_motor"]
 
 _BASIS = (e1 * e1, e2 * e3, e3 * e1, e1 * e2)  # 1, e23, e31, e12
 _BLADES = tuple(next(iter(B.coeffs.items())) for B in _BASIS)  # (bitmap, sign) of each rotor basis element
@@ -51,7 +51,7 @@ _QSIGN = np.array([1.0, -1.0, -1.0, -1.0])  # q = r * _QSIGN, r = q * _QSIGN
 
 
 # ------------------------------------------------------------------ helpers
-def _rotor_from_coeffs(r: np.ndarray) -> Multivector:
+def rotor_from_coeffs(r: np.ndarray) -> Multivector:
     """``r0 + r1 e23 + r2 e31 + r3 e12`` from an array (4,) or (N, 4)."""
     if r.ndim == 1:
         return Multivector(G41, {b: s * float(v) for (b, s), v in zip(_BLADES, r) if v != 0})
@@ -71,7 +71,7 @@ def _rotor_coeffs(R, func: str, name: str = "R") -> np.ndarray:
     return np.stack([s * np.broadcast_to(vals.get(b, 0.0), shape) for b, s in _BLADES], axis=-1)
 
 
-def _weights(weights, n: int, func: str) -> np.ndarray:
+def pair_weights(weights, n: int, func: str) -> np.ndarray:
     """n finite, non-negative weights, not all zero (``checks.array``); None: all ones."""
     if weights is None:
         return np.ones(n)
@@ -94,13 +94,13 @@ def _structure() -> np.ndarray:
     return T
 
 
-def _rotor_matrix(S: np.ndarray) -> np.ndarray:
+def rotor_matrix(S: np.ndarray) -> np.ndarray:
     """N with r^T N r = sum_i w_i <b_i R a_i ~R>_0 for S = sum_i w_i a_i b_i^T (symmetric 4x4)."""
     N = np.einsum("pq,pqjk->jk", S, _structure())
     return 0.5 * (N + N.T)
 
 
-def _top_eigenvector(N: np.ndarray, func: str, name: str, why: str) -> np.ndarray:
+def top_eigenvector(N: np.ndarray, func: str, name: str, why: str) -> np.ndarray:
     if not np.all(np.isfinite(N)):
         raise checks.fail(func, name, "the data's magnitudes are too large: their products overflow a float")
     vals, vecs = np.linalg.eigh(N)
@@ -140,7 +140,7 @@ def rotor_to_quaternion(R: Multivector, *, scalar_first: bool = True) -> np.ndar
     (Hamilton, active, the same rotation matrix as SciPy's ``Rotation.from_quat``).  ``scalar_first=False``
     returns SciPy's order ``(x, y, z, w)``.  R is scaled to unit norm; its sign is kept (q and -q are the same
     rotation).  A motor has other blades: take its rotor part with
-    :func:`~cga_lessons.conformal.versors.decompose_motor`.
+    :func:`~cga_lessons.conformal.versors_rigid.decompose_motor`.
 
     >>> import numpy as np
     >>> from cga_lessons import conformal as cga
@@ -179,7 +179,7 @@ def quaternion_to_rotor(q, *, scalar_first: bool = True) -> Multivector:
     arr = arr / norm
     if not scalar_first:
         arr = np.roll(arr, 1, axis=-1)
-    return _rotor_from_coeffs(arr * _QSIGN)
+    return rotor_from_coeffs(arr * _QSIGN)
 
 
 # ------------------------------------------------------------------- points
@@ -222,7 +222,7 @@ def motor_from_points(source, target, weights=None) -> Multivector:
     X, Y = _points(source, func, "source"), _points(target, func, "target")
     if Y.shape != X.shape:
         raise InvalidInputError(f"{func}: target: shape {Y.shape} does not match the source's {X.shape}")
-    w = _weights(weights, X.shape[0], func)
+    w = pair_weights(weights, X.shape[0], func)
     planar = X.shape[1] == 2
     need = 2 if planar else 3
     if np.count_nonzero(w > 0) < need:
@@ -233,21 +233,20 @@ def motor_from_points(source, target, weights=None) -> Multivector:
         X, Y = np.pad(X, ((0, 0), (0, 1))), np.pad(Y, ((0, 0), (0, 1)))
     xbar, A = _spread_checks(X, w, func, "source", collinear=not planar)
     ybar, B = _spread_checks(Y, w, func, "target", collinear=not planar)
-    N = _rotor_matrix((w[:, None] * A).T @ B)
+    N = rotor_matrix((w[:, None] * A).T @ B)
     if planar:
-        sub = _top_eigenvector(N[np.ix_([0, 3], [0, 3])], func, "source, target", "the rotation is not unique")
+        sub = top_eigenvector(N[np.ix_([0, 3], [0, 3])], func, "source, target", "the rotation is not unique")
         r = np.array([sub[0], 0.0, 0.0, sub[1]])
     else:
-        r = _top_eigenvector(N, func, "source, target", "the rotation is not unique (degenerate correspondences)")
-    R = _rotor_from_coeffs(r / np.linalg.norm(r))
+        r = top_eigenvector(N, func, "source, target", "the rotation is not unique (degenerate correspondences)")
+    R = rotor_from_coeffs(r / np.linalg.norm(r))
     t = ybar - apply_to_points(R, xbar)
     if planar:
         t[2] = 0.0
     return translator(t) * R
 
 
-# -------------------------------------------------------------------- lines
-def _sequence(items, func: str, name: str, what: str) -> list:
+def item_sequence(items, func: str, name: str, what: str) -> list:
     """``items`` (any iterable but a string or a mapping) as a non-empty list."""
     if isinstance(items, (str, bytes, dict)) or not hasattr(items, "__iter__"):
         raise checks.fail(func, name, f"expected a sequence or a batch of {what}, got {type(items).__name__}")
@@ -255,139 +254,6 @@ def _sequence(items, func: str, name: str, what: str) -> list:
     if not items:
         raise checks.fail(func, name, f"needs at least one of the {what}")
     return items
-
-
-def _plucker(lines, func: str, name: str):
-    """Unit directions and moments (N, 3) of a sequence (or batch) of lines, Eqs. (2.126)-(2.128)."""
-    items = [lines] if isinstance(lines, Multivector) else _sequence(lines, func, name, "CGA lines (line_from_points)")
-    for L in items:
-        multivector(L, func, name, what="a CGA line (line_from_points)")
-    try:
-        d = np.vstack([np.reshape(line_direction(L), (-1, 3)) for L in items])
-        m = np.vstack([np.reshape(line_moment(L), (-1, 3)) for L in items])
-    except (GeometryError, AttributeError, TypeError) as exc:
-        raise InvalidInputError(f"{func}: {name}: expected CGA lines (line_from_points): {exc}") from exc
-    if not (np.all(np.isfinite(d)) and np.all(np.isfinite(m))):
-        raise InvalidInputError(f"{func}: {name}: contains NaN or inf")
-    return d, m
-
-
-def _line_centre(d, m, w, func: str, name: str):
-    """Point c minimising sum_i w_i dist(c, L_i)^2 (needs two non-parallel lines)."""
-    sv = np.linalg.svd(np.sqrt(w)[:, None] * d, compute_uv=False)
-    if sv[1] <= 1e-10 * sv[0]:
-        raise DegenerateGeometryError(f"{func}: {name}: the lines are all parallel (the motion along them is unknown)")
-    P = np.eye(3) - d[:, :, None] * d[:, None, :]  # projectors orthogonal to each line
-    p = np.cross(d, m)  # closest point to the origin of each unit line (2.129)
-    return np.linalg.solve(np.einsum("i,ijk->jk", w, P), np.einsum("i,ijk,ik->j", w, P, p))
-
-
-def _skew(v):
-    """The cross-product matrices [v]x (N, 3, 3) with [v]x u = v x u."""
-    return np.cross(v[:, None, :], np.eye(3)).transpose(0, 2, 1)
-
-
-def _refine_lines(M, ds, ms, dt_, mt, w, length_scale: float, max_iterations: int) -> Multivector:
-    """Gauss-Newton on the 6 parameters of ``T(dt) R(omega) M`` for :func:`motor_from_lines` (its step 2)."""
-
-    def residual(M):
-        H = motor_to_matrix(M)
-        u = ds @ H[:3, :3].T
-        mu = ms @ H[:3, :3].T + np.cross(H[:3, 3], u)
-        res = np.concatenate([mu - mt, length_scale * (u - dt_)], axis=1) * np.sqrt(w)[:, None]
-        return res, u, mu
-
-    res, u, mu = residual(M)
-    cost = float(np.sum(res**2))
-    sw = np.sqrt(w)[:, None, None]
-    size = max(length_scale, float(np.sqrt(w @ np.sum(mt**2, axis=1) / w.sum())))  # metres per radian of a step
-    for _ in range(max_iterations):
-        Su = _skew(u)
-        J = np.concatenate(
-            [np.concatenate([-_skew(mu), -Su], axis=2), np.concatenate([-length_scale * Su, 0 * Su], axis=2)], axis=1
-        )
-        step = -np.linalg.lstsq((J * sw).reshape(-1, 6), res.reshape(-1), rcond=None)[0]
-        for _half in range(40):  # halve a step that raises E (beyond its round-off)
-            ang = float(np.linalg.norm(step[:3]))
-            trial = translator(step[3:]) * (rotor(step[:3], ang) if ang > 0 else 1.0) * M
-            res2, u2, mu2 = residual(trial)
-            if float(np.sum(res2**2)) <= cost * (1 + 1e-12):
-                break
-            step = step / 2
-        else:
-            break
-        M, res, u, mu, cost = trial, res2, u2, mu2, float(np.sum(res2**2))
-        if np.linalg.norm(step[:3]) + np.linalg.norm(step[3:]) / size <= 1e-13:
-            break
-    return M
-
-
-def motor_from_lines(
-    source_lines, target_lines, weights=None, *, length_scale: float = 1.0, max_iterations: int = 50
-) -> Multivector:
-    """Least-squares motor of corresponding oriented lines (at least 2 non-parallel), Gauss-Newton on 6 parameters.
-
-    A motor moves the line with unit direction d and moment m (2.127, 2.128) to ``M L ~M`` (2.103), with
-    direction ``u = R d`` and moment ``mu = R m + t x R d``.  The cost, with ``(d'_i, m'_i)`` the targets, is
-
-        E(M) = sum_i w_i ( |mu_i - m'_i|^2 + length_scale^2 |u_i - d'_i|^2 ),
-
-    the moments taken about the point c closest (least squares) to all the target lines, so that E does not
-    depend on where the origin is; ``|mu_i - m'_i|`` measures how far the moved line passes from the target
-    line near c.  ``length_scale`` (metres) weighs directions against positions.  Lines are oriented: orient
-    each target like its source (``line_from_points(a, b)`` runs from a to b).  [VD11] treat lines with a
-    closed form for a cost that is not origin-free; this function minimises the geometric cost above instead:
-
-    1. start: the rotor from the directions (the eigenrotor of :func:`motor_from_points` with
-       ``S = sum_i w_i d_i d'_i^T``, not centred), then the translation that minimises E for that rotor
-       (linear, ``sum_i w_i (I - u_i u_i^T) t = sum_i w_i u_i x (m'_i - R m_i)``);
-    2. Gauss-Newton: the increment ``M <- T(dt) R(omega) M`` changes ``u`` by ``omega x u`` and ``mu`` by
-       ``omega x mu + dt x u``, giving a 6x6 linear system per step; a step that raises E is halved.  Stops
-       when the step is below 1e-13 (radians, and metres over the lines' size) or after ``max_iterations``
-       (``max_iterations=0`` returns the start).
-
-    Noiseless data are recovered to round-off; with noise the result is the local minimum of E nearest the
-    closed-form start (Gauss-Newton converges linearly, faster for smaller noise).  The lines are a sequence of
-    lines or one batch (``line_from_points`` of (N, 3) arrays).  Precision: a CGA line built far from the origin
-    carries its own error (its e+ and e- coefficients cancel in ``e ^ A ^ B``, about 1e-10 in the direction at
-    100 m), so build the lines in a local frame.  Errors as for :func:`motor_from_points`
-    (``"motor_from_lines: source_lines: <problem>"``).
-
-    >>> import numpy as np
-    >>> from cga_lessons import conformal as cga
-    >>> a, b = np.array([[0.0, 0, 0], [0, 1, 0], [1, 1, 1]]), np.array([[1.0, 0, 0], [0, 1, 1], [1, 2, 1]])
-    >>> M0 = cga.motor([1, 1, 0], 0.4, [0.5, -1, 2])
-    >>> M = motor_from_lines(cga.line_from_points(a, b),
-    ...                      cga.line_from_points(cga.apply_to_points(M0, a), cga.apply_to_points(M0, b)))
-    >>> bool(np.allclose(cga.motor_to_matrix(M), cga.motor_to_matrix(M0), atol=1e-12))
-    True
-    """
-    func = "motor_from_lines"
-    ds, ms = _plucker(source_lines, func, "source_lines")
-    dt_, mt = _plucker(target_lines, func, "target_lines")
-    checks.same_length(func, source_lines=ds, target_lines=dt_)
-    w = _weights(weights, len(ds), func)
-    if np.count_nonzero(w > 0) < 2:
-        raise DegenerateGeometryError(f"{func}: source_lines: needs at least 2 lines with positive weight")
-    length_scale = checks.real(length_scale, func, "length_scale", low=0.0, strict_low=True)
-    if not isinstance(max_iterations, numbers.Integral):
-        raise checks.fail(func, "max_iterations", f"must be a whole number (an int), got {max_iterations!r}")
-    max_iterations = checks.integer(max_iterations, func, "max_iterations", low=0)
-    cs = _line_centre(ds, ms, w, func, "source_lines")
-    ct = _line_centre(dt_, mt, w, func, "target_lines")
-    ms, mt = ms - np.cross(cs, ds), mt - np.cross(ct, dt_)  # moments about the centres
-    r = _top_eigenvector(
-        _rotor_matrix((w[:, None] * ds).T @ dt_), func, "source_lines", "the rotation of the directions is not unique"
-    )
-    R = _rotor_from_coeffs(r / np.linalg.norm(r))
-    u, Rm = apply_to_points(R, ds), apply_to_points(R, ms)
-    lhs = np.einsum("i,ijk->jk", w, np.eye(3) - u[:, :, None] * u[:, None, :])
-    M = translator(np.linalg.solve(lhs, w @ np.cross(u, mt - Rm))) * R
-
-    M = _refine_lines(M, ds, ms, dt_, mt, w, length_scale, max_iterations)
-    Rf, tf = decompose_motor(M)
-    # back to the original origin: x_t - ct = R (x_s - cs) + t  =>  t_total = ct + t - R cs
-    return translator(ct + tf - apply_to_points(Rf, cs)) * Rf
 
 
 # ------------------------------------------------------------------ averages
@@ -432,11 +298,11 @@ def mean_motor(motors, weights=None) -> Multivector:
     if isinstance(motors, Multivector):
         multivector(motors, func, "motors", what="motors")
         motors = [motors.batch_item(i) for i in range(len(motors))] if motors.shape else [motors]
-    motors = _sequence(motors, func, "motors", "motors")
+    motors = item_sequence(motors, func, "motors", "motors")
     parts = [_unit_motor(M, func, i) for i, M in enumerate(motors)]
-    w = _weights(weights, len(motors), func)
+    w = pair_weights(weights, len(motors), func)
     r = np.array([p[0] for p in parts])
     t = np.array([p[1] for p in parts])
     K = np.einsum("i,ij,ik->jk", w, r, r)
-    rbar = _top_eigenvector(K, func, "motors", "the mean rotation is not unique (rotations spread symmetrically)")
-    return translator(w @ t / w.sum()) * _rotor_from_coeffs(rbar / np.linalg.norm(rbar))
+    rbar = top_eigenvector(K, func, "motors", "the mean rotation is not unique (rotations spread symmetrically)")
+    return translator(w @ t / w.sum()) * rotor_from_coeffs(rbar / np.linalg.norm(rbar))

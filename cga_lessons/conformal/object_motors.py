@@ -30,12 +30,15 @@ import math
 
 import numpy as np
 
+from cga_lessons import checks
 from cga_lessons.algebra import DegenerateGeometryError, GeometryError, InvalidInputError, Multivector
 
 from .blades_classify import classify
-from .model import down, einf
-from .multivector_checks import finite_multivector, multivector, mv_is_finite
-from .versors import apply, translator
+from .model import einf
+from .multivector_checks import multivector, mv_is_finite, result_finite
+from .points import down
+from .versors import apply
+from .versors_build import translator
 
 __all__ = ["motor_between"]
 
@@ -127,8 +130,9 @@ def motor_between(X: Multivector, Y: Multivector) -> Multivector:
     except GeometryError as exc:
         if str(exc).startswith(f"{func}:"):
             raise
-        raise type(exc)(f"{func}: X, Y: {exc}") from None  # a product of the inputs out of float range
-    return finite_multivector(V, func, X=X, Y=Y)
+        with checks.relabel(func, "X, Y"):  # a product of the inputs out of float range
+            raise exc
+    return result_finite(V, func, X=X, Y=Y)
 
 
 def _motor_between(X, Y, func: str) -> Multivector:

@@ -43,9 +43,11 @@ import numpy as np
 from cga_lessons import checks
 from cga_lessons.algebra import DegenerateGeometryError, GeometryError, InvalidInputError, Multivector
 
-from .model import G41, IE, E, einf, vector
-from .multivector_checks import finite_multivector, input_error, multivector
-from .versors import decompose_motor, rotor, translator
+from .model import G41, IE, E, einf
+from .multivector_checks import input_error, multivector, result_finite
+from .points import vector
+from .versors_build import rotor, translator
+from .versors_rigid import decompose_motor
 
 __all__ = ["motor_log", "rotor_log", "screw_parameters", "motor_interpolate", "versor_sqrt", "versor_root", "dilator"]
 
@@ -406,7 +408,7 @@ def dilator(scale, center=None) -> Multivector:
     c = checks.array(center, "dilator", "center", (3,))
     T = translator(c)
     try:
-        return finite_multivector(T * D * ~T, "dilator", scale=scale, center=c)
+        return result_finite(T * D * ~T, "dilator", scale=scale, center=c)
     except GeometryError as exc:  # a product refused to overflow
         if str(exc).startswith("dilator:"):
             raise

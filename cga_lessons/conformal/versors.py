@@ -29,7 +29,7 @@ The constructors (:func:`translator`, :func:`rotor`, :func:`rotor_about_line`,
 :func:`motor`, :func:`screw`) live in :mod:`cga_lessons.conformal.versors_build`, the
 rigid-motion conversions (:func:`decompose_motor`, :func:`rotor_angle_axis`,
 :func:`motor_to_matrix`, :func:`matrix_to_motor`) in
-:mod:`cga_lessons.conformal.versors_rigid`; both are re-exported here.
+:mod:`cga_lessons.conformal.versors_rigid` (the facade :mod:`cga_lessons.conformal` exports all three).
 """
 
 from __future__ import annotations
@@ -47,26 +47,16 @@ from cga_lessons.algebra import (
     is_real_single,
 )
 
-from .model import COORD_LIMIT, G41, check_points, down, einf, up
-from .multivector_checks import input_error, multivector, mv_is_finite
-from .versors_build import motor, rotor, rotor_about_line, screw, translator
-from .versors_rigid import decompose_motor, matrix_to_motor, motor_to_matrix, rotor_angle_axis
+from .model import G41, einf
+from .multivector_checks import COORD_LIMIT, COORD_WHY, check_points, input_error, multivector, mv_is_finite
+from .points import down, up
 
 __all__ = [
     "apply",
     "apply_to_points",
     "versor_matrix",
-    "translator",
-    "rotor",
-    "rotor_about_line",
-    "motor",
-    "screw",
     "reflect_in_plane",
     "invert_in_sphere",
-    "rotor_angle_axis",
-    "decompose_motor",
-    "motor_to_matrix",
-    "matrix_to_motor",
 ]
 
 
@@ -191,7 +181,7 @@ def apply_to_points(V: Multivector, x) -> np.ndarray:
     round-off at any distance, at the cost of a plain homogeneous matrix.  A
     reflection in a plane uses the 3x4 affine part of its 5x5 matrix.  Other
     versors (inversions, dilations) and SymPy input go through the conformal
-    point and :func:`~cga_lessons.conformal.model.down`.
+    point and :func:`~cga_lessons.conformal.points.down`.
     """
     func = "apply_to_points"
     arr, sym = check_points(x, func)
@@ -231,9 +221,7 @@ def apply_to_points(V: Multivector, x) -> np.ndarray:
 
 def _points_through_conformal(V: Multivector, arr: np.ndarray, func: str) -> np.ndarray:
     """``down(apply(V, up(x)))`` for a versor that is no isometry (an inversion, a dilation), errors named."""
-    big = float(np.max(np.abs(arr))) if arr.size else 0.0
-    if big > COORD_LIMIT:
-        raise checks.fail(func, "x", f"coordinates up to {big:.3g}: beyond {COORD_LIMIT:.0e} up(x) overflows")
+    checks.magnitude(arr, func, "x", limit=COORD_LIMIT, why=COORD_WHY)
     Y = _apply(V, up(arr), func, "V", "x")
     try:
         return down(Y)
@@ -297,7 +285,7 @@ def invert_in_sphere(S: Multivector, X: Multivector) -> Multivector:
     """Inversion in a sphere, -s x s^-1 = sigma x', Eqs. (2.84)-(2.88).
 
     Returns the image entity; for a conformal point it is scaled by sigma
-    (2.87), so use :func:`~cga_lessons.conformal.model.down` for its Euclidean point,
+    (2.87), so use :func:`~cga_lessons.conformal.points.down` for its Euclidean point,
     ``g(x) = rho^2 (x - p)/|x - p|^2 + p`` (2.88).  S in standard or dual form.
     """
     from .entities import grade_of, standard_form

@@ -6,7 +6,7 @@ conventions are in the former's docstring.)
 Angles and distances are finite real numbers (or SymPy expressions), checked by :mod:`cga_lessons.checks`; a NaN,
 inf, complex, bool, string or None raises :class:`~cga_lessons.algebra.InvalidInputError` naming the function the
 caller called and the argument, ``"motor: angle: ..."``.  Axes and points are read by
-:func:`~cga_lessons.conformal.model.check_points`.
+:func:`~cga_lessons.conformal.multivector_checks.check_points`.
 """
 
 from __future__ import annotations
@@ -17,8 +17,9 @@ from cga_lessons import checks
 from cga_lessons.algebra import GeometryError, Multivector, any_sympy, is_sympy
 from cga_lessons.algebra import exp as _exp
 
-from .model import IE, E, check_points, einf, exact_constants, vector
-from .multivector_checks import finite_multivector, multivector
+from .model import IE, E, einf, exact_constants
+from .multivector_checks import check_points, multivector, result_finite
+from .points import vector
 
 __all__ = ["translator", "rotor", "rotor_about_line", "motor", "screw"]
 
@@ -41,12 +42,10 @@ def _real(x, func: str, name: str, *, array: bool = False, limit: float | None =
         return x
     if array and (isinstance(x, (list, tuple)) or isinstance(x, np.ndarray) and x.ndim):
         a = checks.array(x, func, name, (None,), at_least=1)
-        big = float(np.max(np.abs(a)))
     else:
-        a = big = checks.real(x, func, name)
-        big = abs(big)
-    if limit is not None and big > limit:
-        raise checks.fail(func, name, f"|{name}| up to {big:.3g} is beyond {limit:.3g}: no float precision is left")
+        a = checks.real(x, func, name)
+    if limit is not None:
+        checks.magnitude(a, func, name, limit=limit, why="no float precision is left for its sine and cosine")
     return a
 
 
@@ -147,8 +146,9 @@ def rotor_about_line(L: Multivector, angle) -> Multivector:
     +angle about the line's direction (from a to b), right-hand rule.
     Equal to ``T R ~T`` of (2.104) with T moving the origin onto the line.
     """
-    from .entities import as_dual_line, normalize_line, standard_form
+    from .entities import standard_form
     from .entities_frame import read_line
+    from .lines_circles import as_dual_line, normalize_line
 
     func = "rotor_about_line"
     angle = _real(angle, func, "angle", array=True, limit=_MAX_ANGLE)
@@ -174,7 +174,7 @@ _MAX_ANGLE = 2.0**52
 def _exp_named(B: Multivector, func: str, names: str) -> Multivector:
     """exp(B), its errors (a screw too large for floats) in the words of ``func``."""
     try:
-        return finite_multivector(_exp(B), func, **{names: B})
+        return result_finite(_exp(B), func, **{names: B})
     except GeometryError as exc:
         if str(exc).startswith(f"{func}:"):
             raise

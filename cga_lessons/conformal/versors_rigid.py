@@ -26,8 +26,9 @@ import numpy as np
 from cga_lessons import checks
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector, motor_tolerance
 
-from .model import G41, IE, E, euclidean, exact_constants
+from .model import G41, IE, E, exact_constants
 from .multivector_checks import multivector
+from .points import euclidean
 
 __all__ = [
     "decompose_motor",

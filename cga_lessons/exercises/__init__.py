@@ -23,19 +23,9 @@ in ``__all__``; its modules:
   8-point algorithm on a plane
 """
 
+from .answers import Malformed, Wrong, as_array, as_expression, as_float
 from .checking import CheckResult, Exercise, UnknownExerciseError, check, evaluate, exercise, get, given, list_exercises
-from .compare import (
-    Malformed,
-    Wrong,
-    as_array,
-    as_expression,
-    as_float,
-    compare_expression,
-    compare_matrix,
-    compare_multivector,
-    compare_number,
-    compare_vector,
-)
+from .compare import compare_expression, compare_matrix, compare_multivector, compare_number, compare_vector
 
 __all__ = [
     "Exercise",

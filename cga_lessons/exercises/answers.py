@@ -82,16 +82,6 @@ def shape_text(shape) -> str:
     return "(" + ", ".join("n" if s is None else str(s) for s in shape) + ("," if len(shape) == 1 else "") + ")"
 
 
-def real_array(value, func: str, name: str, shape: tuple, *, at_least: int = 0) -> np.ndarray:
-    """:func:`cga_lessons.checks.array` that also refuses ragged nested lists with its own error (not NumPy's)."""
-    if isinstance(value, (list, tuple)):
-        try:
-            np.asarray(value)
-        except ValueError:
-            raise checks.fail(func, name, "must be an array of numbers, got ragged rows") from None
-    return checks.array(value, func, name, shape, at_least=at_least)
-
-
 def settings(func: str, *, rtol, atol, what, **flags) -> tuple[float, float]:
     """The tolerances (finite, >= 0), the text ``what`` and the True/False ``flags`` of a comparison, checked."""
     for name, value in flags.items():

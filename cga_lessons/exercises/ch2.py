@@ -14,18 +14,9 @@ import numpy as np
 from cga_lessons.algebra import Algebra, Multivector
 from cga_lessons.stereo import rotation_matrix  # Rodrigues in plain NumPy: independent of the algebra
 
+from .answers import Malformed, Wrong, as_array, as_expression, as_float
 from .checking import exercise
-from .compare import (
-    Malformed,
-    Wrong,
-    as_array,
-    as_expression,
-    as_float,
-    compare_expression,
-    compare_multivector,
-    compare_number,
-    compare_vector,
-)
+from .compare import compare_expression, compare_multivector, compare_number, compare_vector
 
 
 def _symbols(*names):

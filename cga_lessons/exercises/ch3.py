@@ -11,8 +11,9 @@ import math
 
 import numpy as np
 
+from .answers import Malformed, Wrong, as_array
 from .checking import exercise
-from .compare import Malformed, Wrong, as_array, compare_expression, compare_number, compare_vector
+from .compare import compare_expression, compare_number, compare_vector
 
 
 def _symbols(*names):

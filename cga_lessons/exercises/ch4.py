@@ -11,8 +11,9 @@ import numpy as np
 
 from cga_lessons.stereo import rotation_matrix  # Rodrigues in plain NumPy: independent of the algebra
 
+from .answers import Malformed, Wrong, as_array
 from .checking import exercise
-from .compare import Malformed, Wrong, as_array, compare_expression, compare_matrix, compare_vector
+from .compare import compare_expression, compare_matrix, compare_vector
 
 
 def _h(R=None, t=None) -> np.ndarray:

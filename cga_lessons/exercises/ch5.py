@@ -10,8 +10,9 @@ import math
 
 import numpy as np
 
+from .answers import Wrong, as_array
 from .checking import exercise
-from .compare import Wrong, as_array, compare_number, compare_vector
+from .compare import compare_number, compare_vector
 
 _TWO_PI = 2 * math.pi
 

@@ -11,8 +11,9 @@ import math
 
 import numpy as np
 
+from .answers import Wrong, as_float
 from .checking import exercise
-from .compare import Wrong, as_float, compare_number, compare_vector
+from .compare import compare_number, compare_vector
 
 # --------------------------------------------------------------------------- ch6.1: a two-joint arm
 

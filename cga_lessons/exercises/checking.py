@@ -50,10 +50,7 @@ from typing import Any
 from cga_lessons import checks
 from cga_lessons.algebra import InvalidInputError
 
-from .compare import (
-    Malformed,
-    Wrong,
-)
+from .answers import Malformed, Wrong
 
 __all__ = [
     "Exercise",

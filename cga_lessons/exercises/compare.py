@@ -26,17 +26,11 @@ from .answers import (
     hint_pairs,
     is_sympy,
     names_the_answer,
-    real_array,
     settings,
     symbol_table,
 )
 
 __all__ = [
-    "Wrong",
-    "Malformed",
-    "as_float",
-    "as_array",
-    "as_expression",
     "compare_number",
     "compare_vector",
     "compare_matrix",
@@ -140,8 +134,8 @@ def compare_vector(
     """
     func = "compare_vector"
     rtol, atol = settings(func, rtol=rtol, atol=atol, what=what, up_to_scale=up_to_scale, up_to_sign=up_to_sign)
-    truth = real_array(truth, func, "truth", (None,), at_least=1)
-    hints = hint_pairs(hints, func, lambda c: real_array(c, func, "hints", truth.shape))
+    truth = checks.array(truth, func, "truth", (None,), at_least=1)
+    hints = hint_pairs(hints, func, lambda c: checks.array(c, func, "hints", truth.shape))
     v = as_array(value, truth.shape, what)
     scale = max(float(np.abs(truth).max()), 1e-300)
     tol = dict(rtol=rtol, atol=atol * max(scale, 1.0))
@@ -181,10 +175,10 @@ def compare_matrix(
     """Raise :class:`Wrong` unless the 2-D ``value`` equals ``truth``; diagnoses shape, transpose, sign, scale."""
     func = "compare_matrix"
     rtol, atol = settings(func, rtol=rtol, atol=atol, what=what, up_to_scale=up_to_scale)
-    truth = real_array(truth, func, "truth", (None, None), at_least=1)
+    truth = checks.array(truth, func, "truth", (None, None), at_least=1)
     if truth.shape[1] == 0:
         raise checks.fail(func, "truth", f"expected a matrix with at least one column, got shape {truth.shape}")
-    hints = hint_pairs(hints, func, lambda c: real_array(c, func, "hints", truth.shape))
+    hints = hint_pairs(hints, func, lambda c: checks.array(c, func, "hints", truth.shape))
     if is_sympy(value):
         try:
             value = np.array(value.tolist(), dtype=float)

@@ -10,8 +10,8 @@ import math
 
 import numpy as np
 
+from .answers import Wrong, as_array
 from .checking import exercise
-from .compare import Wrong, as_array
 
 
 def _wrap(a):

@@ -11,8 +11,9 @@ import numpy as np
 
 from cga_lessons.stereo import rotation_matrix  # Rodrigues in plain NumPy: independent of the algebra
 
+from .answers import Wrong, as_float
 from .checking import exercise
-from .compare import Wrong, as_float, compare_number, compare_vector
+from .compare import compare_number, compare_vector
 
 _K = np.array([[700.0, 0.0, 320.0], [0.0, 700.0, 240.0], [0.0, 0.0, 1.0]])
 

@@ -180,7 +180,7 @@ def occupied_counts_random_centres(rng, n: int = 500, diameters=(15.0, 25.0), sc
     Centres are uniform over the workspace, kept one largest radius inside it.
     """
     f = "occupied_counts_random_centres"
-    checks.instance(rng, f, "rng", np.random.Generator, "a numpy.random.Generator (numpy.random.default_rng(seed))")
+    checks.generator(rng, f)
     n = checks.integer(n, f, "n", low=0, high=10**5)
     diameters = checks.array(diameters, f, "diameters", (None,), at_least=1)
     if np.any(diameters <= 0):

@@ -19,28 +19,12 @@ __all__ = ["MAX_NODES", "Grid", "make_grid", "CameraView", "SphereObstacle"]
 
 #: The most nodes a grid may have (the document's grids have 162 to 1,176; 10^7 nodes are 240 MB of positions).
 MAX_NODES = 10**7
-#: Coordinates and lengths beyond this overflow a float when squared (the conformal model's limit, with margin).
-COORD_LIMIT = 1e150
 
 
 # ------------------------------------------------------------------ input checks (compositions of the checks layer)
-def dense(value, func: str, name: str):
-    """``value``, unless it is a ragged nest of sequences (rows of different lengths): an error naming it.
-
-    (A guard ahead of :mod:`cga_lessons.checks`, whose complex-number test raises a bare ``ValueError`` on ragged
-    lists.)
-    """
-    if isinstance(value, (list, tuple)):
-        try:
-            np.asarray(value)
-        except ValueError:
-            raise checks.fail(func, name, "ragged rows: the rows have different lengths") from None
-    return value
-
-
 def check_points(x, func: str, name: str) -> np.ndarray:
     """Finite points of shape (N, 3) (a single point (3,) is one row), N >= 1."""
-    P, _ = checks.batch(dense(x, func, name), func, name, (3,))
+    P, _ = checks.batch(x, func, name, (3,))
     if not len(P):
         raise checks.fail(func, name, "is empty (no points)")
     return P
@@ -61,14 +45,6 @@ def check_reach(v, func: str, name: str) -> float:
     if isinstance(v, (float, np.floating)) and v == np.inf:
         return float(v)
     return check_positive(v, func, name)
-
-
-def check_within(P: np.ndarray, func: str, name: str, limit: float = COORD_LIMIT) -> np.ndarray:
-    """``P`` if every coordinate is at most ``limit`` in magnitude (their squares stay finite)."""
-    big = float(np.max(np.abs(P))) if np.size(P) else 0.0
-    if big > limit:
-        raise checks.fail(func, name, f"coordinates up to {big:.3g}: beyond {limit:.0e} their squares overflow a float")
-    return P
 
 
 def check_range(r, func: str, name: str) -> tuple:

@@ -33,13 +33,11 @@ import numpy as np
 
 from cga_lessons import checks
 
-from .grid import COORD_LIMIT, CameraView, Grid, SphereObstacle, check_point, check_points, make_grid
-from .spheres import box_surface_points, enclosing_sphere, fit_sphere, sphere_points
+from .grid import CameraView, Grid, SphereObstacle, check_point, check_points
 
 __all__ = [
     "NOT_SEEN", "SEEN", "ANALYSED", "OCCUPIED", "LABEL_NAMES",
-    "Grid", "make_grid", "CameraView", "SphereObstacle", "Projections", "projections",
-    "fit_sphere", "enclosing_sphere", "sphere_points", "box_surface_points",
+    "Projections", "projections",
     "seen_nodes", "ray_cast_seen", "l1_distances", "occupied_nodes_loop", "occupied_nodes",
     "cells_touched_by_sphere", "NodeLabels", "label_nodes",
 ]  # fmt: skip
@@ -218,7 +216,9 @@ def ray_cast_seen(nodes, view: CameraView, obstacle: SphereObstacle | None = Non
     d = P - o
     t = ((c - o) @ d.T) / np.maximum(np.sum(d * d, axis=1), 1e-300)
     if not np.all(np.isfinite(t)):
-        raise checks.fail(f, "nodes", f"coordinates too large: beyond about {COORD_LIMIT:.0e} the ray test overflows")
+        raise checks.fail(
+            f, "nodes", f"coordinates too large: beyond about {checks.MAX_MAGNITUDE:.0e} the ray test overflows"
+        )
     closest = o + np.clip(t, 0.0, 1.0)[:, None] * d
     return visible & (np.linalg.norm(closest - c, axis=1) > obstacle.radius)
 

@@ -29,22 +29,20 @@ import numpy as np
 from cga_lessons import checks
 from cga_lessons import conformal as cga
 
-from .grid import COORD_LIMIT, check_within
-
 __all__ = ["line_circle_intersections", "line_circle_intersections_conformal", "Detour", "detour"]
 
 
 def _xy(p, func: str, name: str) -> np.ndarray:
-    """A point (x, y) of finite coordinates up to :data:`COORD_LIMIT` (their squares stay finite)."""
-    return check_within(checks.array(p, func, name, (2,)), func, name)
+    """A point (x, y) of finite coordinates up to :data:`checks.MAX_MAGNITUDE` (their squares stay finite)."""
+    return checks.magnitude(checks.array(p, func, name, (2,)), func, name)
 
 
 def _check(start, goal, center, radius, func: str):
     s, g, c = _xy(start, func, "start"), _xy(goal, func, "goal"), _xy(center, func, "center")
-    r = checks.real(radius, func, "radius", low=0.0, strict_low=True, high=COORD_LIMIT)
+    r = checks.real(radius, func, "radius", low=0.0, strict_low=True, high=checks.MAX_MAGNITUDE)
     if np.linalg.norm(g - s) <= 1e-12 * max(1.0, np.abs(s).max()):
         raise checks.degenerate(func, "start, goal", "start and goal coincide, the path (3.2) has no direction")
-    if max(np.linalg.norm(s - c), np.linalg.norm(g - c)) > COORD_LIMIT * r:
+    if max(np.linalg.norm(s - c), np.linalg.norm(g - c)) > checks.MAX_MAGNITUDE * r:
         raise checks.degenerate(func, "radius", f"{r:.3g} is too small for the distances to the centre")
     return s, g, c, r
 
@@ -193,7 +191,7 @@ def detour(start, goal, center, radius, clearance: float = 0.0, direction: int |
     """
     f = "detour"
     s, g, c, r = _check(start, goal, center, radius, f)
-    R = r + checks.real(clearance, f, "clearance", low=0.0, high=COORD_LIMIT)
+    R = r + checks.real(clearance, f, "clearance", low=0.0, high=checks.MAX_MAGNITUDE)
     if direction is not None:
         direction = checks.integer(direction, f, "direction")
         if direction not in (1, -1):

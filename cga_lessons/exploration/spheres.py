@@ -12,7 +12,7 @@ import numpy as np
 from cga_lessons import checks
 from cga_lessons.algebra import DegenerateGeometryError
 
-from .grid import check_point, check_points, check_positive, check_within
+from .grid import check_point, check_points, check_positive
 
 __all__ = ["fit_sphere", "enclosing_sphere", "sphere_points", "box_surface_points"]
 
@@ -51,7 +51,7 @@ def fit_sphere(points):
     center : array, shape (3,)
     radius : float
     """
-    P = check_within(check_points(points, "fit_sphere", "points"), "fit_sphere", "points")
+    P = checks.magnitude(check_points(points, "fit_sphere", "points"), "fit_sphere", "points")
     return _sphere_fit(P, "fit_sphere")
 
 
@@ -66,7 +66,7 @@ def enclosing_sphere(points):
     Returns (center (3,), radius).
     """
     f = "enclosing_sphere"
-    P = check_within(check_points(points, f, "points"), f, "points")
+    P = checks.magnitude(check_points(points, f, "points"), f, "points")
     centers = [0.5 * (P.min(axis=0) + P.max(axis=0))]
     try:
         centers.append(_sphere_fit(P, f)[0])
@@ -101,7 +101,7 @@ def sphere_points(center, radius, n: int = 20) -> np.ndarray:
 def box_surface_points(rng, center, size, n: int = 300) -> np.ndarray:
     """``n`` random points on the surface of an axis-aligned box (a stand-in object), shape (n, 3)."""
     f = "box_surface_points"
-    checks.instance(rng, f, "rng", np.random.Generator, "a numpy.random.Generator (numpy.random.default_rng(seed))")
+    checks.generator(rng, f)
     c = check_point(center, f, "center")
     size = check_point(size, f, "size")
     if np.any(size < 0):

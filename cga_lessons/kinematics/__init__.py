@@ -21,17 +21,14 @@ from .motor_chain import (
     Chain,
     Joint,
     chain,
-    coefficients_to_matrix,
-    coefficients_to_motor,
     forward_coefficients,
     forward_matrix,
     forward_motor,
-    motor_coefficients,
     prismatic,
     revolute,
     spatial_jacobian,
-    twist_of_bivector,
 )
+from .motor_numbers import coefficients_to_matrix, coefficients_to_motor, motor_coefficients, twist_of_bivector
 
 __all__ = [
     "Joint",

@@ -36,18 +36,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from cga_lessons import checks
-from cga_lessons.algebra import GeometryError, Multivector
+from cga_lessons.algebra import Multivector
 
-from .motor_chain import (
-    REVERSE_SIGNS,
-    Chain,
-    check_configuration,
-    coefficients_to_matrix_unchecked,
-    dense,
-    jacobian_and_pose,
-    motor_coefficients,
-    multiply_batches,
-)
+from .motor_chain import Chain, check_configuration, jacobian_and_pose
+from .motor_numbers import REVERSE_SIGNS, coefficients_to_matrix_unchecked, motor_coefficients, multiply_batches
 
 __all__ = ["IKOptions", "IKResult", "inverse_kinematics", "twist_error"]
 
@@ -113,7 +105,7 @@ def twist_error(D: np.ndarray):
 
     the twist of :func:`cga_lessons.conformal.versor_log.motor_log` (``v = 2 w``), summed by a series near theta = 0.
     """
-    return _twist_error(checks.array(dense(D, "twist_error", "D"), "twist_error", "D", (None, 8)))
+    return _twist_error(checks.array(D, "twist_error", "D", (None, 8)))
 
 
 def _twist_error(D: np.ndarray):
@@ -147,24 +139,40 @@ def _targets(target, func: str) -> np.ndarray:
     if isinstance(target, Multivector):
         c = motor_coefficients(target, func, "target")
         return c.reshape(-1, 8)
-    try:
-        shape = np.shape(target)
-    except (TypeError, ValueError):  # ragged
-        shape = ()
-    if shape[-2:] != (4, 4) or len(shape) not in (2, 3):
-        raise checks.fail(func, "target", f"expected a motor, a 4x4 matrix or (N, 4, 4), got shape {shape}")
-    H = checks.array(target, func, "target", (None, 4, 4) if len(shape) == 3 else (4, 4))
+    if not isinstance(target, (list, tuple, np.ndarray)):
+        raise checks.fail(func, "target", f"expected a motor, a 4x4 matrix or (N, 4, 4), got {type(target).__name__}")
+    H, _ = checks.batch(target, func, "target", (4, 4))
     from cga_lessons import conformal as cga
 
     out = []
     for Hi in H.reshape(-1, 4, 4):  # the checked conversion of one matrix (a rigid transform or an error)
-        try:
+        with checks.relabel(func, "target"):
             out.append(motor_coefficients(cga.matrix_to_motor(Hi), func, "target"))
-        except GeometryError as exc:
-            if str(exc).startswith(f"{func}: target:"):
-                raise
-            raise checks.fail(func, "target", str(exc)) from None
     return np.array(out).reshape(-1, 8)
+
+
+def _errors(Mt: np.ndarray, M: np.ndarray, t_target: np.ndarray):
+    """The twist error (N, 6), rotation error (N,) and position error (N,) of poses M (N, 8) from targets Mt."""
+    err, _, angle = _twist_error(multiply_batches(Mt, M * REVERSE_SIGNS))
+    return err, angle, np.linalg.norm(t_target - coefficients_to_matrix_unchecked(M)[:, :3, 3], axis=1)
+
+
+def _damped_step(J: np.ndarray, e: np.ndarray, lam: np.ndarray, opt: IKOptions):
+    """The damped least-squares step dq (N, n) for Jacobians J (N, 6, n) and errors e (N, 6), clipped to
+    ``opt.max_step``; with the damping used (``lam``, a fresh one where it is NaN)."""
+    n = J.shape[2]
+    JT = np.swapaxes(J, 1, 2)
+    G = J @ JT if n >= 6 else JT @ J
+    lam = lam.copy()
+    fresh = np.isnan(lam)
+    lam[fresh] = opt.damping * np.einsum("kii->k", G)[fresh] / G.shape[1]
+    A = G + lam[:, None, None] * np.eye(min(n, 6))
+    if n >= 6:
+        dq = (JT @ _solve(A, e[:, :, None]))[:, :, 0]
+    else:
+        dq = _solve(A, JT @ e[:, :, None])[:, :, 0]
+    step = np.linalg.norm(dq, axis=1)
+    return dq * np.minimum(1.0, opt.max_step / np.maximum(step, 1e-300))[:, None], lam
 
 
 def inverse_kinematics(ch: Chain, target, q0, options: IKOptions | None = None) -> IKResult:
@@ -197,9 +205,7 @@ def inverse_kinematics(ch: Chain, target, q0, options: IKOptions | None = None) 
     iters = np.zeros(N, dtype=int)
     done = np.zeros(N, dtype=bool)
     J, M = jacobian_and_pose(ch, q)
-    err, t, angle = _twist_error(multiply_batches(Mt, M * REVERSE_SIGNS))
-    pos = np.linalg.norm(t_target - coefficients_to_matrix_unchecked(M)[:, :3, 3], axis=1)
-    eye = np.eye(min(n, 6))
+    err, angle, pos = _errors(Mt, M, t_target)
     rng = np.random.default_rng(opt.seed)
     rev = ch._tables.revolute
     for _ in range(opt.max_iterations + 1):
@@ -208,22 +214,10 @@ def inverse_kinematics(ch: Chain, target, q0, options: IKOptions | None = None) 
         if act.size == 0:
             break
         Ja, ea = J[act], err[act]
-        JT = np.swapaxes(Ja, 1, 2)
-        G = Ja @ JT if n >= 6 else JT @ Ja
-        la = lam[act]
-        fresh = np.isnan(la)
-        la[fresh] = opt.damping * np.einsum("kii->k", G)[fresh] / G.shape[1]
-        A = G + la[:, None, None] * eye
-        if n >= 6:
-            dq = (JT @ _solve(A, ea[:, :, None]))[:, :, 0]
-        else:
-            dq = _solve(A, JT @ ea[:, :, None])[:, :, 0]
-        step = np.linalg.norm(dq, axis=1)
-        dq *= np.minimum(1.0, opt.max_step / np.maximum(step, 1e-300))[:, None]
+        dq, la = _damped_step(Ja, ea, lam[act], opt)
         q_new = q[act] + dq
         J_new, M_new = jacobian_and_pose(ch, q_new)
-        e_new, _, a_new = _twist_error(multiply_batches(Mt[act], M_new * REVERSE_SIGNS))
-        p_new = np.linalg.norm(t_target[act] - coefficients_to_matrix_unchecked(M_new)[:, :3, 3], axis=1)
+        e_new, a_new, p_new = _errors(Mt[act], M_new, t_target[act])
         Jdq = (Ja @ dq[:, :, None])[:, :, 0]
         predicted = np.einsum("ki,ki->k", ea, ea) - np.einsum("ki,ki->k", ea - Jdq, ea - Jdq)
         actual = np.einsum("ki,ki->k", ea, ea) - np.einsum("ki,ki->k", e_new, e_new)
@@ -243,8 +237,7 @@ def inverse_kinematics(ch: Chain, target, q0, options: IKOptions | None = None) 
         if stuck.size:  # refused again and again: a local minimum at a singularity; start over elsewhere
             q[np.ix_(stuck, rev)] = rng.uniform(-np.pi, np.pi, (stuck.size, int(rev.sum())))
             J[stuck], Ms = jacobian_and_pose(ch, q[stuck])
-            err[stuck], _, angle[stuck] = _twist_error(multiply_batches(Mt[stuck], Ms * REVERSE_SIGNS))
-            pos[stuck] = np.linalg.norm(t_target[stuck] - coefficients_to_matrix_unchecked(Ms)[:, :3, 3], axis=1)
+            err[stuck], angle[stuck], pos[stuck] = _errors(Mt[stuck], Ms, t_target[stuck])
             lam[stuck], nu[stuck] = np.nan, 2.0
     for value in (q, pos, angle):
         checks.finite_result(value, func, "q0, target: the solve")

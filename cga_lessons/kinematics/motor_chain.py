@@ -56,22 +56,17 @@ from cga_lessons.conformal import G41
 
 from .motor_numbers import (
     REVERSE_SIGNS,
-    coefficients_to_matrix,
     coefficients_to_matrix_unchecked,
-    coefficients_to_motor,
     coefficients_to_motor_unchecked,
-    dense,
     motor_coefficients,
     multiply_batches,
     read_numbers,
     right_product,
-    twist_of_bivector,
     twists_unchecked,
 )
 
-__all__ = ["Joint", "Chain", "revolute", "prismatic", "chain", "motor_coefficients", "coefficients_to_motor",
-           "coefficients_to_matrix", "forward_coefficients", "forward_motor", "forward_matrix", "spatial_jacobian",
-           "twist_of_bivector"]  # fmt: skip
+__all__ = ["Joint", "Chain", "revolute", "prismatic", "chain", "forward_coefficients", "forward_motor",
+           "forward_matrix", "spatial_jacobian"]  # fmt: skip
 
 
 # ----------------------------------------------------------------- input checks
@@ -88,11 +83,7 @@ def _vec3(x, func: str, name: str, *, unit: bool = False) -> np.ndarray:
 
 def _point(x, func: str, name: str) -> np.ndarray:
     """A point (3,) whose coordinates a conformal line can hold (up to 1e150: their squares stay finite)."""
-    p = _vec3(x, func, name)
-    if float(np.max(np.abs(p))) > 1e150:
-        raise checks.fail(func, name, f"coordinates up to {float(np.max(np.abs(p))):.3g}: beyond 1e150 a line's "
-                                      "squares overflow a float")  # fmt: skip
-    return p
+    return checks.magnitude(_vec3(x, func, name), func, name, why="a line's squares overflow a float")
 
 
 # ----------------------------------------------------------------- joints and chains
@@ -230,19 +221,14 @@ def _home(home, func: str) -> Multivector:
         return G41.scalar(1.0)
     if isinstance(home, Multivector):
         return home
-    try:
-        shape = np.shape(home)
-    except (TypeError, ValueError):
-        shape = None
-    if shape == (3,):
-        return cga.translator(_point(home, func, "home"))
-    if shape != (4, 4):
+    scalar = isinstance(home, np.ndarray) and home.ndim == 0
+    if scalar or not isinstance(home, (list, tuple, np.ndarray)) or len(home) not in (3, 4):
         raise checks.fail(func, "home", "expected a motor, a 4x4 matrix or a translation (3,)")
+    if len(home) == 3:
+        return cga.translator(_point(home, func, "home"))
     H = checks.array(home, func, "home", (4, 4))
-    try:
+    with checks.relabel(func, "home"):
         return cga.matrix_to_motor(H)
-    except GeometryError as exc:
-        raise checks.fail(func, "home", str(exc)) from None
 
 
 def chain(joints, home=None, name: str = "") -> Chain:
@@ -265,7 +251,7 @@ def chain(joints, home=None, name: str = "") -> Chain:
 def check_configuration(ch: Chain, q, func: str, name: str = "q"):
     """``(q as (N, n), single)`` for joint values of shape (n,) or (N, n) of the chain ``ch``."""
     checks.instance(ch, func, "chain", Chain, "a Chain (see kinematics.chain)")
-    return checks.batch(dense(q, func, name), func, name, (ch.n,))
+    return checks.batch(q, func, name, (ch.n,))
 
 
 def _prefixes(ch: Chain, q2: np.ndarray, keep: bool):
@@ -338,9 +324,9 @@ def spatial_jacobian(ch: Chain, q) -> np.ndarray:
 
     Column i is the generator of joint i (``-L_i/2`` for a revolute axis line L_i, 2.109; ``e d_i/2`` for a
     slide, 2.100) moved by the joints before it, ``P g_i ~P`` with ``P = M_1(q_1) ... M_{i-1}(q_{i-1})``
-    (2.103), read as a twist by :func:`twist_of_bivector`.  For a revolute joint that is ``(r, p x r)``, the
-    direction and the moment of the moved axis; for a slide ``(0, d)``.  The spatial twist of the end
-    effector is ``J q_dot``: ``dH/dt H^-1 = [[omega^], [v]]`` for its 4x4 pose H.
+    (2.103), read as a twist by :func:`~cga_lessons.kinematics.motor_numbers.twist_of_bivector`.  For a revolute
+    joint that is ``(r, p x r)``, the direction and the moment of the moved axis; for a slide ``(0, d)``.  The
+    spatial twist of the end effector is ``J q_dot``: ``dH/dt H^-1 = [[omega^], [v]]`` for its 4x4 pose H.
     """
     f = "spatial_jacobian"
     q2, single = check_configuration(ch, q, f)

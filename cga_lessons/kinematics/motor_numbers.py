@@ -63,27 +63,16 @@ def multiply_batches(X: np.ndarray, Y: np.ndarray) -> np.ndarray:
 
 
 # ----------------------------------------------------------------- input checks
-def dense(value, func: str, name: str):
-    """``value``, unless it is a ragged nest of sequences (rows of different lengths): an error naming it.
-
-    (A guard ahead of :mod:`cga_lessons.checks`, whose complex-number test raises a bare ``ValueError`` on ragged
-    lists.)
-    """
-    if isinstance(value, (list, tuple)):
-        try:
-            np.asarray(value)
-        except ValueError:
-            raise checks.fail(func, name, "ragged rows: the rows have different lengths") from None
-    return value
-
-
 def check_numbers(c, func: str, name: str = "c") -> np.ndarray:
-    """Finite numbers of shape (..., 8)."""
-    try:
-        nd = np.ndim(c)
-    except (TypeError, ValueError):  # ragged: the check says so
-        nd = 1
-    return checks.array(dense(c, func, name), func, name, (None,) * max(nd - 1, 0) + (8,))
+    """Finite numbers of shape (..., 8).
+
+    The number of axes is read along the first items (ragged rows are then refused by :func:`checks.array`).
+    """
+    axes, first = 0, c
+    while isinstance(first, (list, tuple)) and len(first):
+        axes, first = axes + 1, first[0]
+    axes += first.ndim if isinstance(first, np.ndarray) else 0
+    return checks.array(c, func, name, (None,) * max(axes - 1, 0) + (8,))
 
 
 def _unit_rotor_scale(c: np.ndarray, func: str, name: str) -> np.ndarray:
@@ -145,7 +134,7 @@ def coefficients_to_motor(c) -> Multivector:
     1 - 1 e1+ - 1 e1-
     """
     f = "coefficients_to_motor"
-    c, single = checks.batch(dense(c, f, "c"), f, "c", (8,))
+    c, single = checks.batch(c, f, "c", (8,))
     _unit_rotor_scale(c, f, "c")
     return coefficients_to_motor_unchecked(c[0] if single else c)
 

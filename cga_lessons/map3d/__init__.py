@@ -7,6 +7,8 @@ and widgets are in :mod:`cga_lessons.viz`).  This facade exports the names in ``
   (4.1)-(4.10), and their fixed parts
 * :mod:`~cga_lessons.map3d.eval`: How good is the fused 3D map: laser against stereo on the objects both saw, and
   both against the truth
+* :mod:`~cga_lessons.map3d.fits`: Fitting an object's conformal entity to its points and reading its Euclidean
+  parameters back (section 4.1, used by the fused 3D map of section 4.2.3)
 * :mod:`~cga_lessons.map3d.fuse`: One 3D map fused from the laser and the stereo head through the robot's motor
   chains (section 4.2.3)
 * :mod:`~cga_lessons.map3d.geometer`: The robot geometer's sensors as kinematic chains (section 4.2, Eqs.
@@ -22,21 +24,13 @@ and widgets are in :mod:`cga_lessons.viz`).  This facade exports the names in ``
 * :mod:`~cga_lessons.map3d.world`: The synthetic world of the fused 3D map (section 4.2.3): a room and its objects
 """
 
+from .chains import base_motor_as_printed, base_rotor, base_translator, laser_chain_as_printed, stereo_chain_as_printed
 from .eval import COLUMNS, residual_table, view_errors
-from .fuse import FusedMap, StereoEntity, build_fused_map, entity_parameters, fit_line_3d, stereo_depth_limit
+from .fits import entity_parameters, fit_line_3d
+from .fuse import FusedMap, StereoEntity, build_fused_map, stereo_depth_limit
 from .geometer import GeometerChains, geometer_chains
-from .robot import (
-    DOFS,
-    Robot,
-    RobotGeometry,
-    RobotState,
-    base_motor_as_printed,
-    base_rotor,
-    base_translator,
-    chain_motors,
-    laser_chain_as_printed,
-    stereo_chain_as_printed,
-)
+from .robot import Robot, chain_motors
+from .state import DOFS, RobotGeometry, RobotState
 from .tour import homogeneous_chains, simulate_tour
 
 __all__ = [

@@ -14,32 +14,18 @@ import numpy as np
 
 from cga_lessons import checks
 from cga_lessons import conformal as cga
-from cga_lessons.algebra import Multivector
+from cga_lessons.algebra import Multivector, finite_multivector
 from cga_lessons.conformal import G41
 from cga_lessons.kinematics import motor_coefficients
 from cga_lessons.mapping2d import robot_motor
 
 if TYPE_CHECKING:
-    from .robot import RobotGeometry
+    from .state import RobotGeometry
 
 _Z = np.array([0.0, 0.0, 1.0])
 
 
 # ----------------------------------------------------------------- input checks
-def dense(value, func: str, name: str):
-    """``value``, unless it is a ragged nest of sequences (rows of different lengths): an error naming it.
-
-    (A guard ahead of :mod:`cga_lessons.checks`, whose complex-number test raises a bare ``ValueError`` on ragged
-    lists.)
-    """
-    if isinstance(value, (list, tuple)):
-        try:
-            np.asarray(value)
-        except ValueError:
-            raise checks.fail(func, name, "ragged rows: the rows have different lengths") from None
-    return value
-
-
 #: The largest angle (radians) a rotor reads: beyond 2^52 no float precision is left for the angle itself.
 ANGLE_LIMIT = 2.0**52
 ANGLES = ("theta", "pan", "tilt")
@@ -50,10 +36,7 @@ def check_dof(v, func: str, name: str):
 
     The angles (``theta``, ``pan``, ``tilt``) are at most :data:`ANGLE_LIMIT` in magnitude.
     """
-    try:
-        scalar = np.ndim(v) == 0
-    except (TypeError, ValueError):  # ragged: the array check says so
-        scalar = False
+    scalar = not isinstance(v, (list, tuple)) and np.ndim(v) == 0
     out = checks.real(v, func, name) if scalar else checks.array(v, func, name, (None,), at_least=1)
     if name in ANGLES and np.any(np.abs(out) > ANGLE_LIMIT):
         raise checks.fail(func, name, f"angles beyond {ANGLE_LIMIT:.3g} rad have no float precision left")
@@ -86,13 +69,6 @@ def check_entity(X, func: str, name: str = "X") -> Multivector:
             raise checks.fail(func, name, f"expected real numeric coefficients, got {type(v).__name__}")
         if not np.all(np.isfinite(a)):
             raise checks.fail(func, name, "contains NaN or inf")
-    return X
-
-
-def finite_multivector(X: Multivector, func: str, what: str) -> Multivector:
-    """``X`` if every coefficient is finite; else its input overflowed the computation (``checks.finite_result``)."""
-    for v in X.coeffs.values():
-        checks.finite_result(v, func, what)
     return X
 
 

@@ -32,119 +32,24 @@ import numpy as np
 
 from cga_lessons import checks
 from cga_lessons import conformal as cga
-from cga_lessons.algebra import DegenerateGeometryError, GeometryError, Multivector
+from cga_lessons.algebra import DegenerateGeometryError
 from cga_lessons.mapping2d import MapResult, build_map, extract_segments
 
-from .chains import check_entity, dense
+from .chains import check_entity, to_unified
+from .fits import ENTITY_KINDS, blade_parameters, fit_entity
 from .laser import group_detections, laser_posts, virtual_wall
-from .robot import Robot, RobotGeometry, RobotState, chain_motors, to_unified
+from .robot import Robot, chain_motors
+from .state import RobotGeometry, RobotState
 from .tour import Tour, triangulate_view
 
 __all__ = [
     "StereoEntity",
     "FusedMap",
-    "fit_line_3d",
     "build_fused_map",
     "stereo_depth_limit",
-    "entity_parameters",
 ]
 
 _UP = np.array([0.0, 0.0, 1.0])
-
-
-# ----------------------------------------------------------------- building blocks
-def fit_line_3d(X) -> dict:
-    """Total-least-squares line through points (N, 3) as a conformal line ``e ^ a ^ b`` (2.81).
-
-    The line passes through the centroid along the principal direction; ``a``
-    and ``b`` are the projections of the extreme points, kept as the point
-    pair ``a ^ b`` (2.68) that says where to draw it (section 4.1).
-
-    Returns
-    -------
-    dict
-        ``blade`` (dual line, 2.81), ``pair`` (2.68), ``direction`` (3,),
-        ``point`` (the centroid), ``ends`` (2, 3), ``rms`` (m).
-    """
-    f = "fit_line_3d"
-    X = checks.rows(dense(X, f, "X"), f, "X", 3)
-    if len(X) < 2:
-        raise checks.degenerate(f, "X", f"need at least 2 points, got {len(X)}")
-    if float(np.max(np.abs(X))) > 1e150:
-        raise checks.fail(f, "X", "coordinates beyond 1e150: their squares overflow a float")
-    c = X.mean(axis=0)
-    _, s, Vt = np.linalg.svd(X - c, full_matrices=False)
-    if s[0] <= 1e-12 * max(1.0, np.abs(X).max()):
-        raise checks.degenerate(f, "X", "all points coincide")
-    d = Vt[0] if Vt[0][np.argmax(np.abs(Vt[0]))] > 0 else -Vt[0]
-    t = (X - c) @ d
-    ends = c + np.outer([t.min(), t.max()], d)
-    resid = (X - c) - np.outer(t, d)
-    return {
-        "blade": cga.line_from_points(ends[0], ends[1]),
-        "pair": cga.point_pair(ends[0], ends[1]),
-        "direction": d,
-        "point": c,
-        "ends": ends,
-        "rms": float(np.sqrt(np.mean(np.sum(resid**2, axis=1)))),
-    }
-
-
-#: The classification (:func:`cga_lessons.conformal.classify`) of each kind of entity: kinds and dimension.
-_ENTITY = {"sphere": (("round",), 2), "plane": (("flat",), 2), "circle": (("round",), 1),
-           "line": (("flat", "dual flat"), 1)}  # fmt: skip
-
-
-def entity_parameters(kind: str, blade) -> dict:
-    """Euclidean parameters read back from a conformal entity (section 4.1's recipes).
-
-    ``sphere``: centre and radius (2.115, 2.116, 2.73); ``plane``: unit normal
-    and distance (2.89); ``circle``: centre, radius, normal (2.119-2.124);
-    ``line``: direction (2.127) and closest point to the origin (2.129).
-    ``blade`` is one numeric entity of that kind (either form).
-    """
-    f = "entity_parameters"
-    kind = checks.choice(kind, f, "kind", tuple(_ENTITY))
-    blade = check_entity(blade, f, "blade")
-    if blade.shape:
-        raise checks.fail(f, "blade", f"expected one entity, got a batch of shape {blade.shape}")
-    try:
-        got = cga.classify(blade)
-        kinds, dimension = _ENTITY[kind]
-        if got.kind not in kinds or got.dimension != dimension or got.imaginary:
-            imaginary = "an imaginary " if got.imaginary else "a "
-            raise checks.fail(f, "blade", f"expected a {kind}, got {imaginary}{got.kind} of dimension {got.dimension}")
-        return _parameters(kind, blade)
-    except GeometryError as exc:
-        if str(exc).startswith(f"{f}: blade:"):
-            raise
-        raise checks.fail(f, "blade", f"not a {kind}: {exc}") from None
-
-
-def _parameters(kind: str, blade: Multivector) -> dict:
-    """:func:`entity_parameters` of an entity of that kind (no checks: the fits of section 4.1 made it)."""
-    if kind == "sphere":
-        c, r = cga.sphere_center_radius(blade)
-        return {"center": np.asarray(c, float), "radius": float(r)}
-    if kind == "plane":
-        n, d = cga.plane_normal_distance(blade)
-        return {"normal": np.asarray(n, float), "distance": float(d)}
-    if kind == "circle":
-        c, r, n = cga.circle_center_radius(blade)
-        return {"center": np.asarray(c, float), "radius": float(r), "normal": np.asarray(n, float)}
-    return {"direction": np.asarray(cga.line_direction(blade), float),
-            "point": np.asarray(cga.line_closest_point(blade), float)}  # fmt: skip
-
-
-def _fit(kind: str, X) -> dict:
-    """The section-4.1 least-squares fit of ``kind`` to points X (N, 3) (:mod:`cga_lessons.conformal.fitting`)."""
-    if kind == "sphere":
-        return cga.fit_sphere(X)
-    if kind == "plane":
-        return cga.fit_plane(X)
-    if kind == "circle":
-        return cga.fit_circle(X)
-    return fit_line_3d(X)
 
 
 # ----------------------------------------------------------------- the fused map
@@ -165,13 +70,13 @@ class StereoEntity:
     def __post_init__(self):
         f = "StereoEntity"
         checks.text(self.name, f, "name")
-        checks.choice(self.kind, f, "kind", tuple(_ENTITY))
+        checks.choice(self.kind, f, "kind", ENTITY_KINDS)
         self.view, self.scan = (checks.integer(getattr(self, k), f, k, low=0) for k in ("view", "scan"))
         checks.instance(self.state, f, "state", RobotState, "a RobotState")
         check_entity(self.blade_stereo, f, "blade_stereo")
         check_entity(self.blade_world, f, "blade_world")
         checks.instance(self.params, f, "params", dict, "a dict (entity_parameters)")
-        self.points_world = checks.rows(dense(self.points_world, f, "points_world"), f, "points_world", 3)
+        self.points_world = checks.rows(self.points_world, f, "points_world", 3)
 
 
 @dataclass
@@ -219,8 +124,7 @@ class FusedMap:
             checks.instance(getattr(self, name), f, name, list, "a list")
         for k, segs in enumerate(self.scan_segments):
             checks.array(segs, f, f"scan_segments[{k}]", (None, 2, 3))
-        detections = dense(self.laser_post_detections, f, "laser_post_detections")
-        self.laser_post_detections = checks.rows(detections, f, "laser_post_detections", 3)
+        self.laser_post_detections = checks.rows(self.laser_post_detections, f, "laser_post_detections", 3)
         checks.instance(self.objects, f, "objects", dict, "a dict")
         for name in ("wall_height", "post_radius"):
             setattr(self, name, checks.real(getattr(self, name), f, name, low=0.0, strict_low=True))
@@ -241,7 +145,7 @@ def stereo_depth_limit(geometry, noise_px: float, max_depth_sigma: float = 0.05)
     the default head (f = 700 px, b = 0.12 m), 0.5 px and 5 cm.  Infinite
     without noise.
 
-    >>> from cga_lessons.map3d.robot import RobotGeometry
+    >>> from cga_lessons.map3d.state import RobotGeometry
     >>> round(stereo_depth_limit(RobotGeometry(), 0.5, 0.05), 3)
     2.437
     """
@@ -307,31 +211,48 @@ def build_fused_map(
     if laser is None:
         laser = build_map(tour.scans, tour.odometry, method=method, mount=(lx, ly, yaw))
     robot = Robot(g)
-
-    # 2. every scan's segments and post centres through M_lu (4.4): one batch of motors, one sandwich
     poses = {"laser": laser.poses, "truth": tour.truth, "odometry": tour.odometry}[poses_from]
-    ends, seg_scan, centres, post_scan = [], [], [], []
+    scan_segments = _moved_segments(tour, poses)
+    detections, groups = _moved_posts(tour, poses, post_radius, min_post_detections, f)
+    walls = [virtual_wall(s.start, s.end, h, virtual_wall_height) for s in laser.segments]  # 3. virtual walls
+    kinds = {o.name: _KIND[type(o).__name__] for o in tour.world.objects if type(o).__name__ in _KIND}
+    views, pooled = _stereo_views(tour, poses, robot, kinds, stereo_depth_limit(g, tour.noise_px, max_depth_sigma))
+    objects = {name: _fused_object(kinds[name], parts) for name, parts in pooled.items()}
+    return FusedMap(tour, laser, h, scan_segments, walls, detections, groups, views, objects,
+                    float(virtual_wall_height), float(post_radius), robot)  # fmt: skip
+
+
+def _moved_segments(tour: Tour, poses) -> list:
+    """Step 2: every scan's segments, as point pairs, through M_lu (4.4): one batch of motors, one sandwich."""
+    ends, seg_scan = [], []
     for k, (ranges, angles) in enumerate(tour.scans):
         for s in extract_segments(ranges, angles, max_range=5.0):
             ends.append([[*s.start, 0.0], [*s.end, 0.0]])
             seg_scan.append(k)
-        c, _ = laser_posts(ranges, angles, radius=post_radius)
-        centres += [[*p, 0.0] for p in c]
-        post_scan += [k] * len(c)
     ends, seg_scan = np.array(ends).reshape(-1, 2, 3), np.array(seg_scan, int)
     scan_segments = [np.zeros((0, 2, 3)) for _ in tour.scans]
     if len(ends):
-        M = _laser_motors(g, poses[seg_scan])
+        M = _laser_motors(tour.geometry, poses[seg_scan])
         PP = to_unified(M, cga.point_pair(ends[:, 0], ends[:, 1]))  # (4.4), segment i by the motor of its scan
         p1, p2 = (np.atleast_2d(p) for p in cga.point_pair_endpoints(PP))  # (2.131)
         moved = np.stack([p1, p2], axis=1)
         for k in np.unique(seg_scan):
             scan_segments[k] = moved[seg_scan == k]
+    return scan_segments
+
+
+def _moved_posts(tour: Tour, poses, post_radius: float, min_post_detections: int, f: str):
+    """Step 4: the posts' centres of every scan through M_lu (4.4), and their groups (the posts the laser reports)."""
+    centres, post_scan = [], []
+    for k, (ranges, angles) in enumerate(tour.scans):
+        c, _ = laser_posts(ranges, angles, radius=post_radius)
+        centres += [[*p, 0.0] for p in c]
+        post_scan += [k] * len(c)
     detections = np.zeros((0, 3))
     if centres and not np.max(np.abs(centres)) <= 1e6:  # a circle fit of a huge radius lands its centre far away
         raise checks.fail(f, "post_radius", f"{post_radius:g} m: the posts' centres land beyond 1e6 m")
     if centres:
-        M = _laser_motors(g, poses[np.array(post_scan)])
+        M = _laser_motors(tour.geometry, poses[np.array(post_scan)])
         detections = np.atleast_2d(cga.down(to_unified(M, cga.up(np.array(centres)))))  # (4.4)
     groups = [
         {
@@ -342,49 +263,46 @@ def build_fused_map(
         for idx in group_detections(detections, 3 * post_radius)
         if len(idx) >= min_post_detections
     ]
+    return detections, groups
 
-    # 3. virtual walls from the fused chapter-3 map
-    walls = [virtual_wall(s.start, s.end, h, virtual_wall_height) for s in laser.segments]
 
-    # 5. stereo entities through M_eu (4.10), with the laser-corrected pose of the moment
-    z_max = stereo_depth_limit(g, tour.noise_px, max_depth_sigma)
-    kinds = {o.name: _KIND[type(o).__name__] for o in tour.world.objects if type(o).__name__ in _KIND}
+def _stereo_views(tour: Tour, poses, robot: Robot, kinds: dict, z_max: float):
+    """Step 5: each view's entities through M_eu (4.10), with the pose of the moment; and each object's points."""
     views, pooled = [], {}
     for vi, view in enumerate(tour.views):
         if not view.pixels:
             continue
         x, y, th = poses[view.scan]
         robot.set_state(RobotState(x, y, th, view.state.pan, view.state.tilt))
-        tri = triangulate_view(g, view)  # (A.14), stereo frame
+        tri = triangulate_view(tour.geometry, view)  # (A.14), stereo frame
         for name, X_s in tri.items():
             kind = kinds[name]
             X_s = X_s[X_s[:, 0] <= z_max]  # depth is x in the stereo frame
             if len(X_s) < _MIN_POINTS[kind]:
                 continue
             try:
-                fit = _fit(kind, X_s)  # section 4.1, in the stereo frame
+                fit = fit_entity(kind, X_s)  # section 4.1, in the stereo frame
             except DegenerateGeometryError:
                 continue
             blade_w = robot.stereo_to_unified(fit["blade"])  # (4.10): the entity itself
             X_w = cga.apply_to_points(robot["M_eu"], X_s)  # its points, by the same motor
             views.append(StereoEntity(name, kind, vi, view.scan, robot.state, fit["blade"], blade_w,
-                                      _parameters(kind, blade_w), X_w))  # fmt: skip
+                                      blade_parameters(kind, blade_w), X_w))  # fmt: skip
             pooled.setdefault(name, []).append(X_w)
+    return views, pooled
 
-    # 6. one entity per object from all its views
-    objects = {}
-    for name, parts in pooled.items():
-        X = np.vstack(parts)
-        fit = _fit(kinds[name], X)
-        obj = {"kind": kinds[name], "blade": fit["blade"], "params": _parameters(kinds[name], fit["blade"]),
-               "n_views": len(parts), "points": X, "rms": fit["rms"]}  # fmt: skip
-        if kinds[name] == "line":
-            obj["ends"] = fit["ends"]
-        if kinds[name] == "plane":
-            obj["corners"] = _plane_rectangle(X, obj["params"]["normal"], obj["params"]["distance"])
-        objects[name] = obj
-    return FusedMap(tour, laser, h, scan_segments, walls, detections, groups, views, objects,
-                    float(virtual_wall_height), float(post_radius), robot)  # fmt: skip
+
+def _fused_object(kind: str, parts: list) -> dict:
+    """Step 6: one entity of an object from the points of all its views."""
+    X = np.vstack(parts)
+    fit = fit_entity(kind, X)
+    obj = {"kind": kind, "blade": fit["blade"], "params": blade_parameters(kind, fit["blade"]),
+           "n_views": len(parts), "points": X, "rms": fit["rms"]}  # fmt: skip
+    if kind == "line":
+        obj["ends"] = fit["ends"]
+    if kind == "plane":
+        obj["corners"] = _plane_rectangle(X, obj["params"]["normal"], obj["params"]["distance"])
+    return obj
 
 
 def _laser_motors(geometry, poses):

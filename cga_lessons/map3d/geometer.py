@@ -22,7 +22,7 @@ _X, _Z = np.array([1.0, 0.0, 0.0]), np.array([0.0, 0.0, 1.0])
 
 @dataclass(frozen=True, eq=False)
 class GeometerChains:
-    """The geometer's sensors as chains over ``q = (x, y, theta, pan, tilt)`` (:data:`cga_lessons.map3d.robot.DOFS`).
+    """The geometer's sensors as chains over ``q = (x, y, theta, pan, tilt)`` (:data:`cga_lessons.map3d.state.DOFS`).
 
     ``camera`` (5 joints) ends at the left camera, the pose of ``M_eu`` (4.9) or, for pan-tilt axes that miss
     each other, of the footnote's chain about the axis lines (``stereo_chain_about_lines``); ``laser``
@@ -50,7 +50,8 @@ def geometer_chains(geometry=None) -> GeometerChains:
     >>> g.camera.n, g.laser.n, [j.name for j in g.camera.joints]
     (5, 3, ['x', 'y', 'theta', 'pan', 'tilt'])
     """
-    from cga_lessons.map3d.robot import RobotGeometry, chain_motors
+    from cga_lessons.map3d.robot import chain_motors
+    from cga_lessons.map3d.state import RobotGeometry
 
     if geometry is not None:
         checks.instance(geometry, "geometer_chains", "geometry", RobotGeometry, "a RobotGeometry or None")

@@ -18,8 +18,6 @@ import numpy as np
 from cga_lessons import checks
 from cga_lessons import conformal as cga
 
-from .chains import dense
-
 __all__ = ["VirtualWall", "virtual_wall", "fit_post_center", "laser_posts", "group_detections"]
 
 _UP = np.array([0.0, 0.0, 1.0])
@@ -78,7 +76,7 @@ def fit_post_center(points, origin, radius: float, iterations: int = 10) -> np.n
     Least squares of ``|p_i - c| - radius`` by Gauss-Newton, started behind the
     points' centroid (the laser sees the near side).
     """
-    p = checks.rows(dense(points, "fit_post_center", "points"), "fit_post_center", "points", 2)
+    p = checks.rows(points, "fit_post_center", "points", 2)
     if len(p) < 2:
         raise checks.degenerate("fit_post_center", "points", f"need at least 2 points, got {len(p)}")
     m = p.mean(axis=0)

@@ -58,11 +58,10 @@ from cga_lessons import checks
 from cga_lessons import conformal as cga
 from cga_lessons.algebra import Multivector
 
-from .chains import (  # noqa: F401  (re-exported: the chains are part of this module's API)
+from .chains import (
     axes_nearest_point,
     axis_line,
     base_motor,
-    base_motor_as_printed,
     base_rotor,
     base_translator,
     check_dofs,
@@ -72,42 +71,15 @@ from .chains import (  # noqa: F401  (re-exported: the chains are part of this m
     head_rotor,
     head_translator,
     laser_chain,
-    laser_chain_as_printed,
     laser_mount_motor,
     stereo_chain,
     stereo_chain_about_lines,
-    stereo_chain_as_printed,
-    to_unified,
     turned_laser_mount,
     unified,
 )
 from .state import DOFS, RobotGeometry, RobotState, check_changes
 
-__all__ = [
-    "DOFS",
-    "RobotGeometry",
-    "RobotState",
-    "Robot",
-    "axes_nearest_point",
-    "base_rotor",
-    "base_translator",
-    "laser_mount_motor",
-    "turned_laser_mount",
-    "base_motor",
-    "base_motor_as_printed",
-    "laser_chain",
-    "laser_chain_as_printed",
-    "head_translator",
-    "head_rotor",
-    "eye_translator",
-    "head_motor",
-    "stereo_chain",
-    "stereo_chain_as_printed",
-    "stereo_chain_about_lines",
-    "to_unified",
-    "chain_motors",
-    "MOTOR_INPUTS",
-]
+__all__ = ["Robot", "chain_motors", "MOTOR_INPUTS"]
 
 
 # ----------------------------------------------------------------- dependency graph

@@ -70,9 +70,9 @@ class RobotGeometry:
     def __post_init__(self):
         f = "RobotGeometry"
         for name, n in _VECTORS.items():
-            v = checks.array(getattr(self, name), f, name, (n,))
-            if float(np.max(np.abs(v))) > 1e150:
-                raise checks.fail(f, name, "beyond 1e150 the chains' squares overflow a float")
+            v = checks.magnitude(
+                checks.array(getattr(self, name), f, name, (n,)), f, name, why="the chains' squares overflow a float"
+            )
             object.__setattr__(self, name, tuple(float(x) for x in v))
         if min(self.base_size) <= 0:
             raise checks.fail(f, "base_size", f"must be > 0, got {self.base_size}")

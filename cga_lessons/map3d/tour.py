@@ -19,8 +19,9 @@ import numpy as np
 from cga_lessons import checks, stereo
 from cga_lessons.mapping2d import OdometryModel, simulate_odometry, simulate_scan
 
-from .chains import check_dofs, dense
-from .robot import Robot, RobotGeometry, RobotState
+from .chains import check_dofs
+from .robot import Robot
+from .state import RobotGeometry, RobotState
 from .world import World3D, default_world
 
 __all__ = ["homogeneous_chains", "waypoint_tour", "View", "Tour", "simulate_tour", "triangulate_view"]
@@ -89,7 +90,7 @@ def waypoint_tour(waypoints, step: float = 0.15, turn_step: float = 0.2) -> np.n
     [[1.0, 0.0, 1.571], [1.0, 0.5, 1.571], [1.0, 1.0, 1.571]]
     """
     f = "waypoint_tour"
-    wp = checks.rows(dense(waypoints, f, "waypoints"), f, "waypoints", 2, at_least=2)
+    wp = checks.rows(waypoints, f, "waypoints", 2, at_least=2)
     step = checks.real(step, f, "step", low=0.0, strict_low=True)
     turn_step = checks.real(turn_step, f, "turn_step", low=0.0, strict_low=True)
     return _poses(wp, step, turn_step, f)
@@ -185,12 +186,12 @@ def simulate_tour(
     Tour
     """
     f = "simulate_tour"
-    checks.instance(rng, f, "rng", np.random.Generator, "a numpy.random.Generator: pass numpy.random.default_rng(seed)")
+    checks.generator(rng, f)
     world = default_world() if world is None else checks.instance(world, f, "world", World3D, "a World3D or None")
     if geometry is not None:
         checks.instance(geometry, f, "geometry", RobotGeometry, "a RobotGeometry or None")
     geometry = geometry or RobotGeometry()
-    wp = checks.rows(dense(waypoints, f, "waypoints"), f, "waypoints", 2, at_least=2)
+    wp = checks.rows(waypoints, f, "waypoints", 2, at_least=2)
     truth = _poses(wp, checks.real(step, f, "step", low=0.0, strict_low=True), 0.2, f)
     stops = [checks.integer(k, f, "stops", low=0) for k in checks.array(stops, f, "stops", (None,))]
     if stops and max(stops) >= len(truth):

@@ -52,12 +52,15 @@ Nothing here draws (figures and widgets are in :mod:`cga_lessons.viz`).  This fa
   corresponding points (iterative closest points)
 * :mod:`~cga_lessons.mapping2d.segment`: Lines and line segments of the 2D map (thesis section 3.1.1, equations
   3.1-3.3): the :class:`Segment` structure
-* :mod:`~cga_lessons.mapping2d.trajectories`: Planar trajectory evaluation and TUM trajectory files (chapter 3's
-  maps, measured the field's way)
+* :mod:`~cga_lessons.mapping2d.trajectories`: Planar trajectory evaluation: absolute and relative pose errors
+  (chapter 3's maps, measured the field's way)
+* :mod:`~cga_lessons.mapping2d.tum`: TUM trajectory files: the text format of ``evo`` and most SLAM evaluation
+  tools, written and read
 """
 
 from .build import MapResult, build_map
 from .builder import MapBuilder
+from .carmen import CarmenLog, read_carmen_log
 from .conformal import (
     ConformalGeometry,
     c2e,
@@ -73,26 +76,23 @@ from .eval import format_log_benchmark, map_errors, map_point_errors, pose_error
 from .geometry import PlainGeometry, SegmentSet, correspondences, proximity_matrix
 from .graph import PoseGraph
 from .laser import (
-    CarmenLog,
     OdometryModel,
     Scene,
-    compose,
-    invert,
     load_scene,
-    read_carmen_log,
-    relative,
     scan_points,
     scans_to_world,
     simulate_odometry,
     simulate_scan,
     simulate_scans,
-    wrap_angle,
 )
 from .laser_facts import returns_reach
-from .lines import TWO_PI, Segment, diff_theta, diff_theta_as_printed, extract_segments, split_points
+from .lines import diff_theta, diff_theta_as_printed, extract_segments, split_points
 from .params import MapParams
+from .poses import compose, invert, relative, wrap_angle
 from .scan_registration import register_scans
-from .trajectories import absolute_trajectory_error, odometry_repeats_poses, relative_pose_error, write_tum
+from .segment import TWO_PI, Segment
+from .trajectories import absolute_trajectory_error, odometry_repeats_poses, relative_pose_error
+from .tum import write_tum
 
 __all__ = [
     "MapParams",

@@ -89,7 +89,7 @@ from .adjust import adjust_built_map
 from .builder import MapBuilder
 from .corrections import odometry_covariance
 from .geometry import PlainGeometry, SegmentSet
-from .inputs import array, pose, reach, scan_list, squares_finite
+from .inputs import pose, reach, scan_list
 from .laser import scan_points_unchecked
 from .lines import extract_unchecked, extraction_settings
 from .loops import LoopCloser
@@ -147,10 +147,12 @@ class MapResult:
             raise checks.fail(f, "segments", f"expected a list of Segment, got {type(self.segments).__name__}")
         for s in self.segments:
             checks.instance(s, f, "segments", Segment, "a list of Segment")
-        self.poses = array(self.poses, f, "poses", (None, 3))
-        self.predicted = array(self.predicted, f, "predicted", (None, 3))
-        self.n_matches = _whole(array(self.n_matches, f, "n_matches", (None,)), f, "n_matches", 0, None)  # fmt: skip
-        self.corrected = _whole(array(self.corrected, f, "corrected", (None,)), f, "corrected", 0, 1).astype(bool)
+        self.poses = checks.array(self.poses, f, "poses", (None, 3))
+        self.predicted = checks.array(self.predicted, f, "predicted", (None, 3))
+        n_matches = checks.array(self.n_matches, f, "n_matches", (None,))
+        self.n_matches = _whole(n_matches, f, "n_matches", 0, None)
+        corrected = checks.array(self.corrected, f, "corrected", (None,))
+        self.corrected = _whole(corrected, f, "corrected", 0, 1).astype(bool)
         names = ("poses", "predicted", "n_matches", "corrected")
         checks.same_length(f, **{k: getattr(self, k) for k in names})
         self.method = checks.choice(self.method, f, "method", ("plain", "conformal"))
@@ -182,10 +184,10 @@ def _inputs(scans, odometry, method, params, mount, max_range, extraction, recor
     """The checked arguments of :func:`build_map`: scans, odometry, geometry, params, mount, extraction settings."""
     f = "build_map"
     scans = scan_list(scans, f, "scans", increasing=True)
-    odometry = array(odometry, f, "odometry", (None, 3))
+    odometry = checks.array(odometry, f, "odometry", (None, 3))
     if len(scans) != len(odometry) or len(scans) == 0:
         raise checks.fail(f, "scans, odometry", f"{len(scans)} scans but {len(odometry)} odometry poses")
-    squares_finite(odometry[:, :2] - odometry[0, :2], f, "odometry")  # the steps' covariances square them
+    checks.magnitude(odometry[:, :2] - odometry[0, :2], f, "odometry")  # the steps' covariances square them
     method = checks.choice(method, f, "method", ("plain", "conformal"))
     if params is None:
         params = MapParams()
@@ -210,7 +212,7 @@ def _inputs(scans, odometry, method, params, mount, max_range, extraction, recor
         from .conformal import ConformalGeometry
 
         geometry = ConformalGeometry()
-    mount = squares_finite(pose(mount, f, "mount"), f, "mount")
+    mount = checks.magnitude(pose(mount, f, "mount"), f, "mount")
     return scans, odometry, geometry, params, mount, ext["max_range"], ext
 
 

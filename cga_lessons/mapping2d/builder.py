@@ -37,7 +37,7 @@ from cga_lessons import checks
 from .correction import ScanCorrector
 from .geometry import PlainGeometry, SegmentSet, correspondences_unchecked
 from .index import SegmentIndex, duplicate_pairs, sphere_boxes
-from .inputs import array, pose, reach
+from .inputs import pose, reach
 from .observations import Growing, Observations, PathLog, refit_lines
 from .params import MapParams
 from .poses import compose_unchecked, wrap_unchecked
@@ -97,7 +97,7 @@ class MapBuilder:
         self.mount = pose(mount, f, "mount")
         self.max_range = reach(max_range, f, "max_range")
         tol = self.REFIT_TOLERANCE if refit_tolerance is None else refit_tolerance
-        self.refit_tolerance = tuple(float(t) for t in array(tol, f, "refit_tolerance", (2,)))
+        self.refit_tolerance = tuple(float(t) for t in checks.array(tol, f, "refit_tolerance", (2,)))
         if min(self.refit_tolerance) < 0:
             raise checks.fail(f, "refit_tolerance", f"must be two numbers >= 0 (m, rad), got {self.refit_tolerance}")
         cell = None if index_cell is None else checks.real(index_cell, f, "index_cell", low=0.0, strict_low=True)

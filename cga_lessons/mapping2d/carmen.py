@@ -19,7 +19,7 @@ import numpy as np
 from cga_lessons import checks
 from cga_lessons.algebra import InvalidInputError
 
-from .inputs import array, reach
+from .inputs import reach
 from .laser_facts import no_return_codes
 from .poses import wrap_unchecked
 
@@ -59,17 +59,17 @@ class CarmenLog:
 
     def __post_init__(self):
         f = "CarmenLog"
-        self.ranges = array(self.ranges, f, "ranges", (None, None), finite=False)
+        self.ranges = checks.array(self.ranges, f, "ranges", (None, None), finite=False)
         if np.isnan(self.ranges).any() or (self.ranges == -np.inf).any():
             raise checks.fail(f, "ranges", "holds NaN or -inf (a beam without return is +inf)")
-        self.angles = array(self.angles, f, "angles", (None,))
+        self.angles = checks.array(self.angles, f, "angles", (None,))
         if len(self.angles) != self.ranges.shape[1]:
             raise checks.fail(
                 f, "ranges, angles", f"{self.ranges.shape[1]} ranges a scan but {len(self.angles)} angles"
             )
-        self.poses = array(self.poses, f, "poses", (None, 3))
-        self.odometry = array(self.odometry, f, "odometry", (None, 3))
-        self.timestamps = array(self.timestamps, f, "timestamps", (None,))
+        self.poses = checks.array(self.poses, f, "poses", (None, 3))
+        self.odometry = checks.array(self.odometry, f, "odometry", (None, 3))
+        self.timestamps = checks.array(self.timestamps, f, "timestamps", (None,))
         checks.same_length(f, ranges=self.ranges, poses=self.poses, odometry=self.odometry, timestamps=self.timestamps)
         self.laser_offset = checks.real(self.laser_offset, f, "laser_offset")
         if not isinstance(self.no_return_codes, (tuple, list)):

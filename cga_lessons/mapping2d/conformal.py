@@ -39,8 +39,8 @@ from cga_lessons import conformal as cga
 from cga_lessons.algebra import Multivector
 
 from .geometry import PlainGeometry, SegmentSet, transform_sums
-from .inputs import array, batch, relabel, squares_finite
-from .lines import TWO_PI, Segment, diff_theta_unchecked
+from .lines import diff_theta_unchecked
+from .segment import TWO_PI, Segment
 
 __all__ = [
     "e2c",
@@ -74,29 +74,33 @@ def e2c(xy) -> Multivector:
     >>> X = e2c([3.0, 4.0]); float(X["e-"] - X["e+"]), float((X | X).scalar())
     (1.0, 0.0)
     """
-    p, single = batch(xy, "e2c", "xy", (2,))
-    squares_finite(p, "e2c", "xy")
+    p, single = checks.batch(xy, "e2c", "xy", (2,))
+    checks.magnitude(p, "e2c", "xy")
     return cga.up(_xyz(p[0] if single else p))
 
 
 def c2e(X: Multivector) -> np.ndarray:
     """The inverse of E2C (3.13): ``(x, y)`` of a conformal point of the z = 0 plane, shape (2,) or (N, 2)."""
     checks.instance(X, "c2e", "X", Multivector, "a conformal point (a Multivector)")
-    return np.asarray(relabel("c2e", "X", cga.down, X), float)[..., :2]
+    with checks.relabel("c2e", "X"):
+        xyz = cga.down(X)
+    return np.asarray(xyz, float)[..., :2]
 
 
 def segment_point_pair(segments) -> Multivector:
     """Point pairs ``PP* = E2C(p_i) ^ E2C(p_f)`` of segments (2.68, section 3.2.1); a batch for a list."""
     f = "segment_point_pair"
     if isinstance(segments, Segment):
-        return relabel(f, "segments", cga.point_pair, _xyz(segments.start), _xyz(segments.end))
+        with checks.relabel(f, "segments"):
+            return cga.point_pair(_xyz(segments.start), _xyz(segments.end))
     if not isinstance(segments, (list, tuple)) or not segments:
         raise checks.fail(f, "segments", f"expected a Segment or a non-empty list of them, got {segments!r:.60}")
     for s in segments:
         checks.instance(s, f, "segments", Segment, "a Segment or a list of them")
     starts = np.array([s.start for s in segments])
     ends = np.array([s.end for s in segments])
-    return relabel(f, "segments", cga.point_pair, _xyz(starts), _xyz(ends))
+    with checks.relabel(f, "segments"):
+        return cga.point_pair(_xyz(starts), _xyz(ends))
 
 
 def point_pair_structure(PP: Multivector) -> dict:
@@ -112,7 +116,7 @@ def point_pair_structure(PP: Multivector) -> dict:
     -------
     dict with ``start``, ``end`` (2,), ``line`` (Multivector), ``rho``, ``closest_point`` (2,), ``theta``, ``abc``
 
-    >>> from cga_lessons.mapping2d.lines import Segment
+    >>> from cga_lessons.mapping2d import Segment
     >>> d = point_pair_structure(segment_point_pair(Segment([1.0, -1.0], [1.0, 1.0])))
     >>> round(d["rho"], 12), round(d["theta"], 12), (d["closest_point"].round(12) + 0.0).tolist()
     (1.0, 0.0, [1.0, 0.0])
@@ -121,7 +125,8 @@ def point_pair_structure(PP: Multivector) -> dict:
     checks.instance(PP, f, "PP", Multivector, "a point pair (a Multivector)")
     if PP.shape:
         raise checks.fail(f, "PP", f"expected one point pair, got a batch of shape {PP.shape}")
-    p1, p2 = relabel(f, "PP", cga.point_pair_endpoints, PP)  # (2.131)
+    with checks.relabel(f, "PP"):
+        p1, p2 = cga.point_pair_endpoints(PP)  # (2.131)
     L = PP ^ cga.einf
     rho = float(cga.point_line_distance(np.zeros(3), L))  # (3.14) = (2.130) with x = e0
     closest = np.asarray(cga.line_closest_point(L), float)[:2]  # (3.15) = (2.129)
@@ -148,8 +153,8 @@ def robot_motor(pose) -> Multivector:
 
 def _planar_pose(value, func: str, name: str) -> np.ndarray:
     """A pose (3,) whose position's square is finite (a motor squares it)."""
-    p = array(value, func, name, (3,))
-    squares_finite(p[:2], func, name)
+    p = checks.array(value, func, name, (3,))
+    checks.magnitude(p[:2], func, name)
     return p
 
 
@@ -180,7 +185,7 @@ def laser_motor(pose, mount=(0.0, 0.0, 0.0), printed: bool = False) -> Multivect
     f = "laser_motor"
     pose, mount = _planar_pose(pose, f, "pose"), _planar_pose(mount, f, "mount")
     printed = checks.flag(printed, f, "printed")
-    squares_finite(np.abs(pose[:2]) + np.abs(mount[:2]), f, "pose, mount")
+    checks.magnitude(np.abs(pose[:2]) + np.abs(mount[:2]), f, "pose, mount")
     M_robot = _motor(pose)
     M_lr = _motor(mount)  # (3.16) M_laser-robot = T_laser-robot R_laser-robot
     if printed:
@@ -234,10 +239,10 @@ def sphere_case(
     """
     f = "sphere_case"
     ends = {k: v for k, v in (("g_start", g_start), ("g_end", g_end), ("l_start", l_start), ("l_end", l_end))}
-    ends = {k: squares_finite(array(v, f, k, (2,)), f, k) for k, v in ends.items()}
+    ends = {k: checks.magnitude(checks.array(v, f, k, (2,)), f, k) for k, v in ends.items()}
     angle_gate = checks.real(angle_gate, f, "angle_gate", low=0.0)
     xi_d = checks.real(xi_d, f, "xi_d", low=0.0)
-    margin = checks.real(margin, f, "margin", low=0.0, high=1e150)
+    margin = checks.real(margin, f, "margin", low=0.0, high=checks.MAX_MAGNITUDE)
     for a, b in (("g_start", "g_end"), ("l_start", "l_end")):
         if np.array_equal(ends[a], ends[b]):
             raise checks.degenerate(f, f"{a}, {b}", "the segment's ends coincide")

@@ -18,7 +18,7 @@ import numpy as np
 from cga_lessons import checks
 
 from .geometry import SegmentSet
-from .inputs import array, covariance, squares_finite, vector
+from .inputs import covariance, vector
 from .laser import OdometryModel
 from .poses import relative_unchecked, wrap_unchecked
 
@@ -62,7 +62,7 @@ def theta_correction(dth, weights=None) -> float:
 
 def _weights(weights, n, func: str, name: str = "weights") -> np.ndarray:
     """Weights (n,) (``n`` None: any length): finite, >= 0, not all zero."""
-    w = array(weights, func, name, (n,))
+    w = checks.array(weights, func, name, (n,))
     if np.any(w < 0) or not np.any(w > 0):
         raise checks.fail(func, name, "must be >= 0 and not all zero")
     return w
@@ -112,7 +112,7 @@ def translation_correction(rho_g, rho_l, theta_l, weights=None, weak_ratio: floa
     if along is not None:
         if not isinstance(along, (tuple, list)) or len(along) != 2:
             raise checks.fail(f, "along", "expected a pair (offsets (k, 2), weights (k,))")
-        off = array(along[0], f, "along", (None, 2))
+        off = checks.array(along[0], f, "along", (None, 2))
         along = None if len(off) == 0 else (off, _weights(along[1], len(off), f, "along"))
     with np.errstate(over="ignore", invalid="ignore"):
         t = _translation(rho_g, rho_l, theta_l, w, weak_ratio, along)
@@ -191,22 +191,22 @@ def pose_correction(dth, var_theta, offset, var_offset, normal, lever, prior_cov
     f = "pose_correction"
     dth, vt, off = vector(dth, f, "dth"), vector(var_theta, f, "var_theta"), vector(offset, f, "offset")
     vo = vector(var_offset, f, "var_offset", finite=False)
-    normal = array(normal, f, "normal", (None, 2))
-    lever = array(lever, f, "lever", (None, 2))
+    normal = checks.array(normal, f, "normal", (None, 2))
+    lever = checks.array(lever, f, "lever", (None, 2))
     checks.same_length(f, dth=dth, var_theta=vt, offset=off, var_offset=vo, normal=normal, lever=lever)
     if np.any(vt <= 0):
         raise checks.fail(f, "var_theta", "variances must be > 0")
     if np.any(np.isnan(vo)) or np.any(vo <= 0):
         raise checks.fail(f, "var_offset", "variances must be > 0 (inf: the offsets left out)")
     for name, v in (("dth", dth), ("offset", off), ("normal", normal), ("lever", lever)):
-        squares_finite(v, f, name)
+        checks.magnitude(v, f, name)
     prior = None if prior_cov is None else covariance(prior_cov, f, "prior_cov")
-    prior_offset = None if prior_offset is None else array(prior_offset, f, "prior_offset", (3,))
+    prior_offset = None if prior_offset is None else checks.array(prior_offset, f, "prior_offset", (3,))
     if extra is not None:
         if not isinstance(extra, (tuple, list)) or len(extra) != 3:
             raise checks.fail(f, "extra", "expected a triple (H (k, 3), r (k,), w (k,))")
-        H = array(extra[0], f, "extra", (None, 3))
-        extra = (H, array(extra[1], f, "extra", (len(H),)), array(extra[2], f, "extra", (len(H),)))
+        H = checks.array(extra[0], f, "extra", (None, 3))
+        extra = (H, checks.array(extra[1], f, "extra", (len(H),)), checks.array(extra[2], f, "extra", (len(H),)))
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
         A, b = _normal_equations(dth, vt, off, vo, normal, lever, prior, prior_offset, extra)
     checks.finite_result(np.append(A, b), f, "the measurements (their weights)")
@@ -257,7 +257,7 @@ def line_variances(segs: SegmentSet, centre, range_noise: float, angle_floor: fl
     f = "line_variances"
     what = "a SegmentSet (SegmentSet.from_segments(list of Segment))"
     segs = checks.instance(segs, f, "segs", SegmentSet, what)
-    centre = squares_finite(array(centre, f, "centre", (2,)), f, "centre")
+    centre = checks.magnitude(checks.array(centre, f, "centre", (2,)), f, "centre")
     noise = np.float64(checks.real(range_noise, f, "range_noise", low=0.0))  # a NumPy float: overflows to inf
     floors = [
         np.float64(checks.real(v, f, k, low=0.0))

@@ -7,7 +7,7 @@ from scipy.spatial import cKDTree
 
 from cga_lessons import checks
 
-from .inputs import array, numbers, squares_finite
+from .inputs import numbers
 from .poses import wrap_unchecked
 from .segment import Segment
 
@@ -26,8 +26,8 @@ def pose_errors(poses, truth):
     (float, float)
     """
     f = "pose_errors"
-    p = array(poses, f, "poses", (None, 3), at_least=1)
-    t = array(truth, f, "truth", (len(p), 3))
+    p = checks.array(poses, f, "poses", (None, 3), at_least=1)
+    t = checks.array(truth, f, "truth", (len(p), 3))
     with np.errstate(over="ignore", invalid="ignore"):
         pos = np.sqrt(np.mean(np.sum((p[:, :2] - t[:, :2]) ** 2, axis=1)))
         head = np.sqrt(np.mean(wrap_unchecked(p[:, 2] - t[:, 2]) ** 2))
@@ -59,8 +59,8 @@ def map_errors(segments, walls):
     segments = _segments(segments, f)
     walls = numbers(walls, f, "walls")
     flat = walls.ndim == 2  # segments as rows (x0, y0, x1, y1)
-    walls = array(walls, f, "walls", (None, 4) if flat else (None, 2, 2), at_least=1).reshape(-1, 2, 2)
-    squares_finite(walls, f, "walls")
+    walls = checks.array(walls, f, "walls", (None, 4) if flat else (None, 2, 2), at_least=1).reshape(-1, 2, 2)
+    checks.magnitude(walls, f, "walls")
     if not segments:
         return np.zeros(0)
     pts = np.array([p for s in segments for p in (s.start, s.end)])
@@ -85,8 +85,8 @@ def map_point_errors(segments, points):
     """
     f = "map_point_errors"
     segments = _segments(segments, f)
-    ref = array(points, f, "points", (None, 2))
-    squares_finite(ref, f, "points")
+    ref = checks.array(points, f, "points", (None, 2))
+    checks.magnitude(ref, f, "points")
     if not segments or len(ref) == 0:
         return np.zeros(0)
     ends = np.array([p for s in segments for p in (s.start, s.end)])

@@ -18,7 +18,6 @@ import numpy as np
 
 from cga_lessons import checks
 
-from .inputs import array, squares_finite
 from .lines import diff_theta_unchecked
 from .params import MapParams
 from .poses import compose_unchecked
@@ -46,10 +45,10 @@ class SegmentSet:
 
     def __post_init__(self):
         f = "SegmentSet"
-        self.start = array(self.start, f, "start", (None, 2))
-        self.end = array(self.end, f, "end", (None, 2))
-        self.sums = array(self.sums, f, "sums", (None, 6))
-        edge = array(self.edge, f, "edge", (None, 2))
+        self.start = checks.array(self.start, f, "start", (None, 2))
+        self.end = checks.array(self.end, f, "end", (None, 2))
+        self.sums = checks.array(self.sums, f, "sums", (None, 6))
+        edge = checks.array(self.edge, f, "edge", (None, 2))
         checks.same_length(f, start=self.start, end=self.end, sums=self.sums, edge=edge)
         if np.any(edge < 0) or np.any(edge > 2**53) or np.any(edge != np.round(edge)):
             raise checks.fail(f, "edge", "must hold whole numbers from 0 to 2**53 (how often each end was an edge)")
@@ -304,7 +303,7 @@ def _inputs(func: str, G, L, centre, geometry):
     """The checked segment sets, centre and geometry of :func:`proximity_matrix` and :func:`correspondences`."""
     G = checks.instance(G, func, "G", SegmentSet, "a SegmentSet (SegmentSet.from_segments(list of Segment))")
     L = checks.instance(L, func, "L", SegmentSet, "a SegmentSet (SegmentSet.from_segments(list of Segment))")
-    centre = squares_finite(array(centre, func, "centre", (2,)), func, "centre")
+    centre = checks.magnitude(checks.array(centre, func, "centre", (2,)), func, "centre")
     if geometry is None:
         geometry = PlainGeometry()
     what = "a PlainGeometry or a ConformalGeometry (or None)"

@@ -12,7 +12,7 @@ import scipy.sparse.linalg as spla
 
 from cga_lessons import checks
 
-from .inputs import array, broadcast, covariance, pose_array
+from .inputs import broadcast, covariance, pose_array
 from .observations import Growing
 from .poses import wrap_unchecked
 
@@ -61,7 +61,7 @@ class PoseGraph:
         i, j = checks.integer(i, f, "i", low=0), checks.integer(j, f, "j", low=0)
         if i == j:
             raise checks.fail(f, "j", f"an edge ties two different poses, got i = j = {i}")
-        z = array(z, f, "z", (3,))
+        z = checks.array(z, f, "z", (3,))
         info = covariance(cov, f, "cov")
         self.i.append(i)
         self.j.append(j)
@@ -95,7 +95,7 @@ class PoseGraph:
         return relative_pose_unchecked(np.array(self.z), relative_pose_unchecked(x[self.i], x[self.j]))
 
     def _poses(self, poses, func: str) -> np.ndarray:
-        x = array(poses, func, "poses", (None, 3))
+        x = checks.array(poses, func, "poses", (None, 3))
         last = max(max(self.i, default=-1), max(self.j, default=-1))
         if len(x) <= last:
             raise checks.fail(func, "poses", f"{len(x)} poses, but an edge ties pose {last}")

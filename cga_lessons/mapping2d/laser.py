@@ -26,10 +26,8 @@ import numpy as np
 
 from cga_lessons import checks
 
-from .carmen import CarmenLog, read_carmen_log
-from .inputs import array, batch, generator, numbers, pose, reach, scan, scan_list
-from .laser_facts import no_return_codes
-from .poses import compose, compose_unchecked, invert, relative, relative_unchecked, wrap_angle
+from .inputs import numbers, pose, reach, scan, scan_list
+from .poses import compose_unchecked, relative_unchecked
 
 __all__ = [
     "Scene",
@@ -39,15 +37,8 @@ __all__ = [
     "simulate_scans",
     "scan_points",
     "scans_to_world",
-    "compose",
-    "invert",
-    "relative",
-    "wrap_angle",
     "OdometryModel",
     "simulate_odometry",
-    "CarmenLog",
-    "read_carmen_log",
-    "no_return_codes",
 ]
 
 
@@ -83,9 +74,9 @@ class Scene:
         if isinstance(self.polygons, (str, bytes)) or not hasattr(self.polygons, "__iter__"):
             raise checks.fail(f, "polygons", f"expected a list of (k, 2) arrays, got {type(self.polygons).__name__}")
         self.polygons = [
-            array(p, f, f"polygons: polygon {i}", (None, 2), at_least=2) for i, p in enumerate(self.polygons)
+            checks.array(p, f, f"polygons: polygon {i}", (None, 2), at_least=2) for i, p in enumerate(self.polygons)
         ]
-        self.trajectory = batch(self.trajectory, f, "trajectory", (3,))[0]
+        self.trajectory = checks.batch(self.trajectory, f, "trajectory", (3,))[0]
         segs = [np.stack([p, np.roll(p, -1, axis=0)], axis=1) for p in self.polygons]
         self.walls = np.concatenate(segs) if segs else np.zeros((0, 2, 2))
 
@@ -153,7 +144,7 @@ def _walls(scene, func: str) -> np.ndarray:
     if isinstance(scene, (str, bytes)) or scene is None or isinstance(scene, (int, float)):
         raise checks.fail(func, "scene", f"expected a Scene or wall segments (W, 2, 2), got {type(scene).__name__}")
     walls = numbers(scene, func, "scene")
-    walls = array(walls, func, "scene", (None, 4) if walls.ndim == 2 else (None, 2, 2))
+    walls = checks.array(walls, func, "scene", (None, 4) if walls.ndim == 2 else (None, 2, 2))
     return walls.reshape(-1, 2, 2)
 
 
@@ -218,9 +209,9 @@ def simulate_scan(
     3.0
     """
     f = "simulate_scan"
-    walls, where = _walls(scene, f), array(pose, f, "pose", (3,))
+    walls, where = _walls(scene, f), checks.array(pose, f, "pose", (3,))
     settings = _settings(f, n_beams, fov, max_range, range_noise, mount)
-    return _simulate(walls, where, generator(rng, f, "rng", optional=True), *settings)
+    return _simulate(walls, where, checks.generator(rng, f, "rng", optional=True), *settings)
 
 
 def _settings(func: str, n_beams, fov, max_range, range_noise, mount) -> tuple:
@@ -265,8 +256,8 @@ def simulate_scans(
         if not isinstance(scene, Scene):
             raise checks.fail(f, "poses", "wall segments have no trajectory of their own: pass poses")
         poses = scene.trajectory
-    poses = batch(poses, f, "poses", (3,))[0]
-    rng = generator(rng, f, "rng", optional=True)
+    poses = checks.batch(poses, f, "poses", (3,))[0]
+    rng = checks.generator(rng, f, "rng", optional=True)
     settings = _settings(f, n_beams, fov, max_range, range_noise, mount)
     return [_simulate(walls, p, rng, *settings) for p in poses]
 
@@ -311,7 +302,7 @@ def scans_to_world(scans, poses, max_range: float = np.inf, mount=(0.0, 0.0, 0.0
     """
     f = "scans_to_world"
     scans = scan_list(scans, f)
-    poses = batch(poses, f, "poses", (3,))[0]
+    poses = checks.batch(poses, f, "poses", (3,))[0]
     checks.same_length(f, scans=scans, poses=poses)
     max_range = reach(max_range, f, "max_range")
     mount = pose(mount, f, "mount")
@@ -368,8 +359,8 @@ class OdometryModel:
     def increments(self, trajectory, rng) -> np.ndarray:
         """Noisy increments ``(T - 1, 3)`` of a trajectory ``(T, 3)``."""
         f = "OdometryModel.increments"
-        traj = batch(trajectory, f, "trajectory", (3,))[0]
-        return checks.finite_result(self._increments(traj, generator(rng, f, "rng")), f, "trajectory")
+        traj = checks.batch(trajectory, f, "trajectory", (3,))[0]
+        return checks.finite_result(self._increments(traj, checks.generator(rng, f, "rng")), f, "trajectory")
 
     def _increments(self, traj, rng):
         inc = relative_unchecked(traj[:-1], traj[1:])
@@ -422,10 +413,10 @@ def simulate_odometry(trajectory, rng, model: OdometryModel | None = None) -> np
         robot starts at its own origin).
     """
     f = "simulate_odometry"
-    traj = batch(trajectory, f, "trajectory", (3,), at_least=1)[0]
+    traj = checks.batch(trajectory, f, "trajectory", (3,), at_least=1)[0]
     if rng is None:
         raise checks.fail(f, "rng", "pass rng=numpy.random.default_rng(seed)")
-    rng = generator(rng, f, "rng")
+    rng = checks.generator(rng, f, "rng")
     model = OdometryModel() if model is None else checks.instance(model, f, "model", OdometryModel, "an OdometryModel")
     inc = model._increments(traj, rng)
     out = np.empty_like(traj)

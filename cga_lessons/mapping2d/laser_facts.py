@@ -71,7 +71,7 @@ def returns_reach(ranges, coverage: float = 0.99) -> float:
     ----------
     ranges : array_like
         The log's readings (any shape; ``inf`` for no return, as
-        :func:`cga_lessons.mapping2d.laser.read_carmen_log` gives them after its :func:`no_return_codes`).
+        :func:`cga_lessons.mapping2d.carmen.read_carmen_log` gives them after its :func:`no_return_codes`).
     coverage : float
         In (0, 1].
 

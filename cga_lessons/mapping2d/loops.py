@@ -165,25 +165,36 @@ def find_loop(builder, k, poses, L, points, fov, window):
     max_shift = min(p.loop_max_shift, 3.0 * sigma_xy + p.loop_shift_tol)
     wide = max_shift > b.max_range  # the revisit may lie out of the drifted pose's view: old lines of the window
     cand = b.near(pose[:2], k, radius=b.max_range + max_shift, active=False) if wide else old
-    Q, O = b.G.take(recent), b.G.take(cand)
+    hypotheses = loop_hypotheses(b.geo, b.G.take(recent), b.G.take(cand), pose[:2], max_angle, max_shift, p)
+    results = _refined_hypotheses(b, k, pose, hypotheses, L, points, fov, old if not wide else None, hyp_cov)
+    found = _verify(b, k, poses, points, old, results)
+    if found is not None and results[0][0] < b.support(points, pose, old):
+        return None
+    return found
+
+
+def _refined_hypotheses(b, k, pose, hypotheses, L, points, fov, old, hyp_cov) -> list:
+    """The first two clearly different loop ``hypotheses`` of scan ``k`` (at ``pose``), each refined by the ordinary
+    correction against the old lines (``old``, or when None those visible from the hypothesis): a list of
+    ``(support, pose, cov, pairs)`` for :func:`_verify`."""
+    p = b.p
     tried, results = [], []
-    for h in loop_hypotheses(b.geo, Q, O, pose[:2], max_angle, max_shift, p):
+    for h in hypotheses:
         if not _distinct(h, tried, 2 * p.loop_shift_tol, 2 * p.loop_angle_tol):
             continue
         tried.append(h)
         _, phi, t = h
         start = np.array([pose[0] + t[0], pose[1] + t[1], pose[2] + phi])
-        here = visible_lines(b, start, fov, b.near(start[:2], k, radius=b.max_range, active=False)) if wide else old
+        here = (
+            visible_lines(b, start, fov, b.near(start[:2], k, radius=b.max_range, active=False)) if old is None else old
+        )
         if len(here) >= p.loop_min_lines:
             q, cov, pairs, _ = b.correct(L, start, hyp_cov, here, widen=False, test=False)
             if pairs is not None:
                 results.append((b.support(points, q, here), q, cov, pairs))
         if len(tried) >= 2:
             break
-    found = _verify(b, k, poses, points, old, results)
-    if found is not None and results[0][0] < b.support(points, pose, old):
-        return None
-    return found
+    return results
 
 
 def apply_loop(builder, graph, poses, k, loops):

@@ -39,7 +39,7 @@ def segment_residual_sigma(segs: SegmentSet) -> np.ndarray:
     matrix is the sum of squared perpendicular residuals; a line has two
     parameters, so it is divided by ``n - 2``.
 
-    >>> from cga_lessons.mapping2d.lines import Segment
+    >>> from cga_lessons.mapping2d import Segment
     >>> x = np.linspace(0, 1, 11); y = 0.01 * (-1.0) ** np.arange(11)
     >>> sums = [11, x.sum(), y.sum(), x @ x, x @ y, y @ y]
     >>> s = SegmentSet.from_segments([Segment((0, 0), (1, 0), 11, sums)])
@@ -66,7 +66,7 @@ def scan_range_noise(segs: SegmentSet, floor: float = RANGE_NOISE_FLOOR) -> floa
     Returns None when the scan has no segment (the caller keeps its previous
     estimate).
 
-    >>> from cga_lessons.mapping2d.lines import Segment
+    >>> from cga_lessons.mapping2d import Segment
     >>> x = np.linspace(0, 1, 11); y = 0.01 * (-1.0) ** np.arange(11)
     >>> sums = [11, x.sum(), y.sum(), x @ x, x @ y, y @ y]
     >>> round(scan_range_noise(SegmentSet.from_segments([Segment((0, 0), (1, 0), 11, sums)] * 3)), 4)

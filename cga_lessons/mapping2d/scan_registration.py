@@ -34,7 +34,6 @@ from cga_lessons import checks
 from cga_lessons.algebra import DegenerateGeometryError, Multivector
 from cga_lessons.conformal import apply_to_points, motor, motor_from_points, motor_to_matrix
 
-from .inputs import array, relabel, squares_finite
 from .poses import wrap_unchecked
 
 __all__ = ["IcpParams", "ScanRegistration", "register_scans"]
@@ -83,7 +82,7 @@ class IcpParams:
         checks.integer(self.max_iterations, f, "max_iterations", low=1)
         for name in ("max_distance", "trim", "link"):
             checks.real(getattr(self, name), f, name, low=0.0, strict_low=True)
-        if min(array(self.tolerance, f, "tolerance", (2,))) < 0:
+        if min(checks.array(self.tolerance, f, "tolerance", (2,))) < 0:
             raise checks.fail(f, "tolerance", f"must be two numbers >= 0 (m, rad), got {self.tolerance!r}")
 
 
@@ -116,7 +115,7 @@ class ScanRegistration:
 
 
 def _planar(points, func: str, name: str) -> np.ndarray:
-    arr = squares_finite(array(points, func, name, (None, 2)), func, name)
+    arr = checks.magnitude(checks.array(points, func, name, (None, 2)), func, name)
     if len(arr) < 3:
         raise checks.degenerate(func, name, f"needs at least 3 points, got {len(arr)}")
     if np.all(arr == arr[0]):
@@ -187,7 +186,7 @@ def register_scans(source, target, initial=(0.0, 0.0, 0.0), params: IcpParams | 
     func = "register_scans"
     p = IcpParams() if params is None else checks.instance(params, func, "params", IcpParams, "an IcpParams or None")
     src, tgt = _planar(source, func, "source"), _planar(target, func, "target")
-    x0 = squares_finite(array(initial, func, "initial", (3,)), func, "initial")
+    x0 = checks.magnitude(checks.array(initial, func, "initial", (3,)), func, "initial")
     tree = cKDTree(tgt)
     gaps = np.hypot(*np.diff(tgt, axis=0).T)
     link = gaps <= p.link * np.median(gaps)
@@ -206,7 +205,8 @@ def register_scans(source, target, initial=(0.0, 0.0, 0.0), params: IcpParams | 
                 f"{func}: source: only {kept} points lie within {limit:.3g} m of the target scan; "
                 "the starting pose is too far off or the scans do not overlap"
             )
-        M = relabel(func, "source, target", motor_from_points, src[keep], near[keep])
+        with checks.relabel(func, "source, target"):
+            M = motor_from_points(src[keep], near[keep])
         new = _pose_of(M)
         step = new - pose
         step[2] = wrap_unchecked(step[2])

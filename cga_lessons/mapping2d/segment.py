@@ -14,7 +14,7 @@ import numpy as np
 
 from cga_lessons import checks
 
-from .inputs import array, numbers
+from .inputs import numbers
 
 __all__ = [
     "TWO_PI",
@@ -45,8 +45,8 @@ def line_through(p, q) -> np.ndarray:
     >>> line_through([0.0, 1.0], [2.0, 1.0]).tolist() == [0.0, 2.0, -2.0]  # y = 1 (signs of zero aside)
     True
     """
-    p = array(p, "line_through", "p", (2,))
-    q = array(q, "line_through", "q", (2,))
+    p = checks.array(p, "line_through", "p", (2,))
+    q = checks.array(q, "line_through", "q", (2,))
     out = np.array([p[1] - q[1], q[0] - p[0], p[0] * q[1] - q[0] * p[1]])
     return checks.finite_result(out, "line_through", "p, q")
 
@@ -68,7 +68,7 @@ def point_line_distance(abc, points) -> np.ndarray:
     >>> float(point_line_distance([0.0, 1.0, -1.0], [3.0, 4.0]))
     3.0
     """
-    a, b, c = array(abc, "point_line_distance", "abc", (3,))
+    a, b, c = checks.array(abc, "point_line_distance", "abc", (3,))
     norm = np.hypot(a, b)
     if norm == 0:
         raise checks.fail("point_line_distance", "abc", "(a, b) is zero, not a line")
@@ -96,7 +96,7 @@ def fit_line(points):
     residuals : ndarray, shape (n,)
         Signed perpendicular distances of the points to the line.
     """
-    return fit_points(array(points, "fit_line", "points", (None, 2), at_least=2), "fit_line")
+    return fit_points(checks.array(points, "fit_line", "points", (None, 2), at_least=2), "fit_line")
 
 
 def fit_points(p: np.ndarray, func: str, name: str = "points"):
@@ -176,7 +176,7 @@ class Segment:
                 t = np.linspace(0.0, 1.0, max(self.n_points, 2))[:, None]
                 sums = point_sums(self.start + t * v)
             else:
-                sums = array(self.sums, f, "sums", (6,))
+                sums = checks.array(self.sums, f, "sums", (6,))
         checks.finite_result(np.append(sums, length), f, "start, end")
         if length == 0:
             raise checks.fail(f, "start, end", f"start and end coincide at {self.start.tolist()}")
@@ -189,7 +189,7 @@ class Segment:
         """Least-squares segment of ordered points: the fitted line, limited by the
         projections of the first and last points."""
         f = "Segment.from_points"
-        p = array(points, f, "points", (None, 2), at_least=2)
+        p = checks.array(points, f, "points", (None, 2), at_least=2)
         edges = checks.flag(start_is_edge, f, "start_is_edge"), checks.flag(end_is_edge, f, "end_is_edge")
         with np.errstate(over="ignore", invalid="ignore"):
             sums = point_sums(p)
@@ -263,7 +263,7 @@ class Segment:
         orientation keeps ``(rho, theta)`` and ``(-rho, theta + pi)`` from
         being told apart as two lines, and the two faces of a wall distinct.
         """
-        o = array(origin, "Segment.hough", "origin", (2,))
+        o = checks.array(origin, "Segment.hough", "origin", (2,))
         n = self.normal
         rho = checks.finite_result(float(n @ (self.start - o)), "Segment.hough", "origin")
         return rho, float(np.mod(np.arctan2(n[1], n[0]), TWO_PI))
@@ -273,7 +273,7 @@ class Segment:
 
         ``v' = R(theta) v + T`` applied to the end points (and to the point sums).
         """
-        x, y, th = array(pose, "Segment.transformed", "pose", (3,))
+        x, y, th = checks.array(pose, "Segment.transformed", "pose", (3,))
         R = np.array([[np.cos(th), -np.sin(th)], [np.sin(th), np.cos(th)]])
         t = np.array([x, y])
         with np.errstate(over="ignore", invalid="ignore"):

@@ -6,6 +6,8 @@ and widgets are in :mod:`cga_lessons.viz`).  This facade exports the names in ``
 
 * :mod:`~cga_lessons.relocalization.beam`: The laser beam model of the Monte Carlo localization: its parameters, and
   its likelihood for one beam
+* :mod:`~cga_lessons.relocalization.candidates`: The steps of :func:`cga_lessons.relocalization.relocalize` after
+  the hypotheses: candidates screened, verified, ranked and decided
 * :mod:`~cga_lessons.relocalization.chain`: Chains of poses, one per scan, fitted to their scans and to the odometry
   between them at once.  (Beyond chapter 5.)
 * :mod:`~cga_lessons.relocalization.coverage`: What a map knows: the space its own scans swept free and the places
@@ -54,18 +56,11 @@ and widgets are in :mod:`cga_lessons.viz`).  This facade exports the names in ``
   scan
 """
 
-from .eval import (
-    HEADING_TOLERANCE,
-    POSITION_TOLERANCE,
-    Evaluation,
-    evaluate_log,
-    evaluate_poses,
-    held_out_map_indices,
-    random_free_poses,
-    reference_from_log,
-    scan_agreement,
-)
-from .geometry import ReferenceMap, as_segment_array, estimate_range_noise, pose_error, prepare_map, transform_points
+from .beam import BeamModel
+from .candidates import Candidate
+from .eval import evaluate_log, evaluate_poses, held_out_map_indices, random_free_poses, reference_from_log
+from .evaluation import HEADING_TOLERANCE, POSITION_TOLERANCE, Evaluation, scan_agreement
+from .geometry import ReferenceMap, estimate_range_noise, pose_error, prepare_map, transform_points
 from .hough import (
     hough_comparison,
     hough_differences,
@@ -75,7 +70,7 @@ from .hough import (
     vote_matrix,
     vote_matrix_indexed,
 )
-from .likelihood import BeamModel
+from .inputs import as_segment_array
 from .lookaround import evaluate_look_around, look_around
 from .mcl import MCLEstimate, MonteCarloLocalizer
 from .mcl_config import MCLConfig
@@ -84,7 +79,6 @@ from .relocalizer import Relocalization, combined_noise, relocalize
 from .sampling import kld_bound
 from .sequence import Relocalizer, relocalize_sequence
 from .thesis import correspondences_from_votes, rotate_entities, thesis_relocalization, translate_entities
-from .verify import Candidate
 
 __all__ = [
     "MonteCarloLocalizer",

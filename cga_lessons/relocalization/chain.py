@@ -39,7 +39,6 @@ from cga_lessons import checks
 from cga_lessons.mapping2d import OdometryModel, wrap_angle
 
 from .geometry import MapLines
-from .inputs import array
 from .verify import point_normal_equations
 
 __all__ = ["Chain", "SequenceRelocalization", "refine_chains", "CHAIN_GATES", "STILL_VARIANCE"]
@@ -150,14 +149,14 @@ def refine_chains(
     stays where it is (a small damping on every pose).
     """
     func = "refine_chains"
-    P = array(chains, func, "chains", (None, None, 3)).copy()
+    P = checks.array(chains, func, "chains", (None, None, 3)).copy()
     C, n, _ = P.shape
     obs = list(observations)
-    sig = array(sigmas, func, "sigmas", (n,))
-    U = array(increments, func, "increments", (3,) if np.ndim(increments) == 1 else (None, 3)).reshape(-1, 3)
+    sig = checks.array(sigmas, func, "sigmas", (n,))
+    U = checks.array(increments, func, "increments", (3,) if np.ndim(increments) == 1 else (None, 3)).reshape(-1, 3)
     if len(U) != n - (anchor is None):
         raise checks.fail(func, "increments", f"need {n - (anchor is None)} (one per step), got {len(U)}")
-    A = None if anchor is None else array(anchor, func, "anchor", (C, 3))
+    A = None if anchor is None else checks.array(anchor, func, "anchor", (C, 3))
     if len(obs) != n:
         raise checks.fail(func, "observations", f"need {n} (one per pose of a chain), got {len(obs)}")
     if np.any(sig <= 0):

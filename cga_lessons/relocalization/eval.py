@@ -25,28 +25,15 @@ from cga_lessons import checks
 from cga_lessons.mapping2d import Scene, returns_reach, simulate_scan
 
 from .coverage import GRID_CLEARANCE, GRID_RESOLUTION, coverage_grid
-from .evaluation import HEADING_TOLERANCE, POSITION_TOLERANCE, Evaluation, record_results, scan_agreement
+from .evaluation import Evaluation, record_results
 from .geometry import ReferenceMap, reference_map
-from .inputs import (
-    batch,
-    check_indices,
-    check_laser,
-    check_log,
-    check_rng,
-    check_scans_at_poses,
-    check_scene,
-    coordinates,
-)
+from .inputs import check_indices, check_laser, check_log, check_scans_at_poses, check_scene
 from .logmap import line_map_from_scans
 from .params import check_relocalize_kw
 from .relocalizer import relocalize
 
 __all__ = [
-    "POSITION_TOLERANCE",
-    "HEADING_TOLERANCE",
     "random_free_poses",
-    "scan_agreement",
-    "Evaluation",
     "evaluate_poses",
     "map_from_log",
     "reference_from_log",
@@ -79,7 +66,7 @@ def random_free_poses(scene: Scene, n: int, rng, clearance: float = 0.3) -> np.n
     func = "random_free_poses"
     check_scene(scene, func)
     n = checks.integer(n, func, "n", low=1)
-    check_rng(rng, func)
+    checks.generator(rng, func)
     clearance = checks.real(clearance, func, "clearance", low=0.0)
     walls = scene.walls
     lo, hi = walls.reshape(-1, 2).min(axis=0), walls.reshape(-1, 2).max(axis=0)
@@ -141,9 +128,9 @@ def evaluate_poses(
     func = "evaluate_poses"
     check_scene(scene, func)
     ref = reference_map(map_segments, func)
-    poses, _ = batch(poses, func, "poses", (3,))
-    coordinates(poses[:, :2], func, "poses")
-    check_rng(rng, func)
+    poses, _ = checks.batch(poses, func, "poses", (3,))
+    checks.magnitude(poses[:, :2], func, "poses")
+    checks.generator(rng, func)
     laser = check_laser(func, range_noise=range_noise, max_range=max_range, n_beams=n_beams, fov=fov)
     range_noise, max_range = laser.pop("range_noise"), laser["max_range"]
     witness = checks.flag(witness, func, "witness")

@@ -16,8 +16,8 @@ import numpy as np
 from cga_lessons import checks
 from cga_lessons.mapping2d import Scene, simulate_scan
 
-from .geometry import as_segment_array, check_pose, pose_errors
-from .inputs import array, batch, check_laser, check_scene, coordinates
+from .geometry import pose_errors
+from .inputs import as_segment_array, check_laser, check_pose, check_scene
 from .params import STATUSES
 
 __all__ = [
@@ -47,8 +47,8 @@ def scan_agreement(walls, pose_a, pose_b, tolerance: float = 0.03, **scan_kw):
         walls = check_scene(walls, func, "walls").walls
     walls = as_segment_array(walls, func, "walls")
     pose_a = check_pose(pose_a, func, "pose_a")
-    pose_b, one = batch(pose_b, func, "pose_b", (3,))
-    coordinates(pose_b[:, :2], func, "pose_b")
+    pose_b, one = checks.batch(pose_b, func, "pose_b", (3,))
+    checks.magnitude(pose_b[:, :2], func, "pose_b")
     tolerance = checks.real(tolerance, func, "tolerance", low=0.0, strict_low=True)
     scan_kw = check_laser(func, **scan_kw)
     return agreement(walls, pose_a, pose_b if not one else pose_b[0], tolerance, **scan_kw)
@@ -181,10 +181,10 @@ def record_results(results, truths, walls, scan_kw, witness, ratio):
 
 
 def check_evaluation(ev) -> None:
-    """Check (and convert to arrays) the fields of an :class:`~cga_lessons.relocalization.eval.Evaluation`."""
+    """Check (and convert to arrays) the fields of an :class:`~cga_lessons.relocalization.evaluation.Evaluation`."""
     f = "Evaluation"
-    ev.truth = array(ev.truth, f, "truth", (None, 3))
-    ev.pose = array(ev.pose, f, "pose", (None, 3), finite=False)
+    ev.truth = checks.array(ev.truth, f, "truth", (None, 3))
+    ev.pose = checks.array(ev.pose, f, "pose", (None, 3), finite=False)
     none = np.all(np.isnan(ev.pose), axis=1)
     if not np.all(np.isfinite(ev.pose[~none])):
         raise checks.fail(f, "pose", "rows must be finite, or all NaN where no pose was returned")
@@ -192,21 +192,21 @@ def check_evaluation(ev) -> None:
     if ev.status.ndim != 1 or not all(isinstance(x, str) and x in STATUSES for x in ev.status.tolist()):
         raise checks.fail(f, "status", f"must be an array of {', '.join(map(repr, STATUSES))}")
     for name in ("position_error", "heading_error"):
-        e = array(getattr(ev, name), f, name, (None,), finite=False)
+        e = checks.array(getattr(ev, name), f, name, (None,), finite=False)
         if np.any(np.isnan(e)) or np.any(e < 0):
             raise checks.fail(f, name, "must be >= 0 (inf without a pose), not NaN")
         setattr(ev, name, e)
-    lines = array(ev.n_lines, f, "n_lines", (None,))
+    lines = checks.array(ev.n_lines, f, "n_lines", (None,))
     if np.any(lines < 0) or np.any(lines != np.round(lines)):
         raise checks.fail(f, "n_lines", "must be whole numbers >= 0")
     ev.n_lines = lines.astype(int)
-    ev.score = array(ev.score, f, "score", (None,), finite=False)
+    ev.score = checks.array(ev.score, f, "score", (None,), finite=False)
     if np.any(np.isnan(ev.score)) or np.any(ev.score == np.inf):
         raise checks.fail(f, "score", "must be finite, or -inf where no pose was returned")
-    ev.witness = array(ev.witness, f, "witness", (None,), finite=False)
+    ev.witness = checks.array(ev.witness, f, "witness", (None,), finite=False)
     if np.any((ev.witness < 0) | (ev.witness > 1)):
         raise checks.fail(f, "witness", "must lie in [0, 1] (NaN where not computed)")
-    ev.seconds = array(ev.seconds, f, "seconds", (None,))
+    ev.seconds = checks.array(ev.seconds, f, "seconds", (None,))
     if np.any(ev.seconds < 0):
         raise checks.fail(f, "seconds", "must be >= 0")
     checks.instance(ev.results, f, "results", list, "a list of results")

@@ -18,15 +18,13 @@ import numpy as np
 from cga_lessons import checks
 from cga_lessons.mapping2d import wrap_angle
 
-from .inputs import array, as_segment_array, check_pose, check_scan, coordinates
+from .inputs import as_segment_array, check_pose
 
 __all__ = [
-    "as_segment_array",  # the checks of inputs.py, re-exported
-    "check_pose",
+    # the checks of inputs.py, re-exported
     "ReferenceMap",
     "prepare_map",
     "reference_map",
-    "check_scan",
     "pose_error",
     "pose_errors",
     "range_noise",
@@ -105,7 +103,7 @@ def estimate_range_noise(ranges) -> float:
     >>> round(estimate_range_noise(r), 2)
     0.02
     """
-    return range_noise(array(ranges, "estimate_range_noise", "ranges", (None,), finite=False))
+    return range_noise(checks.array(ranges, "estimate_range_noise", "ranges", (None,), finite=False))
 
 
 def range_noise(r: np.ndarray) -> float:
@@ -141,7 +139,7 @@ def rotation_matrix(theta) -> np.ndarray:
 
 def transform_points(points, pose) -> np.ndarray:
     """Points ``(n, 2)`` of the laser frame in the map frame: ``R(theta) p + (x, y)`` (3.4)."""
-    p = coordinates(array(points, "transform_points", "points", (None, 2)), "transform_points", "points")
+    p = checks.magnitude(checks.array(points, "transform_points", "points", (None, 2)), "transform_points", "points")
     x, y, th = check_pose(pose, "transform_points")
     out = p @ rotation_matrix(th).T + np.array([x, y])
     return checks.finite_result(out, "transform_points", "points, pose: the result")

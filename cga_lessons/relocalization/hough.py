@@ -45,7 +45,7 @@ import numpy as np
 from cga_lessons import checks
 from cga_lessons.mapping2d import TWO_PI, diff_theta
 
-from .inputs import array, coordinates
+from .inputs import ndim
 
 __all__ = [
     "THETA_XI",
@@ -64,12 +64,12 @@ THETA_XI = TWO_PI / 100
 
 def endpoint_array(segments, func="hough_set", name="segments") -> np.ndarray:
     """Segments as a finite (K, 2, 2) endpoint array (no checks of length)."""
-    return coordinates(array(segments, func, name, (None, 2, 2)), func, name)
+    return checks.magnitude(checks.array(segments, func, name, (None, 2, 2)), func, name)
 
 
 def hough_array(value, func: str, name: str, *, lead: int = 1) -> np.ndarray:
     """Hough points ``(rho, theta)`` as a finite float array of shape (N, 2) (``lead`` leading axes: (..., 2))."""
-    return array(value, func, name, (None,) * lead + (2,))
+    return checks.array(value, func, name, (None,) * lead + (2,))
 
 
 def check_theta_xi(theta_xi, func: str) -> float:
@@ -86,7 +86,7 @@ def hough_set(segments, origin=(0.0, 0.0)) -> np.ndarray:
     Every segment's line ``x cos(theta) + y sin(theta) = rho`` as a point
     ``(rho, theta)`` with ``rho >= 0`` and ``theta`` in ``[0, 2 pi)``, the angle
     of the line's closest point to ``origin`` (the same numbers as
-    :attr:`cga_lessons.mapping2d.lines.Segment.rho` and ``.theta``).  A rotation about
+    :attr:`cga_lessons.mapping2d.segment.Segment.rho` and ``.theta``).  A rotation about
     ``origin`` moves every point along ``theta`` only, cyclically (section 5.1).
 
     Parameters
@@ -104,7 +104,7 @@ def hough_set(segments, origin=(0.0, 0.0)) -> np.ndarray:
     [[1.0, 0.0], [2.0, 4.712389]]
     """
     s = endpoint_array(segments)
-    origin = array(origin, "hough_set", "origin", (2,))
+    origin = checks.array(origin, "hough_set", "origin", (2,))
     return checks.finite_result(hough_points(s, origin), "hough_set", "segments, origin: the result")
 
 
@@ -148,7 +148,7 @@ def hough_differences(m, L_h, theta_xi: float = THETA_XI) -> np.ndarray:
     [[0.5, 0.02], [1.0, 0.063185]]
     """
     func = "hough_differences"
-    m = array(m, func, "m", (2,))
+    m = checks.array(m, func, "m", (2,))
     L_h = hough_array(L_h, func, "L_h")
     theta_xi = check_theta_xi(theta_xi, func)
     return checks.finite_result(_differences(m, L_h, theta_xi), func, "m, L_h: the result")
@@ -217,7 +217,7 @@ def shifted_set_corrected(L_h, rotation, translation) -> np.ndarray:
     """
     func = "shifted_set_corrected"
     L_h = hough_array(L_h, func, "L_h")
-    t = array(translation, func, "translation", (2,))
+    t = checks.array(translation, func, "translation", (2,))
     theta = L_h[:, 1] + checks.real(rotation, func, "rotation")
     rho = L_h[:, 0] + t[0] * np.cos(theta) + t[1] * np.sin(theta)
     theta = np.where(rho < 0, theta + np.pi, theta)
@@ -243,11 +243,7 @@ def hough_comparison(M_h, psi, theta_xi: float = THETA_XI) -> np.ndarray:
     """
     func = "hough_comparison"
     M_h = hough_array(M_h, func, "M_h")
-    try:
-        lead = max(np.ndim(psi) - 1, 1)
-    except ValueError:  # ragged: the check says so
-        lead = 1
-    psi = hough_array(psi, func, "psi", lead=lead)
+    psi = hough_array(psi, func, "psi", lead=max(ndim(psi) - 1, 1))
     theta_xi = check_theta_xi(theta_xi, func)
     return checks.finite_result(_comparison(M_h, psi, theta_xi), func, "M_h, psi: the comparison")
 

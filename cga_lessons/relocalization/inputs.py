@@ -10,14 +10,10 @@ from __future__ import annotations
 import numpy as np
 
 from cga_lessons import checks
-from cga_lessons.algebra import GeometryError
 from cga_lessons.mapping2d import CarmenLog, Scene, Segment
 
 __all__ = [
-    "MAX_COORDINATE",
-    "array",
-    "batch",
-    "coordinates",
+    "ndim",
     "MAX_GRID_CELLS",
     "grid_shape",
     "as_segment_array",
@@ -25,8 +21,6 @@ __all__ = [
     "check_pose",
     "check_scans_at_poses",
     "check_scene",
-    "check_rng",
-    "generator",
     "spread",
     "check_laser",
     "check_log",
@@ -34,39 +28,10 @@ __all__ = [
 ]
 
 
-#: The largest coordinate (m) accepted in a map, a scan's points or a pose: its square, and sums of a few
-#: such squares, stay finite floats (distances, the conformal embedding), so no result overflows.
-MAX_COORDINATE = 1e150
-
-
-def array(value, func: str, name: str, shape: tuple, **kw) -> np.ndarray:
-    """:func:`cga_lessons.checks.array`, and rows of different lengths refused in the same words.
-
-    (The shared check lets NumPy's ``ValueError`` about ragged rows through.)
-    """
-    try:
-        return checks.array(value, func, name, shape, **kw)
-    except GeometryError:
-        raise
-    except ValueError:
-        raise checks.fail(func, name, "must be an array of numbers (rows of one length)") from None
-
-
-def batch(value, func: str, name: str, tail: tuple, **kw):
-    """:func:`cga_lessons.checks.batch`, and rows of different lengths refused in the same words."""
-    try:
-        return checks.batch(value, func, name, tail, **kw)
-    except GeometryError:
-        raise
-    except ValueError:
-        raise checks.fail(func, name, "must be an array of numbers (rows of one length)") from None
-
-
-def coordinates(a: np.ndarray, func: str, name: str) -> np.ndarray:
-    """``a`` (finite, metres) if no entry exceeds :data:`MAX_COORDINATE` in size."""
-    if a.size and np.max(np.abs(a)) > MAX_COORDINATE:
-        raise checks.fail(func, name, f"coordinates beyond {MAX_COORDINATE:g} m: their squares overflow a float")
-    return a
+def ndim(value) -> int:
+    """The number of axes of ``value`` as an array; rows of different lengths count as one axis, which
+    :func:`cga_lessons.checks.array` then refuses with its message about rows of different lengths."""
+    return value.ndim if isinstance(value, np.ndarray) else np.asarray(value, dtype=object).ndim
 
 
 #: The most cells of a grid (the coverage grid, the likelihood field) made for the user's input: more would not
@@ -89,7 +54,7 @@ def grid_shape(lo, hi, resolution: float, func: str, name: str) -> tuple[int, in
 def as_segment_array(segments, func: str = "as_segment_array", name: str = "segments", allow_empty=False) -> np.ndarray:
     """Segments as a (K, 2, 2) float array of end points.
 
-    Accepts a list of :class:`cga_lessons.mapping2d.lines.Segment` or anything array-like
+    Accepts a list of :class:`cga_lessons.mapping2d.segment.Segment` or anything array-like
     of shape (K, 2, 2).  Raises :class:`InvalidInputError` for a wrong shape,
     NaN or inf, or (unless ``allow_empty``) no segment, and
     :class:`~cga_lessons.algebra.DegenerateGeometryError` for a segment of zero
@@ -107,7 +72,7 @@ def as_segment_array(segments, func: str = "as_segment_array", name: str = "segm
         segments = np.zeros((0, 2, 2))
     elif isinstance(segments, np.ndarray) and segments.size == 0 and segments.dtype.kind in "biuf":
         segments = segments.reshape(0, 2, 2)
-    arr = coordinates(array(segments, func, name, (None, 2, 2)), func, name)
+    arr = checks.magnitude(checks.array(segments, func, name, (None, 2, 2)), func, name)
     if len(arr) == 0 and not allow_empty:
         raise checks.fail(func, name, "is empty (no segment)")
     lengths = np.hypot(*(arr[:, 1] - arr[:, 0]).T)
@@ -141,9 +106,10 @@ def check_scan(scan, func="relocalize", name="scan"):
 
 
 def check_pose(pose, func: str, name: str = "pose") -> np.ndarray:
-    """A pose ``(x, y, theta)`` as a finite float array (3,) (``x``, ``y`` within :data:`MAX_COORDINATE`)."""
-    p = array(pose, func, name, (3,))
-    coordinates(p[:2], func, name)
+    """A pose ``(x, y, theta)`` as a finite float array (3,) (``x``, ``y`` within
+    :data:`cga_lessons.checks.MAX_MAGNITUDE`)."""
+    p = checks.array(pose, func, name, (3,))
+    checks.magnitude(p[:2], func, name)
     return p
 
 
@@ -152,8 +118,8 @@ def check_scans_at_poses(scans, poses, func: str) -> tuple[list, np.ndarray]:
     if scans is None or isinstance(scans, (str, bytes)) or not hasattr(scans, "__iter__"):
         raise checks.fail(func, "scans", f"expected a list of scans (ranges, angles), got {type(scans).__name__}")
     scans = [check_scan(s, func, f"scans[{j}]") for j, s in enumerate(scans)]
-    poses = array(poses, func, "poses", (None, 3), at_least=1)
-    coordinates(poses[:, :2], func, "poses")
+    poses = checks.array(poses, func, "poses", (None, 3), at_least=1)
+    checks.magnitude(poses[:, :2], func, "poses")
     if len(poses) != len(scans):
         raise checks.fail(func, "poses", f"must be one per scan; got {len(poses)} for {len(scans)} scan(s)")
     return scans, poses
@@ -167,26 +133,12 @@ def check_scene(scene, func: str, name: str = "scene") -> Scene:
     return scene
 
 
-def check_rng(rng, func: str, name: str = "rng") -> np.random.Generator:
-    """A :class:`numpy.random.Generator` (``numpy.random.default_rng(seed)``), or an error."""
-    return checks.instance(rng, func, name, np.random.Generator, "numpy.random.default_rng(seed)")
-
-
-def generator(rng, func: str) -> np.random.Generator:
-    """``rng`` itself, or a new Generator seeded by an int ``rng`` >= 0."""
-    if isinstance(rng, np.random.Generator):
-        return rng
-    if isinstance(rng, (bool, np.bool_)) or not isinstance(rng, (int, np.integer)) or rng < 0:
-        raise checks.fail(func, "rng", f"expected a numpy.random.Generator or an int seed >= 0, got {rng!r}")
-    return np.random.default_rng(int(rng))
-
-
 def spread(sd, func: str, name: str) -> np.ndarray:
     """Standard deviations (m, m, rad) around a pose: 10 cm, 10 cm and 2 degrees by default."""
     if sd is None:
         return np.array([0.1, 0.1, np.radians(2.0)])
-    sd = array(sd, func, name, (3,))
-    coordinates(sd[:2], func, name)
+    sd = checks.array(sd, func, name, (3,))
+    checks.magnitude(sd[:2], func, name)
     if np.any(sd < 0):
         raise checks.fail(func, name, f"must be 3 numbers >= 0, got {sd.tolist()}")
     return sd
@@ -214,17 +166,13 @@ def check_laser(func: str, **settings) -> dict:
 
 
 def check_log(log, func: str, name: str = "log") -> CarmenLog:
-    """A :class:`~cga_lessons.mapping2d.laser.CarmenLog` (read_carmen_log), or an error."""
+    """A :class:`~cga_lessons.mapping2d.carmen.CarmenLog` (read_carmen_log), or an error."""
     return checks.instance(log, func, name, CarmenLog, "a CarmenLog (read_carmen_log)")
 
 
 def check_indices(value, func: str, name: str, n: int, *, at_least: int = 1) -> np.ndarray:
     """Whole-number indices (any shape) into a sequence of ``n`` items, as a flat int array."""
-    try:
-        nd = np.ndim(value)
-    except ValueError:  # ragged: the check below says so
-        nd = 1
-    idx = array(value, func, name, (None,) * max(nd, 1)).ravel()
+    idx = checks.array(value, func, name, (None,) * max(ndim(value), 1)).ravel()
     if len(idx) < at_least:
         raise checks.fail(func, name, f"expected at least {at_least} index, got none")
     if len(idx) and (np.any(idx != np.round(idx)) or idx.min() < 0 or idx.max() >= n):

@@ -38,10 +38,9 @@ from cga_lessons import checks
 
 from .beam import BeamModel, beam_likelihood
 from .coverage import UNKNOWN, WALL, Coverage
-from .geometry import as_segment_array, check_scan
-from .inputs import array, grid_shape
+from .inputs import as_segment_array, check_scan, grid_shape
 
-__all__ = ["BeamModel", "LikelihoodField", "beam_likelihood", "check_particles"]  # the model re-exported
+__all__ = ["LikelihoodField", "check_particles"]  # the model re-exported
 
 
 def _point_segment(points, segments) -> np.ndarray:
@@ -54,7 +53,7 @@ def _point_segment(points, segments) -> np.ndarray:
 
 def check_particles(particles, func: str, name: str = "particles") -> np.ndarray:
     """Particles as a finite (N, 3) float array, N >= 1, or :class:`InvalidInputError`."""
-    return array(particles, func, name, (None, 3), at_least=1)
+    return checks.array(particles, func, name, (None, 3), at_least=1)
 
 
 class LikelihoodField:

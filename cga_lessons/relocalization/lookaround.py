@@ -6,7 +6,7 @@
 * :func:`evaluate_look_around`: relocalize such a sequence
   (:func:`cga_lessons.relocalization.sequence.relocalize_sequence`) from each
   of many poses and compare with the simulator's truth, in the terms of
-  :class:`cga_lessons.relocalization.eval.Evaluation` (success, confidently
+  :class:`cga_lessons.relocalization.evaluation.Evaluation` (success, confidently
   wrong, ambiguous, witness);
 * :func:`evaluate_log_sequences`: the same on a real log, short runs of its
   scans with its own odometry, against the map built from the rest of it.
@@ -37,8 +37,8 @@ from cga_lessons.mapping2d import (
 
 from .eval import held_out, log_reference
 from .evaluation import HEADING_TOLERANCE, POSITION_TOLERANCE, Evaluation, scan_agreement
-from .geometry import check_pose, pose_errors, reference_map
-from .inputs import array, batch, check_indices, check_laser, check_log, check_rng, check_scene, coordinates
+from .geometry import pose_errors, reference_map
+from .inputs import check_indices, check_laser, check_log, check_pose, check_scene
 from .sequence import relocalize_sequence, relocalizer_for
 
 __all__ = ["look_around", "evaluate_look_around", "evaluate_log_sequences"]
@@ -70,7 +70,7 @@ def look_around(
     func = "look_around"
     check_scene(scene, func)
     pose = check_pose(pose, func)
-    check_rng(rng, func)
+    checks.generator(rng, func)
     looks = checks.integer(looks, func, "looks", low=1)
     laser = check_laser(func, range_noise=range_noise, max_range=max_range, n_beams=n_beams, fov=fov)
     check_odometry_model(odometry_model, func)
@@ -121,9 +121,9 @@ def evaluate_look_around(
     func = "evaluate_look_around"
     check_scene(scene, func)
     ref = reference_map(map_segments, func)
-    poses, _ = batch(poses, func, "poses", (3,), at_least=1)
-    coordinates(poses[:, :2], func, "poses")
-    check_rng(rng, func)
+    poses, _ = checks.batch(poses, func, "poses", (3,), at_least=1)
+    checks.magnitude(poses[:, :2], func, "poses")
+    checks.generator(rng, func)
     looks = checks.integer(looks, func, "looks", low=1)
     stop_when_confident = checks.flag(stop_when_confident, func, "stop_when_confident")
     laser = check_laser(func, range_noise=range_noise, max_range=max_range, n_beams=n_beams, fov=fov)
@@ -231,7 +231,7 @@ def evaluate_log_sequences(
         raise checks.fail(
             func, "starts, length, stride", f"runs reach scan {runs.max()}, past the log (0..{len(log) - 1})"
         )
-    odo = log.odometry if odometry is None else array(odometry, func, "odometry", (len(log), 3))
+    odo = log.odometry if odometry is None else checks.array(odometry, func, "odometry", (len(log), 3))
     exclude = checks.integer(exclude, func, "exclude", low=0)
     map_step = checks.integer(map_step, func, "map_step", low=1)
     coverage = checks.flag(coverage, func, "coverage")

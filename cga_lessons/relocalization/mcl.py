@@ -57,9 +57,9 @@ from cga_lessons import checks
 from cga_lessons.mapping2d import compose, wrap_angle
 
 from .coverage import Coverage
-from .geometry import ReferenceMap, as_segment_array, check_pose, check_scan, prepare_map
+from .geometry import ReferenceMap, prepare_map
 from .history import ScanHistory, merge, normalise
-from .inputs import array, generator, spread
+from .inputs import as_segment_array, check_pose, check_scan, spread
 from .likelihood import LikelihoodField
 from .mcl_config import MCLConfig
 from .mcl_proposal import confirms, propose
@@ -67,7 +67,7 @@ from .mcl_search import CoarseSearch
 from .params import STATUSES
 from .sampling import kld_resample, mode_estimate, tempering
 
-__all__ = ["MCLConfig", "MCLEstimate", "MonteCarloLocalizer"]
+__all__ = ["MCLEstimate", "MonteCarloLocalizer"]
 
 
 @dataclass
@@ -119,8 +119,8 @@ class MCLEstimate:
 
     def __post_init__(self):
         f = "MCLEstimate"
-        self.pose = array(self.pose, f, "pose", (3,))
-        self.covariance = array(self.covariance, f, "covariance", (3, 3))
+        self.pose = checks.array(self.pose, f, "pose", (3,))
+        self.covariance = checks.array(self.covariance, f, "covariance", (3, 3))
         self.converged = checks.flag(self.converged, f, "converged")
         self.mass = checks.real(self.mass, f, "mass", low=0.0, high=1.0 + 1e-9)
         self.n_particles = checks.integer(self.n_particles, f, "n_particles", low=1)
@@ -180,7 +180,7 @@ class MonteCarloLocalizer:
         if coverage is not None:
             checks.instance(coverage, func, "coverage", Coverage, "a Coverage (build_coverage) or None")
         self.config = cfg = config or MCLConfig()
-        self.rng = generator(rng, func)
+        self.rng = checks.generator(rng, func, seeds=True)
         start = None
         if initial_pose is not None:
             start = check_pose(initial_pose, func, "initial_pose"), spread(initial_sd, func, "initial_sd")
@@ -266,7 +266,7 @@ class MonteCarloLocalizer:
         ----------
         odometry_increment : array_like, shape (3,)
             The laser's motion since the last scan as the odometry reports it,
-            in the frame of its previous pose (:func:`cga_lessons.mapping2d.laser.relative`
+            in the frame of its previous pose (:func:`cga_lessons.mapping2d.poses.relative`
             of two odometry poses); zeros for the first scan.
         scan : (ranges, angles)
             Arrays (n,) in the laser frame; ``inf`` or NaN for no return.

@@ -10,7 +10,6 @@ from cga_lessons import checks
 from cga_lessons.mapping2d import OdometryModel
 
 from .beam import BeamModel
-from .inputs import array, coordinates
 from .mcl_search import SearchConfig
 from .sampling import KLDConfig
 
@@ -147,7 +146,7 @@ class MCLConfig:
         for name in ("random_threshold", "max_random_fraction", "proposal_fraction"):
             self._set(name, checks.real(getattr(self, name), f, name, low=0.0, high=1.0, strict_high=True))
         for name, n in (("proposal_sd", 3), ("gate", 2), ("converged_sd", 2)):
-            v = coordinates(array(getattr(self, name), f, name, (n,)), f, name)
+            v = checks.magnitude(checks.array(getattr(self, name), f, name, (n,)), f, name)
             if np.any(v <= 0):
                 raise checks.fail(f, name, f"must be {n} numbers > 0, got {v.tolist()}")
         for name in ("proposal_candidates", "history", "converged_updates", "confirmations"):

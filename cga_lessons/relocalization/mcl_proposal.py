@@ -7,7 +7,7 @@ particle set (:meth:`~cga_lessons.relocalization.mcl.MonteCarloLocalizer.inject`
 * ``"ok"``: particles around its pose; the answer *confirms* the filter's
   mode when it lies within ``gate`` of it;
 * ``"ambiguous"``: particles around each of its *tied* candidates (those
-  scoring at least :func:`~cga_lessons.relocalization.verify.tie_bar`), the
+  scoring at least :func:`~cga_lessons.relocalization.candidates.tie_bar`), the
   same number and spread around each, weighed like every newcomer by the
   remembered scans.  Chapter 5 cannot tell these places apart from one scan;
   the filter can, with the scans before it.  The answer confirms the mode when
@@ -76,9 +76,9 @@ class Proposal:
 
 def propose(mcl, scan, inject: bool = True) -> Proposal:
     """Relocalize ``scan`` by chapter 5 and, if ``inject``, draw particles of ``mcl`` around its answer."""
+    from .candidates import tie_bar
     from .params import RelocParams
     from .relocalizer import relocalize
-    from .verify import tie_bar
 
     cfg = mcl.config
     r = relocalize(mcl.reference, scan=scan, max_range=cfg.beam.max_range)

@@ -19,8 +19,6 @@ import numpy as np
 from cga_lessons import checks
 from cga_lessons.mapping2d import OdometryModel, compose, relative, wrap_angle
 
-from .inputs import array
-
 __all__ = ["REGISTRATION_XY", "REGISTRATION_THETA", "ODOMETRY_GATE", "odometry_misfit"]
 
 #: Registration error (m, rad) of one scan on a map built from a log: the robust spread of the bundled CARMEN
@@ -56,8 +54,8 @@ def odometry_misfit(poses, odometry, model: OdometryModel | None = None) -> int 
     2
     """
     func = "odometry_misfit"
-    P = array(poses, func, "poses", (None, 3))
-    O = array(odometry, func, "odometry", (None, 3))
+    P = checks.array(poses, func, "poses", (None, 3))
+    O = checks.array(odometry, func, "odometry", (None, 3))
     checks.same_length(func, poses=P, odometry=O)
     m = OdometryModel() if model is None else model
     for j in range(1, len(P)):

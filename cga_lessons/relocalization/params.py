@@ -15,8 +15,6 @@ import numpy as np
 from cga_lessons import checks
 from cga_lessons.mapping2d import extract_segments
 
-from .inputs import MAX_COORDINATE
-
 __all__ = [
     "STATUSES",
     "RelocParams",
@@ -94,7 +92,7 @@ class RelocParams:
         A clearly different pose scoring at least this fraction of the best makes the answer ambiguous.
     deficit_ratio : float
         ... or one whose deficit ``1 - score`` is at most ``1 + deficit_ratio``
-        times the best's (:func:`~cga_lessons.relocalization.verify.tie_bar`).
+        times the best's (:func:`~cga_lessons.relocalization.candidates.tie_bar`).
         1: measured on held-out scans of the Intel and ACES logs (every 7th,
         map from the rest by chapter 3's builder, with its coverage grid), the
         second-best pose of a confident wrong answer scored 0.43-0.96 of the
@@ -150,21 +148,21 @@ class RelocParams:
 #: The ranges of RelocParams' real fields (keywords of :func:`cga_lessons.checks.real`).
 _PARAM_RANGES = {
     "xi_theta": dict(low=0.0, high=np.pi, strict_low=True),
-    "xi_rho": dict(low=0.0, strict_low=True, high=MAX_COORDINATE),
+    "xi_rho": dict(low=0.0, strict_low=True, high=checks.MAX_MAGNITUDE),
     "parallel_tol": dict(low=0.0, high=np.pi / 2, strict_low=True),
     "min_anchor_angle": dict(low=0.0, high=np.pi / 2),
-    "overlap_margin": dict(low=0.0, high=MAX_COORDINATE),
+    "overlap_margin": dict(low=0.0, high=checks.MAX_MAGNITUDE),
     "min_overlap": dict(low=0.0, high=1.0),
-    "line_tolerance": dict(low=0.0, strict_low=True, high=MAX_COORDINATE),
-    "slide_step": dict(low=0.0, high=MAX_COORDINATE),
-    "slide_below": dict(low=0.0, high=MAX_COORDINATE),
+    "line_tolerance": dict(low=0.0, strict_low=True, high=checks.MAX_MAGNITUDE),
+    "slide_step": dict(low=0.0, high=checks.MAX_MAGNITUDE),
+    "slide_below": dict(low=0.0, high=checks.MAX_MAGNITUDE),
     "rotation_vote_ratio": dict(low=0.0, high=1.0),
     "quick_ratio": dict(low=0.0, high=1.0),
-    "inlier_distance": dict(low=0.0, strict_low=True, high=MAX_COORDINATE),
-    "ray_margin": dict(low=0.0, high=MAX_COORDINATE),
+    "inlier_distance": dict(low=0.0, strict_low=True, high=checks.MAX_MAGNITUDE),
+    "ray_margin": dict(low=0.0, high=checks.MAX_MAGNITUDE),
     "ambiguity_ratio": dict(low=0.0, high=1.0, strict_low=True),
     "deficit_ratio": dict(low=0.0),
-    "distinct_position": dict(low=0.0, strict_low=True, high=MAX_COORDINATE),
+    "distinct_position": dict(low=0.0, strict_low=True, high=checks.MAX_MAGNITUDE),
     "distinct_heading": dict(low=0.0, high=np.pi, strict_low=True),
     "min_score": dict(high=1.0),
 }
@@ -175,7 +173,7 @@ _PARAM_COUNTS = ("n_rotations", "n_anchor_pairs", "n_screen", "screen_beams", "n
 def check_param(name: str, value, func: str):
     """One field of :class:`RelocParams` checked in the name of ``func``: its counts are whole numbers >= 1,
     its thresholds finite numbers in their ranges, distances (m) within
-    :data:`~cga_lessons.relocalization.inputs.MAX_COORDINATE` (``slide_below`` may be ``inf``: always slide)."""
+    :data:`~cga_lessons.checks.MAX_MAGNITUDE` (``slide_below`` may be ``inf``: always slide)."""
     if name in _PARAM_COUNTS:
         return checks.integer(value, func, name, low=1)
     if name == "slide_below" and isinstance(value, (float, np.floating)) and value == np.inf:

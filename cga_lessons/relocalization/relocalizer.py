@@ -61,23 +61,15 @@ import numpy as np
 from cga_lessons import checks
 from cga_lessons.mapping2d import extract_segments
 
-from .geometry import (
-    Observation,
-    ReferenceMap,
-    ScanLines,
-    as_segment_array,
-    check_scan,
-    range_noise,
-    reference_map,
-)
-from .inputs import array
+from .candidates import Candidate, decide, screen_hypotheses, verify_hypotheses
+from .geometry import Observation, ReferenceMap, ScanLines, range_noise, reference_map
+from .inputs import as_segment_array, check_scan
 from .params import STATUSES, RelocParams, check_extraction, check_score, noise_scaled, resolve_params
 from .search import pose_hypotheses, propose_rotations
 from .thesis import thesis_relocalization
-from .verify import Candidate, decide, match_lines, pose_covariance, screen_hypotheses, verify_hypotheses
+from .verify import match_lines, pose_covariance
 
 __all__ = [
-    "RelocParams",
     "Relocalization",
     "relocalize",
     "combined_noise",
@@ -146,20 +138,20 @@ class Relocalization:
         self.status = checks.choice(self.status, f, "status", STATUSES)
         if self.pose is None and self.status != "failed":
             raise checks.fail(f, "pose", f"None only for a failed result, not one with status {self.status!r}")
-        self.pose = None if self.pose is None else array(self.pose, f, "pose", (3,))
+        self.pose = None if self.pose is None else checks.array(self.pose, f, "pose", (3,))
         self.score = check_score(self.score, f, failed=self.status == "failed")
         self.ambiguous = checks.flag(self.ambiguous, f, "ambiguous")
         checks.instance(self.candidates, f, "candidates", list, "a list of Candidate")
         for c in self.candidates:
             checks.instance(c, f, "candidates", Candidate, "a list of Candidate")
-        pairs = array(self.correspondences, f, "correspondences", (None, 2))
+        pairs = checks.array(self.correspondences, f, "correspondences", (None, 2))
         if np.any(pairs < 0) or np.any(pairs != np.round(pairs)):
             raise checks.fail(f, "correspondences", "must be whole numbers >= 0 (map index, scan index)")
         self.correspondences = pairs.astype(int)
-        self.scan_segments = array(self.scan_segments, f, "scan_segments", (None, 2, 2))
-        self.rotations = array(self.rotations, f, "rotations", (None,))
+        self.scan_segments = checks.array(self.scan_segments, f, "scan_segments", (None, 2, 2))
+        self.rotations = checks.array(self.rotations, f, "rotations", (None,))
         self.n_hypotheses = checks.integer(self.n_hypotheses, f, "n_hypotheses", low=0)
-        self.covariance = array(self.covariance, f, "covariance", (3, 3), finite=False)
+        self.covariance = checks.array(self.covariance, f, "covariance", (3, 3), finite=False)
         if np.any(np.isnan(self.covariance)) or np.any(self.covariance == -np.inf):
             raise checks.fail(f, "covariance", "contains NaN or -inf (inf only along a direction not fixed)")
         self.range_noise = checks.real(self.range_noise, f, "range_noise", low=0.0)
@@ -252,31 +244,15 @@ def relocalize(
     ref, L, obs, noise, params = _inputs(map_segments, scan_segments, scan, max_range, params, extraction, overrides)
     base = dict(scan_segments=L, range_noise=noise, _thesis_input=(ref.segments, L, params))
     if len(L) < 2:
-        return Relocalization(
-            pose=None,
-            score=-np.inf,
-            ambiguous=True,
-            status="failed",
-            message=f"too few lines in the scan ({len(L)}); need two non-parallel",
-            **base,
-        )
+        return _failed(f"too few lines in the scan ({len(L)}); need two non-parallel", base)
     if not len(obs.points):
-        return Relocalization(
-            pose=None, score=-np.inf, ambiguous=True, status="failed", message="no returned beam in the scan", **base
-        )
+        return _failed("no returned beam in the scan", base)
     S, M = ScanLines(L), ref.lines
     rotations, poses, quick = _hypotheses(M, S, params)
     base.update(rotations=rotations, n_hypotheses=len(poses))
     chosen = screen_hypotheses(M, obs, poses, quick, params)
     if not len(chosen):
-        return Relocalization(
-            pose=None,
-            score=-np.inf,
-            ambiguous=True,
-            status="failed",
-            message="no pose hypothesis (no two non-parallel lines match the map)",
-            **base,
-        )
+        return _failed("no pose hypothesis (no two non-parallel lines match the map)", base)
     ranked = verify_hypotheses(M, obs, chosen, params)
     best = ranked[0]
     pairs = match_lines(
@@ -295,6 +271,11 @@ def relocalize(
         message=msg,
         **base,
     )
+
+
+def _failed(message: str, base: dict) -> Relocalization:
+    """The result of a relocalization that found no pose: ``status="failed"``, score ``-inf``, and why."""
+    return Relocalization(pose=None, score=-np.inf, ambiguous=True, status="failed", message=message, **base)
 
 
 def _inputs(map_segments, scan_segments, scan, max_range, params, extraction, overrides):

@@ -28,7 +28,7 @@ import numpy as np
 from cga_lessons import checks
 from cga_lessons.mapping2d import wrap_angle
 
-from .inputs import array
+from .inputs import ndim
 
 __all__ = ["KLDConfig", "kld_bound", "low_variance_indices", "kld_resample", "mode_estimate", "tempering"]
 
@@ -88,11 +88,7 @@ def kld_bound(k, epsilon: float = 0.05, z: float = 2.326):
     [1, 66, 217, 1347]
     """
     func = "kld_bound"
-    try:
-        nd = np.ndim(k)
-    except ValueError:  # ragged: the check says so
-        nd = 1
-    k = array(k, func, "k", (None,) * nd)
+    k = checks.array(k, func, "k", (None,) * ndim(k))
     if np.any(k < 0):
         raise checks.fail(func, "k", "must be >= 0 (a count of occupied bins)")
     epsilon = checks.real(epsilon, func, "epsilon", low=0.0, strict_low=True)

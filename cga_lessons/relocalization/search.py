@@ -151,39 +151,10 @@ def pose_hypotheses(
     R = rotation_matrix(rotation)
     ends = S.segments @ R.T  # (L, 2, 2) rotated, not yet translated
     mid = S.midpoint @ R.T
-    # anchor pairs: the non-parallel pairs of scan lines with map partners, longest (and most orthogonal) first
-    has = np.unique(li)
-    d_scan = S.pair_distance
-    pairs = []
-    for x in range(len(has)):
-        for y in range(x + 1, len(has)):
-            a, b = has[x], has[y]
-            ang = abs(wrap_angle(2 * (S.angle[a] - S.angle[b])) / 2)
-            if ang >= min_anchor_angle:
-                pairs.append((S.length[a] * S.length[b] * np.sin(ang), a, b))
-    pairs.sort(key=lambda p: -p[0])
-    poses = []
-    for _, a, b in pairs[:n_anchor_pairs]:
-        m1 = mi[li == a]
-        m2 = mi[li == b]
-        # a map segment shorter than what must lie on it cannot be the partner
-        m1 = m1[M.length[m1] + 2 * overlap_margin >= min_overlap * S.length[a]]
-        m2 = m2[M.length[m2] + 2 * overlap_margin >= min_overlap * S.length[b]]
-        # the two map segments hold the two scan segments, so they are at most as far apart (plus the margins)
-        near = M.pair_distance[np.ix_(m1, m2)] <= d_scan[a, b] + 2 * overlap_margin
-        A1, A2 = np.nonzero(near)
-        A1, A2 = m1[A1], m2[A2]
-        n1, n2 = M.normal[A1], M.normal[A2]
-        r1 = M.offset[A1] - n1 @ mid[a]
-        r2 = M.offset[A2] - n2 @ mid[b]
-        det = n1[:, 0] * n2[:, 1] - n1[:, 1] * n2[:, 0]
-        ok = np.abs(det) > 1e-9
-        t = np.column_stack([(r1 * n2[:, 1] - r2 * n1[:, 1]), (n1[:, 0] * r2 - n2[:, 0] * r1)])[ok] / det[ok, None]
-        A1, A2 = A1[ok], A2[ok]
-        fa = overlap_fraction(M, A1, ends[a][None] + t[:, None, :], S.length[a], overlap_margin)
-        fb = overlap_fraction(M, A2, ends[b][None] + t[:, None, :], S.length[b], overlap_margin)
-        keep = (fa >= min_overlap) & (fb >= min_overlap)
-        poses.append(t[keep])
+    poses = [
+        _anchored_translations(M, S, li, mi, a, b, mid, ends, overlap_margin, min_overlap)
+        for a, b in _anchor_pairs(S, li, min_anchor_angle)[:n_anchor_pairs]
+    ]
     poses.append(
         _slide(M, S, li, mi, mid, ends, min_anchor_angle, overlap_margin, min_overlap, slide_step, slide_below)
     )
@@ -193,8 +164,54 @@ def pose_hypotheses(
     # de-duplicate translations (2 cm grid)
     _, first = np.unique(np.round(t / 0.02).astype(np.int64), axis=0, return_index=True)
     t = t[np.sort(first)]
-    # quick score: scan length that lands on parallel map segments, linear in t; the offsets first (dense),
-    # the extents only where the offset fits
+    quick = _quick_scores(M, S, li, mi, t, mid, ends, line_tolerance, overlap_margin, min_overlap)
+    return np.column_stack([t, np.full(len(t), rotation)]), quick
+
+
+def _anchor_pairs(S: ScanLines, li, min_anchor_angle) -> list:
+    """The anchor pairs ``(a, b)`` of :func:`pose_hypotheses`: the non-parallel pairs of scan lines with map partners
+    (``li``), longest (and most orthogonal) first."""
+    has = np.unique(li)
+    pairs = []
+    for x in range(len(has)):
+        for y in range(x + 1, len(has)):
+            a, b = has[x], has[y]
+            ang = abs(wrap_angle(2 * (S.angle[a] - S.angle[b])) / 2)
+            if ang >= min_anchor_angle:
+                pairs.append((S.length[a] * S.length[b] * np.sin(ang), a, b))
+    pairs.sort(key=lambda p: -p[0])
+    return [(a, b) for _, a, b in pairs]
+
+
+def _anchored_translations(M: MapLines, S: ScanLines, li, mi, a, b, mid, ends, overlap_margin, min_overlap):
+    """The translations (n, 2) that put scan lines ``a`` and ``b`` (rotated: ``mid``, ``ends``) on a pair of their
+    map partners, (3.11) solved exactly for two lines, kept when both scan segments lie on their map segments."""
+    d_scan = S.pair_distance
+    m1 = mi[li == a]
+    m2 = mi[li == b]
+    # a map segment shorter than what must lie on it cannot be the partner
+    m1 = m1[M.length[m1] + 2 * overlap_margin >= min_overlap * S.length[a]]
+    m2 = m2[M.length[m2] + 2 * overlap_margin >= min_overlap * S.length[b]]
+    # the two map segments hold the two scan segments, so they are at most as far apart (plus the margins)
+    near = M.pair_distance[np.ix_(m1, m2)] <= d_scan[a, b] + 2 * overlap_margin
+    A1, A2 = np.nonzero(near)
+    A1, A2 = m1[A1], m2[A2]
+    n1, n2 = M.normal[A1], M.normal[A2]
+    r1 = M.offset[A1] - n1 @ mid[a]
+    r2 = M.offset[A2] - n2 @ mid[b]
+    det = n1[:, 0] * n2[:, 1] - n1[:, 1] * n2[:, 0]
+    ok = np.abs(det) > 1e-9
+    t = np.column_stack([(r1 * n2[:, 1] - r2 * n1[:, 1]), (n1[:, 0] * r2 - n2[:, 0] * r1)])[ok] / det[ok, None]
+    A1, A2 = A1[ok], A2[ok]
+    fa = overlap_fraction(M, A1, ends[a][None] + t[:, None, :], S.length[a], overlap_margin)
+    fb = overlap_fraction(M, A2, ends[b][None] + t[:, None, :], S.length[b], overlap_margin)
+    keep = (fa >= min_overlap) & (fb >= min_overlap)
+    return t[keep]
+
+
+def _quick_scores(M: MapLines, S: ScanLines, li, mi, t, mid, ends, line_tolerance, overlap_margin, min_overlap):
+    """The quick score of each translation ``t`` (H, 2) of :func:`pose_hypotheses`: the scan length that lands on
+    parallel map segments, linear in t; the offsets first (dense), the extents only where the offset fits."""
     resid0 = np.einsum("pi,pi->p", M.normal[mi], mid[li]) - M.offset[mi]  # (P,)
     resid = t @ M.normal[mi].T
     resid += resid0
@@ -207,7 +224,7 @@ def pose_hypotheses(
     explained = np.zeros((len(t), len(S)), bool)
     explained[h[inside], li[q[inside]]] = True
     quick = explained.astype(float) @ S.length
-    return np.column_stack([t, np.full(len(t), rotation)]), quick
+    return quick
 
 
 def _slide(M: MapLines, S: ScanLines, li, mi, mid, ends, min_angle, margin, min_overlap, step, below, budget=300):

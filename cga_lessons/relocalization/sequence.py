@@ -22,7 +22,7 @@ of hypotheses, each a chain of laser poses, one per scan:
    :func:`~cga_lessons.relocalization.verify.score_poses` summed over all its
    scans: ``(inliers - violations) / returned beams``;
 4. the answer is *ambiguous* while a clearly different chain ties with the
-   best (:func:`~cga_lessons.relocalization.verify.tie_bar`), or while the best chain moved rigidly by
+   best (:func:`~cga_lessons.relocalization.candidates.tie_bar`), or while the best chain moved rigidly by
    ``distinct_position`` along its least constrained direction (or turned by
    ``distinct_heading`` about its last pose) still does; that is the rule of a
    single relocalization, applied to all the scans together; and while the
@@ -40,15 +40,16 @@ import numpy as np
 from cga_lessons import checks
 from cga_lessons.mapping2d import OdometryModel, compose, relative
 
+from .candidates import Candidate, distinct, refine_if_better, tie_bar
 from .chain import Chain, SequenceRelocalization, refine_chains
-from .geometry import Observation, check_pose, check_scan, range_noise, reference_map
-from .inputs import array, coordinates
+from .geometry import Observation, range_noise, reference_map
+from .inputs import check_pose, check_scan
 from .odometry import odometry_misfit
 from .params import RelocParams, noise_scaled, resolve_params
 from .relocalizer import combined_noise, relocalize
-from .verify import Candidate, distinct, pose_information, refine_if_better, score_poses, tie_bar
+from .verify import pose_information, score_poses
 
-__all__ = ["Relocalizer", "SequenceRelocalization", "relocalize_sequence", "relocalizer_for"]
+__all__ = ["Relocalizer", "relocalize_sequence", "relocalizer_for"]
 
 
 class Relocalizer:
@@ -274,7 +275,7 @@ class Relocalizer:
         """Drop chains that are no longer clearly different from a better one, or score far below the best.
 
         Far below: under ``keep_ratio`` of the best and under the tie bar
-        (:func:`~cga_lessons.relocalization.verify.tie_bar`): a chain that still
+        (:func:`~cga_lessons.relocalization.candidates.tie_bar`): a chain that still
         ties with a poorly scoring best is the evidence that the answer is
         ambiguous, and is kept.
         """
@@ -349,7 +350,7 @@ class Relocalizer:
         return np.array([float(o[1][0]) for o in out]), np.array([float(o[2][0]) for o in out])
 
     def _decide(self, best, cands):
-        """``(status, message, probe)``: the rule of :func:`~cga_lessons.relocalization.verify.decide` on the
+        """``(status, message, probe)``: the rule of :func:`~cga_lessons.relocalization.candidates.decide` on the
         summed scores; the probe is the chain moved rigidly along its weakest direction when it ties."""
         p = self.params
         if cands[0].score < p.min_score:
@@ -425,7 +426,7 @@ def relocalize_sequence(map_segments, scans, odometry, *, max_range: float = 5.0
     scans = [check_scan(s, func, f"scans[{i}]") for i, s in enumerate(scans)]
     if not scans:
         raise checks.fail(func, "scans", "expected at least one scan, got none")
-    odo = coordinates(array(odometry, func, "odometry", (None, 3)), func, "odometry")
+    odo = checks.magnitude(checks.array(odometry, func, "odometry", (None, 3)), func, "odometry")
     if len(odo) != len(scans):
         raise checks.fail(func, "odometry", f"must have one row per scan; got {len(odo)} for {len(scans)} scan(s)")
     checks.finite_result(relative(odo[:-1], odo[1:]), func, "odometry: a step between scans")

@@ -26,7 +26,6 @@ from cga_lessons.algebra import DegenerateGeometryError, GeometryError
 from cga_lessons.mapping2d import TWO_PI, diff_theta, theta_correction, translation_correction
 
 from .hough import THETA_XI, check_votes, endpoint_array, hough_points, votes_indexed
-from .inputs import array
 
 __all__ = [
     "correspondences_from_votes",
@@ -62,7 +61,7 @@ def correspondences_from_votes(V, min_votes: int = 2) -> np.ndarray:
     [1, 0, -1]
     """
     func = "correspondences_from_votes"
-    V = array(V, func, "V", (None, None))
+    V = checks.array(V, func, "V", (None, None))
     return correspondences(V, checks.integer(min_votes, func, "min_votes", low=0))
 
 
@@ -153,7 +152,7 @@ def translate_entities(segments, translation) -> np.ndarray:
     ndarray, shape (K, 2, 2)
     """
     s = endpoint_array(segments, "translate_entities")
-    t = array(translation, "translate_entities", "translation", (2,))
+    t = checks.array(translation, "translate_entities", "translation", (2,))
     return translated(s, t, "translate_entities", "segments, translation")
 
 

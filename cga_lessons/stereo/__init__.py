@@ -30,15 +30,21 @@ Nothing here draws (figures and widgets are in :mod:`cga_lessons.viz`).  This fa
 * :mod:`~cga_lessons.stereo.polylines`: Drawing the entities of section 4.1: the segment of a line, a circle and a
   plane's square as polylines
 * :mod:`~cga_lessons.stereo.real`: Real stereo data: the Middlebury 2014 motorcycle pair shipped with scikit-image
+* :mod:`~cga_lessons.stereo.reconstruct`: The conformal entities of section 4.1 rebuilt from a stereo pair:
+  triangulated minimal point sets (A.14) and the point, point pair, line, circle, plane and sphere through them in
+  G(4,1)
 * :mod:`~cga_lessons.stereo.render`: What the stereo head's two cameras see, drawn with OpenCV (for the notebook of
   section 4.1)
 * :mod:`~cga_lessons.stereo.rig`: The robot's stereo head: two calibrated pinhole cameras (appendix A, used by
   section 4.1)
+* :mod:`~cga_lessons.stereo.triangulation`: Triangulation: the point two cameras' rays meet at (appendix A of the
+  thesis, Eq. A.14 and figure A.4)
 * :mod:`~cga_lessons.stereo.validate`: The stereo package's argument checks, composed from the shared checking layer
   (:mod:`cga_lessons.checks`)
 """
 
-from .camera import camera_center, closest_points_on_rays, optical_planes, project, projection_matrix_rt, triangulate
+from .accuracy import entity_errors
+from .camera import camera_center, optical_planes, project, projection_matrix_rt
 from .detect import DetectConfig, detect_entities
 from .detect_noise import triangulation_covariance
 from .detect_scenes import KINDS, SceneConfig, evaluate, scene_rig, stereo_scene
@@ -57,22 +63,13 @@ from .experiments import (
     random_points_in_view,
     triangulation_error_curve,
 )
-from .head import (
-    StereoScene,
-    circle_center_via_plane,
-    circle_polyline,
-    entity_errors,
-    line_polyline,
-    load_scene,
-    observe,
-    random_scene,
-    reconstruct_entities,
-    sample_scene,
-    square_polyline,
-)
+from .head import StereoScene, load_scene, observe, random_scene, sample_scene
+from .polylines import circle_polyline, line_polyline, square_polyline
 from .real import MOTORCYCLE_CALIBRATION, disparity_to_points, label_image, load_motorcycle, motorcycle_cameras
+from .reconstruct import circle_center_via_plane, reconstruct_entities
 from .render import render_views
 from .rig import StereoRig, load_rig, look_at_rotation, random_rig, rotation_matrix, stereo_head
+from .triangulation import closest_points_on_rays, triangulate
 
 __all__ = [
     "StereoRig",

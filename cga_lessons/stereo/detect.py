@@ -68,9 +68,9 @@ from cga_lessons.checks import fail
 from . import detect_models as dm
 from . import validate as vd
 from .detect_noise import as_noise_model
-from .detect_search import DetectedEntity, Search, merge
+from .detect_search import Search, merge
 
-__all__ = ["DetectConfig", "DetectedEntity", "detect_entities"]
+__all__ = ["DetectConfig", "detect_entities"]
 
 
 @dataclass(frozen=True)
@@ -195,7 +195,7 @@ def detect_entities(X, rng: np.random.Generator, config: DetectConfig | None = N
     func = "detect_entities"
     config = DetectConfig() if config is None else config
     checks.instance(config, func, "config", DetectConfig, "a DetectConfig")
-    vd.generator(rng, func)
+    checks.generator(rng, func)
     small = min(config.min_curve_inliers if dm.CODIM[k] == 2 else config.min_surface_inliers for k in config.kinds)
     X = _check_cloud(X, func, max(small, max(dm.MINIMAL.values()) + 1))
     from scipy.spatial import cKDTree

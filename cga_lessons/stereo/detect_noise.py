@@ -33,8 +33,8 @@ from cga_lessons import checks
 from cga_lessons.algebra import GeometryError
 from cga_lessons.checks import degenerate, fail
 
-from . import camera as cam
 from . import validate as vd
+from .triangulation import triangulate
 
 __all__ = ["NoiseModel", "as_noise_model", "estimate_noise", "triangulation_covariance", "chi2_gate"]
 
@@ -139,11 +139,7 @@ def as_noise_model(noise, X: np.ndarray, func: str) -> NoiseModel:
             return NoiseModel(estimate_noise(X), None, "estimated")
         except GeometryError as exc:
             raise degenerate(func, "noise", f"cannot be estimated from the cloud: {exc}") from None
-    try:
-        scalar = isinstance(noise, (str, bytes)) or np.ndim(noise) == 0
-    except ValueError:  # ragged rows: the array check says so
-        scalar = False
-    if scalar:
+    if not isinstance(noise, (list, tuple)) and np.ndim(noise) == 0:
         return NoiseModel(checks.real(noise, func, "noise", low=0.0, strict_low=True, high=vd.LIMIT), None, "given")
     arr = vd.array(noise, func, "noise", (len(X), 3, 3))
     if not np.allclose(arr, np.swapaxes(arr, 1, 2), rtol=1e-9, atol=1e-18):
@@ -183,7 +179,7 @@ def triangulation_covariance(P1, P2, x1, x2, sigma_px: float, method: str = "mid
 
     The Jacobian J (3 x 4) of the triangulated point with respect to its four
     pixel coordinates is taken by central differences of
-    :func:`cga_lessons.stereo.camera.triangulate` (the same estimator the cloud came
+    :func:`cga_lessons.stereo.triangulation.triangulate` (the same estimator the cloud came
     from); then ``Sigma = sigma_px^2 J J^T``.  For a parallel rig this is the
     familiar depth noise ``sigma_Z = sqrt(2) Z^2 sigma_px / (f b)`` along the
     ray and ``Z sigma_px / f`` across it.
@@ -203,7 +199,7 @@ def triangulation_covariance(P1, P2, x1, x2, sigma_px: float, method: str = "mid
     s = checks.real(sigma_px, f, "sigma_px", low=0.0, strict_low=True, high=vd.LIMIT)
     method = checks.choice(method, f, "method", ("midpoint", "dlt"))
     try:
-        return vd.overflow(_covariance(P1, P2, x1, x2, s, method), f, "sigma_px")
+        return checks.finite_result(_covariance(P1, P2, x1, x2, s, method), f, "sigma_px")
     except GeometryError as exc:
         raise degenerate(f, "P1, P2, x1, x2", f"the points cannot be triangulated: {exc}") from None
 
@@ -216,8 +212,8 @@ def _covariance(P1, P2, x1, x2, s: float, method: str) -> np.ndarray:
             plus, minus = [x1.copy(), x2.copy()], [x1.copy(), x2.copy()]
             plus[view][:, c] += h
             minus[view][:, c] -= h
-            Xp = cam.triangulate(P1, P2, plus[0], plus[1], method=method)
-            Xm = cam.triangulate(P1, P2, minus[0], minus[1], method=method)
+            Xp = triangulate(P1, P2, plus[0], plus[1], method=method)
+            Xm = triangulate(P1, P2, minus[0], minus[1], method=method)
             cols.append((Xp - Xm) / (2 * h))
     J = np.stack(cols, axis=2)  # (N, 3, 4)
     return s * s * np.einsum("nik,njk->nij", J, J)

@@ -8,7 +8,7 @@ clutter points.  Two ways to see it:
 * :func:`cloud_scene`: the true points plus isotropic Gaussian noise (metres);
 * :func:`stereo_scene`: every point projected into both cameras of the rig
   (A.5), perturbed by Gaussian pixel noise, and triangulated (A.14), as
-  :func:`cga_lessons.stereo.observe` and :func:`cga_lessons.stereo.camera.triangulate`
+  :func:`cga_lessons.stereo.observe` and :func:`cga_lessons.stereo.triangulation.triangulate`
   do for section 4.1.  The per-point covariances of the triangulated points
   (:func:`~cga_lessons.stereo.detect_noise.triangulation_covariance`) are the
   sensor fact handed to the detector: depth noise grows with the square of the
@@ -33,13 +33,13 @@ from cga_lessons import checks
 from cga_lessons.algebra import DegenerateGeometryError, GeometryError
 from cga_lessons.checks import degenerate
 
-from . import camera as cam
 from . import head as st
 from . import validate as vd
 from .detect_noise import triangulation_covariance
 from .detect_search import DetectedEntity
 from .experiments import random_points_in_view
 from .rig import StereoRig, stereo_head
+from .triangulation import triangulate
 
 __all__ = ["SceneConfig", "TruthEntity", "DetectScene", "scene_rig", "cloud_scene", "stereo_scene", "evaluate"]
 
@@ -98,7 +98,7 @@ class SceneConfig:
 
 @dataclass(frozen=True, eq=False)
 class TruthEntity:
-    """A true entity: ``kind``, ``params`` (as in :class:`cga_lessons.stereo.detect.DetectedEntity`), ``extent``
+    """A true entity: ``kind``, ``params`` (as in :class:`cga_lessons.stereo.detect_search.DetectedEntity`), ``extent``
     (radius of its bounding sphere) and the indices of its points in the scene's cloud."""
 
     kind: str
@@ -255,7 +255,7 @@ def _assemble(rng, rig, cfg, func: str):
 
 def _check(cfg, rng, func):
     checks.instance(cfg, func, "cfg", SceneConfig, "a SceneConfig")
-    vd.generator(rng, func)
+    checks.generator(rng, func)
 
 
 def cloud_scene(rng: np.random.Generator, cfg: SceneConfig | None = None) -> DetectScene:
@@ -281,7 +281,7 @@ def stereo_scene(rng: np.random.Generator, cfg: SceneConfig | None = None, rig: 
     rig = rig or scene_rig(cfg)
     X, labels, truth = _assemble(rng, rig, cfg, f)
     x1, x2 = st.observe(rig, X, cfg.noise_px, rng)
-    Y = cam.triangulate(rig.P1, rig.P2, x1, x2)
+    Y = triangulate(rig.P1, rig.P2, x1, x2)
     cov = triangulation_covariance(rig.P1, rig.P2, x1, x2, cfg.noise_px)
     return DetectScene(Y, X, labels, truth, cov, rig)
 

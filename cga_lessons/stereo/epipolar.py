@@ -184,7 +184,7 @@ def fundamental_8point(x1, x2, normalize: bool = True, rank2: bool = True) -> np
         F = u @ np.diag([s[0], s[1], 0.0]) @ vt
     if normalize:
         F = T2.T @ F @ T1
-    return vd.overflow(_canonical_sign(F), f, "x1, x2")
+    return checks.finite_result(_canonical_sign(F), f, "x1, x2")
 
 
 def fundamental_from_cameras(P1, P2) -> np.ndarray:
@@ -282,7 +282,7 @@ def epipolar_distance(F, x1, x2) -> np.ndarray:
     l2, l1 = _lines(F, x1, f, "x1"), _lines(F.T, x2, f, "x2")
     d2 = np.abs(np.sum(l2 * _h(x2), axis=1))
     d1 = np.abs(np.sum(l1 * _h(x1), axis=1))
-    return vd.overflow(0.5 * (d1 + d2), f, "x1, x2")
+    return checks.finite_result(0.5 * (d1 + d2), f, "x1, x2")
 
 
 def cameras_from_fundamental(F, v=(0.0, 0.0, 0.0), lam: float = 1.0):

@@ -17,11 +17,13 @@ from cga_lessons import checks, conformal
 from cga_lessons.algebra import GeometryError
 from cga_lessons.checks import degenerate, fail
 
-from . import camera as cam
 from . import epipolar as epi
 from . import head as st
 from . import validate as vd
+from .accuracy import entity_errors
+from .reconstruct import reconstruct_entities
 from .rig import StereoRig
+from .triangulation import triangulate
 
 __all__ = [
     "random_points_in_view",
@@ -40,7 +42,7 @@ def random_points_in_view(rig: StereoRig, n: int, rng: np.random.Generator, dept
     ndarray, shape (n, 3)
     """
     f = "random_points_in_view"
-    rig, rng = _rig(rig, f), vd.generator(rng, f)
+    rig, rng = _rig(rig, f), checks.generator(rng, f)
     n, depth = checks.integer(n, f, "n", low=0, high=10**7), vd.depth_range(depth, f)
     return _in_view(rig, n, rng, depth, f)
 
@@ -88,7 +90,7 @@ def fundamental_comparison(rig: StereoRig, rng: np.random.Generator, n_points=20
         sigma_1/sigma_8 of the system (A.9) that was solved; median).
     """
     f = "fundamental_comparison"
-    rig, rng, trials = _rig(rig, f), vd.generator(rng, f), _count(trials, f, "trials")
+    rig, rng, trials = _rig(rig, f), checks.generator(rng, f), _count(trials, f, "trials")
     n_points, n_test = _count(n_points, f, "n_points", 8), _count(n_test, f, "n_test")
     noise_px = checks.real(noise_px, f, "noise_px", low=0.0, high=1e6)
     try:
@@ -139,7 +141,7 @@ def triangulation_error_curve(rig: StereoRig, rng: np.random.Generator, noise_le
     f = "triangulation_error_curve"
     rig, rng, n_points, depth = (
         _rig(rig, f),
-        vd.generator(rng, f),
+        checks.generator(rng, f),
         _count(n_points, f, "n_points"),
         vd.depth_range(depth, f),
     )
@@ -151,8 +153,8 @@ def triangulation_error_curve(rig: StereoRig, rng: np.random.Generator, noise_le
     for s in out["noise_px"]:
         x1, x2 = st.observe(rig, X, s, rng)
         try:
-            pm = cam.triangulate(rig.P1, rig.P2, x1, x2, "midpoint")
-            pd = cam.triangulate(rig.P1, rig.P2, x1, x2, "dlt")
+            pm = triangulate(rig.P1, rig.P2, x1, x2, "midpoint")
+            pd = triangulate(rig.P1, rig.P2, x1, x2, "dlt")
         except GeometryError as exc:  # noise so large that rays turn parallel
             raise degenerate(f, "noise_levels", f"the noisy views cannot be triangulated: {exc}") from None
         out["midpoint"].append(np.sqrt(np.mean(np.sum((pm - X) ** 2, axis=1))))
@@ -196,7 +198,7 @@ def entity_error_table(rig: StereoRig, scene: st.StereoScene, rng: np.random.Gen
     rig, scene, rng = (
         _rig(rig, f),
         checks.instance(scene, f, "scene", st.StereoScene, "a StereoScene"),
-        vd.generator(rng, f),
+        checks.generator(rng, f),
     )
     noise_px, trials = checks.real(noise_px, f, "noise_px", low=0.0, high=1e6), _count(trials, f, "trials")
     try:
@@ -212,8 +214,8 @@ def _error_table(rig, scene, rng, noise_px, trials):
     for _ in range(trials):
         samples = st.sample_scene(scene, rig, rng)
         views = {k: st.observe(rig, samples[k], noise_px, rng) for k in keys + ["circle", "plane", "sphere"]}
-        rec = st.reconstruct_entities(rig, {k: views[k] for k in keys})
-        dense = {k: cam.triangulate(rig.P1, rig.P2, *views[k]) for k in ("circle", "plane", "sphere")}
+        rec = reconstruct_entities(rig, {k: views[k] for k in keys})
+        dense = {k: triangulate(rig.P1, rig.P2, *views[k]) for k in ("circle", "plane", "sphere")}
         fits = {
             ("circle", _ROWS[4][1]): conformal.fit_circle(dense["circle"]),
             ("circle", _ROWS[5][1]): conformal.fit_circle_euclidean(dense["circle"]),
@@ -226,7 +228,7 @@ def _error_table(rig, scene, rng, noise_px, trials):
         for row in _ROWS:
             entity = row[0]
             est = rec[entity] if row[1].startswith("4.1") else fits[row]
-            e = st.entity_errors(truth, {entity: est})[entity]
+            e = entity_errors(truth, {entity: est})[entity]
             if entity == "point":
                 per_point = np.linalg.norm(est["points"] - truth["point"]["points"], axis=1)
                 errs[row]["position_mm"].extend(1e3 * per_point)

@@ -43,7 +43,7 @@ def line_polyline(L, PP) -> np.ndarray:
     r, p = cga.line_direction(L), cga.line_closest_point(L)
     ends = np.array(cga.point_pair_endpoints(PP))
     t = (ends - p) @ r
-    return vd.overflow(p + t[:, None] * r, f, "L, PP")
+    return checks.finite_result(p + t[:, None] * r, f, "L, PP")
 
 
 def circle_polyline(center, normal, radius, n: int = 64, phase: float = 0.0) -> np.ndarray:

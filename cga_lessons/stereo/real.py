@@ -73,7 +73,7 @@ def _calibration(calib, func: str) -> dict:
         k: checks.real(calib[k], func, f"calib[{k!r}]", low=-vd.LIMIT, high=vd.LIMIT) for k in MOTORCYCLE_CALIBRATION
     }
     for k in ("focal_px", "baseline_m"):
-        vd.positive(out[k], func, f"calib[{k!r}]")
+        checks.real(out[k], func, f"calib[{k!r}]", low=0.0, strict_low=True)
     return out
 
 
@@ -111,7 +111,7 @@ def disparity_to_points(disp, calib: dict | None = None, step: int = 1, max_dept
     Z = c["focal_px"] * c["baseline_m"] / (d + c["doffs"])
     X = np.column_stack([(u - c["cx"]) * Z / c["focal_px"], (v - c["cy"]) * Z / c["focal_px"], Z])
     keep = Z <= max_depth
-    return vd.overflow(X[keep], f, "disp"), np.column_stack([u, v])[keep]
+    return checks.finite_result(X[keep], f, "disp"), np.column_stack([u, v])[keep]
 
 
 def label_image(shape, pixels, labels, step: int = 1) -> np.ndarray:

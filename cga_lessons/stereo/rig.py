@@ -212,7 +212,7 @@ def random_rig(rng: np.random.Generator, target=(2.5, 0.0, 0.5)) -> StereoRig:
     length (400-1200 px), principal point, skew-free K, head pose and convergence
     (each camera aimed at its own point near the target)."""
     f = "random_rig"
-    rng, target = vd.generator(rng, f), vd.array(target, f, "target", (3,))
+    rng, target = checks.generator(rng, f), vd.array(target, f, "target", (3,))
     if np.max(np.abs(target)) > 1e9:
         raise fail(f, "target", f"must lie within 1e9 m of the origin (the rig stands metres from it), got {target}")
     w, h = int(rng.integers(480, 1025)), int(rng.integers(360, 769))

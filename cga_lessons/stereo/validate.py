@@ -10,8 +10,8 @@ Traceback (most recent call last):
 ...
 cga_lessons.algebra.InvalidInputError: projection_matrix: R: is not a rotation matrix (R R^T != I or det R < 0)
 
-Magnitudes are bounded by :data:`LIMIT`: the camera model multiplies coordinates with matrix entries and squares
-them (norms, determinants), so larger numbers overflow a float half way through.
+Magnitudes are bounded by :data:`LIMIT` (1e50, not the layer's 1e150): the camera model multiplies coordinates with
+matrix entries and squares them (norms, determinants), so larger numbers overflow a float half way through.
 """
 
 from __future__ import annotations
@@ -29,19 +29,16 @@ from cga_lessons.paths import data_path
 
 __all__ = [
     "LIMIT",
+    "WHY",
     "array",
     "batch",
     "numbers",
-    "bounded",
     "camera",
     "calibration",
     "rotation",
-    "generator",
-    "positive",
     "depth_range",
     "interval",
     "image_size",
-    "overflow",
     "json_object",
     "direction",
     "entity",
@@ -49,45 +46,32 @@ __all__ = [
 
 #: Largest magnitude of a coordinate or matrix entry (their products and squares must stay below 1e308).
 LIMIT = 1e50
-
-
-def bounded(a: np.ndarray, func: str, name: str) -> np.ndarray:
-    """``a`` if no entry exceeds :data:`LIMIT` in magnitude."""
-    if a.size and float(np.max(np.abs(a))) > LIMIT:
-        big = float(np.max(np.abs(a)))
-        raise fail(func, name, f"magnitudes up to {big:.3g}: beyond {LIMIT:.0e} the camera model overflows a float")
-    return a
-
-
-def _regular(check, value, func: str, name: str, *args, **kw):
-    """``check(value, func, name, ...)``, with ragged rows refused like every other malformed array."""
-    try:
-        return check(value, func, name, *args, **kw)
-    except GeometryError:
-        raise
-    except ValueError:  # NumPy cannot make an array of ragged rows
-        raise fail(func, name, f"must be an array of numbers with rows of one length, got {value!r:.40}") from None
+#: Why :data:`LIMIT` is lower than :data:`cga_lessons.checks.MAX_MAGNITUDE`.
+WHY = "the camera model multiplies coordinates with matrix entries and squares them, overflowing a float"
 
 
 def array(value, func: str, name: str, shape: tuple, *, at_least: int = 0, finite: bool = True) -> np.ndarray:
     """:func:`cga_lessons.checks.array` (floats of ``shape``, finite unless told), bounded by :data:`LIMIT`."""
-    a = _regular(checks.array, value, func, name, shape, at_least=at_least, finite=finite)
-    return bounded(a, func, name) if finite else a
+    a = checks.array(value, func, name, shape, at_least=at_least, finite=finite)
+    return checks.magnitude(a, func, name, limit=LIMIT, why=WHY) if finite else a
 
 
 def batch(value, func: str, name: str, tail: tuple, *, at_least: int = 0):
     """:func:`cga_lessons.checks.batch` (one item or a batch, finite), bounded by :data:`LIMIT`."""
-    a, single = _regular(checks.batch, value, func, name, tail, at_least=at_least)
-    return bounded(a, func, name), single
+    a, single = checks.batch(value, func, name, tail, at_least=at_least)
+    return checks.magnitude(a, func, name, limit=LIMIT, why=WHY), single
 
 
 def numbers(value, func: str, name: str) -> np.ndarray:
-    """An array of any shape with at least one axis (points ``(..., D)``), finite and bounded."""
-    try:
-        ndim = max(np.ndim(value), 1)
-    except ValueError:  # ragged rows: checks.array says so
-        ndim = 1
-    return array(value, func, name, (None,) * ndim)
+    """An array of any shape with at least one axis (points ``(..., D)``), finite and bounded.
+
+    The number of axes is read along the first items (ragged rows are then refused by :func:`array`).
+    """
+    axes, first = 0, value
+    while isinstance(first, (list, tuple)) and len(first):
+        axes, first = axes + 1, first[0]
+    axes += first.ndim if isinstance(first, np.ndarray) else 0
+    return array(value, func, name, (None,) * max(axes, 1))
 
 
 def camera(P, func: str, name: str = "P") -> np.ndarray:
@@ -116,16 +100,6 @@ def rotation(R, func: str, name: str = "R") -> np.ndarray:
     return R
 
 
-def generator(rng, func: str, name: str = "rng") -> np.random.Generator:
-    """A NumPy random generator (``numpy.random.default_rng(seed)``)."""
-    return checks.instance(rng, func, name, np.random.Generator, "a numpy.random.Generator (default_rng(seed))")
-
-
-def positive(value, func: str, name: str) -> float:
-    """A finite number > 0."""
-    return checks.real(value, func, name, low=0.0, strict_low=True)
-
-
 def depth_range(value, func: str, name: str = "depth") -> tuple:
     """``(near, far)`` with ``0 < near <= far``: distances in front of the camera (metres)."""
     return interval(value, func, name, "(near, far) in front of the camera")
@@ -144,11 +118,6 @@ def image_size(value, func: str, name: str = "image_size") -> tuple[int, int]:
     if isinstance(value, (str, bytes)) or not isinstance(value, (tuple, list, np.ndarray)) or len(value) != 2:
         raise fail(func, name, f"must be (width, height) in pixels, got {value!r:.40}")
     return tuple(checks.integer(v, func, name, low=1, high=2**31 - 1) for v in value)
-
-
-def overflow(value, func: str, name: str):
-    """``value`` if finite; else the error that ``name``'s magnitudes overflowed the computation."""
-    return checks.finite_result(value, func, name)
 
 
 def json_object(path, default: str, func: str, keys: tuple) -> dict:

@@ -12,7 +12,10 @@ Nothing here draws (figures and widgets are in :mod:`cga_lessons.viz`).  This fa
 * :mod:`~cga_lessons.symbolic.entities`: Symbolic derivations of spheres, planes and point pairs (table 2.1,
 * :mod:`~cga_lessons.symbolic.model`: Symbolic derivations of sections 2.1-2.3.3: the Clifford product, the
 * :mod:`~cga_lessons.symbolic.records`: The record of a derivation: its Check steps, the Derivation that holds them
-* :mod:`~cga_lessons.symbolic.versors`: Symbolic derivations of the conformal transformations (section 2.3.4,
+* :mod:`~cga_lessons.symbolic.transformations`: Symbolic derivations of the conformal transformations (section
+  2.3.4, table 2.2, Eqs. 2.82-2.93)
+* :mod:`~cga_lessons.symbolic.versors`: Symbolic derivations of the rotor and motor properties (sections
+  2.4.6-2.4.7, Eqs. 2.135-2.145)
 """
 
 from .circles_lines import circle_properties, line_properties
@@ -29,7 +32,8 @@ from .model import (
     stereographic_projection,
 )
 from .records import Check, Derivation
-from .versors import conformal_transformations, rotors_and_motors
+from .transformations import conformal_transformations
+from .versors import rotors_and_motors
 
 __all__ = [
     "Check",

@@ -99,6 +99,13 @@ def circle_properties() -> Derivation:
     d.values["z"], d.values["z_spheres"] = z, z_sp
     d.add_bool("2.80 (a ^ b ^ c) Ic = s1 ^ s2 up to scale", "2.80", proportional(z, z_sp))
     d.add("2.80 a fourth point of the circle: x ^ z* = 0", "2.80", D ^ z_dual, 0)
+    Pz = _circle_plane_and_axis(d, Ic, e, e0, n, pi, q, z, z_dual)
+    _circle_radius_and_sphere(d, Ic, Pz, e, q, r, z, z_sp)
+    return d
+
+
+def _circle_plane_and_axis(d: Derivation, Ic, e, e0, n, pi, q, z, z_dual):
+    """(2.119)-(2.121): the plane and the axis of a circle z."""
     Pz = (z_dual ^ e).expand()
     d.add_bool("2.119 z* ^ e is the circle's plane (dual, up to scale)", "2.119", proportional(Pz, pi * inverse(Ic)))
     Lz = (z ^ e).expand()
@@ -117,6 +124,11 @@ def circle_properties() -> Derivation:
     LP = (Lz * Pz).expand()
     d.add("2.121 L_z* P_z* has no vector part", "2.121", LP.grade(1), 0)
     d.add_bool("2.121 L_z* P_z* = k (e ^ s_e0)* (corrected)", "2.121", proportional(LP, (e ^ s_e0) * inverse(Ic)))
+    return Pz
+
+
+def _circle_radius_and_sphere(d: Derivation, Ic, Pz, e, q, r, z, z_sp):
+    """(2.122)-(2.124): the radius and the sphere of a circle z, and the numeric implementation."""
     z2 = (z * z).scalar()
     ez = e ^ z
     ez2 = (ez * ez).scalar()
@@ -150,7 +162,6 @@ def circle_properties() -> Derivation:
     )
     szd = (z * ~Pz).expand()  # = z / P_z* times the scalar P_z* ~P_z*
     d.add_bool("2.124 z / P_z* = s_z* up to scale", "2.124", proportional(szd, s_z * inverse(Ic)))
-    return d
 
 
 # --------------------------------------------------------------- lines
@@ -194,6 +205,14 @@ def line_properties() -> Derivation:
     d.add("table 2.1 line L = r I_E + e M I_E, r = b - a (corrected)", "table 2.1", L, (b - a) * IE + e * M * IE)
     d.add("2.125 (e ^ a ^ b)^2 = (a - b)^2", "2.125", Ld * Ld, dot3(sub3(a_s, b_s), sub3(a_s, b_s)))
     d.add("2.125 first step: -(b ^ a ^ e)(e ^ a ^ b)", "2.125", Ld * Ld, -((B ^ A ^ e) * Ld))
+    _normalised_line(d, A, E, IE, Ic, a, a_s, e, ep)
+    _line_numeric(d)
+    _point_line_distance(d, a_s, b_s, e)
+    return d
+
+
+def _normalised_line(d: Derivation, A, E, IE, Ic, a, a_s, e, ep):
+    """(2.125)-(2.129): the normalised line through a with unit direction r."""
     # normalised line through a with unit direction r (r1^2 + r2^2 + r3^2 = 1)
     r = list(sp.symbols("r1:4", real=True))
     lam = sp.Symbol("lam", positive=True)
@@ -229,6 +248,10 @@ def line_properties() -> Derivation:
         rel=unit,
     )
     d.add("2.129 M = m I_E = a ^ r", "2.129", Mb, a ^ euclid(r), rel=unit)
+
+
+def _line_numeric(d: Derivation):
+    """The numeric implementations of (2.127)-(2.130), at a sample line and point."""
     # the numeric implementations of (2.127)-(2.130), at a sample line and point
     fa, fb, fx = np.array([1.0, 2.0, -1.0]), np.array([3.0, -1.0, 2.0]), np.array([0.5, 0.0, 4.0])
     fL = line_from_points(fa, fb)
@@ -241,6 +264,10 @@ def line_properties() -> Derivation:
         and np.allclose(line_closest_point(fL), fa - np.dot(fa, fr) * fr, atol=1e-12)
         and abs(point_line_distance(fx, fL) - np.linalg.norm(np.cross(fx - fa, fr))) < 1e-12,
     )
+
+
+def _point_line_distance(d: Derivation, a_s, b_s, e):
+    """(2.130): the distance of a symbolic point x from a line through two rational points."""
     # (2.130) distance of a symbolic point x from a line through two rational points
     xs = sp.symbols("x1:4", real=True)
     ring = Ring(xs)  # exact polynomial arithmetic in x
@@ -264,4 +291,3 @@ def line_properties() -> Derivation:
         note="both sides multiplied by (P^2)^2 |b - a|^2",
     )
     d.add("2.130 L* . x . e is a plane (e . P = 0)", "2.130", pl | er, 0)
-    return d

@@ -38,7 +38,8 @@ form and the check that decides; :func:`verify_errata` reruns those checks.
 The code lives in :mod:`~cga_lessons.symbolic.model` (2.1-2.68),
 :mod:`~cga_lessons.symbolic.entities` (spheres, planes, point pairs),
 :mod:`~cga_lessons.symbolic.circles_lines` and
-:mod:`~cga_lessons.symbolic.versors` (transformations, rotors, motors), on the
+:mod:`~cga_lessons.symbolic.transformations` and :mod:`~cga_lessons.symbolic.versors` (transformations, rotors,
+motors), on the
 machinery of :mod:`~cga_lessons.symbolic.core` (checks, exact polynomial
 arithmetic modulo relations such as ``cos^2 + sin^2 = 1``).
 """
@@ -60,7 +61,8 @@ from .model import (
     stereographic_projection,
 )
 from .records import Derivation
-from .versors import conformal_transformations, rotors_and_motors
+from .transformations import conformal_transformations
+from .versors import rotors_and_motors
 
 __all__ = [
     "DERIVATIONS",

@@ -100,6 +100,13 @@ def sphere_and_plane() -> Derivation:
     d.add_bool("2.73-2.74 determine alpha, beta uniquely", "2.74", len(sol) == 1, lhs=sol)
     if sol:
         d.add("2.73-2.74 recover the form (2.72)", "2.74", v.subs(sol[0]), sphere_from_center(ws, rho**2))
+    _dual_sphere(d, Ic, X, ps, rho, s, xs)
+    _plane_through_points(d, E, IE, Ic, e)
+    return d
+
+
+def _dual_sphere(d: Derivation, Ic, X, ps, rho, s, xs):
+    """(2.75)-(2.76): the dual sphere a ^ b ^ c ^ d of four points on it, and incidence."""
     # (2.75): four points on the sphere, p + rho u with rational unit vectors u
     units = [[1, 0, 0], [0, 1, 0], [0, 0, 1], [sp.Rational(-3, 5), sp.Rational(-4, 5), 0]]
     ring = Ring([*ps, rho, *xs])  # exact polynomial arithmetic for the 4-fold wedge
@@ -125,6 +132,10 @@ def sphere_and_plane() -> Derivation:
         "2.75",
         proportional(sphere_from_points(*sample) * Ic, sphere_from_center([1, 2, -1], 9)),
     )
+
+
+def _plane_through_points(d: Derivation, E, IE, Ic, e):
+    """(2.77): the plane through three symbolic points, as printed and as in table 2.1."""
     # (2.77) the plane through three symbolic points
     a_s, b_s, c_s = (sp.symbols(f"{n}1:4", real=True) for n in "abc")
     A, B, C = up(list(a_s)), up(list(b_s)), up(list(c_s))
@@ -161,7 +172,6 @@ def sphere_and_plane() -> Derivation:
         expected=False,
         note="with d I_E = a ^ b ^ c as in (2.77), d = (a ^ b ^ c) I_E^-1 = -(a ^ b ^ c) I_E",
     )
-    return d
 
 
 # --------------------------------------------------------------- point pairs
@@ -238,6 +248,13 @@ def point_pair_extraction() -> Derivation:
     d.add_bool("2.134 PP*/(PP* ^ e) = sphere(mid, |a-b|/2) up to scale", "2.134", proportional(S, target))
     d.add("2.134 the factor is -1", "2.134", S, -target)
     d.values["sphere"], d.values["sphere_scale"] = ring.to_expr(S), -1 if same(S, -target) else None
+    _point_pair_numeric(d)
+    _point_pair_of_spheres(d, A, B, Ic, PP, a_s, b_s, mid, ring)
+    return d
+
+
+def _point_pair_numeric(d: Derivation):
+    """The numeric implementations of the point pair's extraction, in the derivation's order and scale."""
     # the numeric implementations follow the same order and scale
     fa, fb = np.array([1.0, 2.0, -1.0]), np.array([0.5, 0.0, 3.0])
     q1, q2 = point_pair_endpoints(point_pair(fa, fb))
@@ -256,6 +273,10 @@ def point_pair_extraction() -> Derivation:
         lhs=(centre, radius),
         rhs=((fa + fb) / 2, np.linalg.norm(fa - fb) / 2),
     )
+
+
+def _point_pair_of_spheres(d: Derivation, A, B, Ic, PP, a_s, b_s, mid, ring):
+    """Table 2.1: PP = s1 ^ s2 ^ s3 for three spheres through a and b."""
     # table 2.1: PP = s1 ^ s2 ^ s3 for three spheres through a and b, centred on
     # the bisector plane of a and b (centres m, m + (b - a) x e1, m + (b - a) x e2)
     ba = sub3(b_s, a_s)
@@ -269,4 +290,3 @@ def point_pair_extraction() -> Derivation:
     )
     three = spheres[0] ^ spheres[1] ^ spheres[2]
     d.add_bool("table 2.1 PP = s1 ^ s2 ^ s3 = PP* Ic up to scale", "table 2.1", proportional(three, PP * Ic))
-    return d

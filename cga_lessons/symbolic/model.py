@@ -178,6 +178,12 @@ def stereographic_projection() -> Derivation:
     d.values["a"], d.values["b"] = a_s, b_s
     d.add("2.46 f(a) substituted", "2.46", b_s, -(1 / x) * (2 * x / (x**2 + 1)) + 1)
     d.add("2.47 f(a) = (x^2-1)/(x^2+1)", "2.47", b_s, (x**2 - 1) / (x**2 + 1))
+    _projected_point(d, a_s, b_s, e1, ep, x)
+    return d
+
+
+def _projected_point(d: Derivation, a_s, b_s, e1, ep, x):
+    """(2.48)-(2.51): the projected point on the unit circle, made homogeneous and null: up(x) in 1D."""
     x1 = e1 * a_s + ep * b_s
     d.values["x1"] = x1
     d.add(
@@ -213,7 +219,6 @@ def stereographic_projection() -> Derivation:
     )
     d.add("2.51 x''' is null", "2.51", x3 * x3, 0)
     d.add("2.51 x''' . e = -1", "2.51", x3 | f_inf, -1)
-    return d
 
 
 # --------------------------------------------------------------- 2.52 - 2.56

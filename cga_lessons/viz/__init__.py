@@ -7,6 +7,9 @@ it).  Its modules are its public face (one per chapter's figures or per explorer
 
 __all__ = [
     "ch2",
+    "ch2_3d",
+    "ch2_accuracy",
+    "ch2_transformations",
     "controls",
     "exploration",
     "explore_conformal_map",
@@ -30,5 +33,6 @@ __all__ = [
     "motions",
     "relocalization",
     "scene3d",
+    "scene3d_matplotlib",
     "stereo",
 ]

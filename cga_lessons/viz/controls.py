@@ -13,7 +13,7 @@ import inspect
 
 from cga_lessons.checks import fail
 
-from ._inputs import function
+from .inputs import function
 
 __all__ = ["slider_panel"]
 

@@ -10,10 +10,10 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from cga_lessons.checks import choice, fail, flag, integer
+from cga_lessons.checks import array, choice, fail, flag, integer
 from cga_lessons.exploration import ANALYSED, LABEL_NAMES, NOT_SEEN, OCCUPIED, SEEN, Grid, Scenario
 
-from ._inputs import axes, coord, coords, floats, optional_text
+from .inputs import axes, coord, coords, optional_text
 
 __all__ = ["plot_scenario", "plot_nodes", "plot_occupancy_steps", "plot_disagreements", "plot_detour"]
 
@@ -54,7 +54,7 @@ def _result(result, func: str, *, obstacle: bool = False):
 
 def _codes(value, func: str, name: str, n: int, allowed) -> np.ndarray:
     """One whole-number code per node, each in ``allowed``."""
-    a = floats(value, func, name, (n,))
+    a = array(value, func, name, (n,))
     if np.any(a != np.round(a)) or not np.all(np.isin(a, list(allowed))):
         raise fail(func, name, f"expected {n} codes from {sorted(allowed)}")
     return a.astype(int)

@@ -27,12 +27,12 @@ import numpy as np
 from cga_lessons import conformal as cga
 from cga_lessons import mapping2d
 from cga_lessons.algebra import Multivector
-from cga_lessons.checks import fail, real
+from cga_lessons.checks import fail, real, relabel
 from cga_lessons.mapping2d import SegmentSet, theta_correction, translation_correction
 
-from ._inputs import coord, point_pairs, relabel, vector
-from ._inputs import scene as as_scene
 from .controls import slider_panel
+from .inputs import SQUARED, SQUARED_WHY, coord, point_pairs, vector
+from .inputs import scene as as_scene
 from .laser import draw_scene
 
 __all__ = ["CorrectionExplorer", "place", "ends", "line_members", "rotor_about", "conformal_correction"]
@@ -40,7 +40,7 @@ __all__ = ["CorrectionExplorer", "place", "ends", "line_members", "rotor_about",
 
 def place(PP: Multivector, pose) -> tuple[Multivector, Multivector]:
     """Point pairs of the laser frame put in the world by the laser motor of ``pose`` (3.17), ``M PP ~M`` (3.18)."""
-    PP, pose = point_pairs(PP, "place"), vector(pose, "place", "pose", (3,), limit=1e6)
+    PP, pose = point_pairs(PP, "place"), vector(pose, "place", "pose", (3,), limit=SQUARED, why=SQUARED_WHY)
     with relabel("place", "pose"):
         M = mapping2d.laser_motor(pose)
     return (M * PP * ~M).grade(2), M
@@ -60,7 +60,9 @@ def _ends(PP: Multivector, func: str) -> tuple[np.ndarray, np.ndarray]:
 def line_members(PP: Multivector, centre) -> tuple[np.ndarray, np.ndarray]:
     """Oriented ``(rho, theta)`` of the lines ``PP ^ e`` seen from ``centre``: (3.14), (3.15) and (2.127)."""
     func = "line_members"
-    return _members(point_pairs(PP, func), vector(centre, func, "centre", (2, 3), limit=1e6)[:2], func)
+    return _members(
+        point_pairs(PP, func), vector(centre, func, "centre", (2, 3), limit=SQUARED, why=SQUARED_WHY)[:2], func
+    )
 
 
 def _members(PP: Multivector, centre: np.ndarray, func: str) -> tuple[np.ndarray, np.ndarray]:
@@ -72,7 +74,7 @@ def _members(PP: Multivector, centre: np.ndarray, func: str) -> tuple[np.ndarray
 
 def rotor_about(centre, angle: float) -> Multivector:
     """The motor turning the plane by ``angle`` about the point ``centre``: ``T R ~T`` (2.94, 2.100)."""
-    c = vector(centre, "rotor_about", "centre", (2, 3), limit=1e6)
+    c = vector(centre, "rotor_about", "centre", (2, 3), limit=SQUARED, why=SQUARED_WHY)
     angle = real(angle, "rotor_about", "angle", low=-1e6, high=1e6)
     return _rotor_about(c, angle)
 
@@ -93,7 +95,7 @@ def conformal_correction(PP_map: Multivector, PP_scan: Multivector, centre, thet
     PP_map, PP_scan = point_pairs(PP_map, func, "PP_map"), point_pairs(PP_scan, func, "PP_scan")
     if PP_map.shape != PP_scan.shape:
         raise fail(func, "PP_scan", f"expected as many point pairs as PP_map {PP_map.shape}, got {PP_scan.shape}")
-    centre = vector(centre, func, "centre", (2, 3), limit=1e6)[:2]
+    centre = vector(centre, func, "centre", (2, 3), limit=SQUARED, why=SQUARED_WHY)[:2]
     theta_xi = real(theta_xi, func, "theta_xi", low=0.0, strict_low=True, high=np.pi / 2)
     rho_g, th_g = _members(PP_map, centre, func)
     rho_l, th_l = _members(PP_scan, centre, func)
@@ -138,12 +140,12 @@ class CorrectionExplorer:
     def __init__(self, scene="room", pose=(3.0, 2.0, 0.3), dx: float = 0.4, dy: float = -0.3,
                  dtheta_deg: float = 10.0, max_range: float = 5.0, theta_xi_deg: float = 30.0):  # fmt: skip
         func = "CorrectionExplorer"
-        self.scene, self.pose = as_scene(scene, func), vector(pose, func, "pose", (3,), limit=1e6)
+        self.scene, self.pose = as_scene(scene, func), vector(pose, func, "pose", (3,), limit=SQUARED, why=SQUARED_WHY)
         error = [_check(v, func, k) for k, v in (("dx", dx), ("dy", dy), ("dtheta_deg", dtheta_deg))]
         self.theta_xi_deg = real(theta_xi_deg, func, "theta_xi_deg", low=0.0, strict_low=True, high=90.0)
         if abs(error[2]) >= self.theta_xi_deg:
             raise fail(func, "dtheta_deg", f"must lie within the angle gate of (3.5), +-{self.theta_xi_deg:g} deg")
-        max_range = coord(max_range, func, "max_range", low=0.0, strict_low=True, limit=1e6)
+        max_range = coord(max_range, func, "max_range", low=0.0, strict_low=True, limit=SQUARED)
         with relabel(func, "pose"):
             ranges, angles = mapping2d.simulate_scan(self.scene, self.pose, None, max_range=max_range)
             self.segments = mapping2d.extract_segments(ranges, angles, max_range=max_range)  # laser frame

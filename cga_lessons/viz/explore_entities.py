@@ -22,8 +22,8 @@ from cga_lessons import conformal as cga
 from cga_lessons.algebra import DegenerateGeometryError, GeometryError
 from cga_lessons.checks import fail, real
 
-from ._inputs import coords, vector
 from .controls import slider_panel
+from .inputs import SQUARED, SQUARED_WHY, coords, vector
 
 __all__ = ["PairExplorer", "pair_readback"]
 
@@ -81,8 +81,12 @@ class PairExplorer:
     def __init__(self, separation: float = 1e-3, distance: float = 4.0, grid=None):
         func = "PairExplorer"
         self.separation, self.distance = _separation(separation, func), _distance(distance, func)
-        self.grid = np.logspace(0, -10, 41) if grid is None else coords(grid, func, "grid", (None,), at_least=1)
-        if np.any(self.grid <= 0) or self.grid.max() > 1e6:
+        self.grid = (
+            np.logspace(0, -10, 41)
+            if grid is None
+            else coords(grid, func, "grid", (None,), at_least=1, limit=SQUARED, why=SQUARED_WHY)
+        )
+        if np.any(self.grid <= 0):
             raise fail(func, "grid", "separations must lie in (0, 1e6] m (a log scale)")
         self.fig, self.ax = plt.subplots(figsize=(6.5, 4.2))
         (self._curve,) = self.ax.loglog([], [], "-o", ms=3, color="tab:blue", label="worst endpoint error")

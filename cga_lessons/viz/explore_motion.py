@@ -25,8 +25,8 @@ import numpy as np
 from cga_lessons import conformal as cga
 from cga_lessons.checks import fail, instance, integer, real
 
-from ._inputs import vector
 from .controls import slider_panel
+from .inputs import SQUARED, SQUARED_WHY, vector
 from .motions import tool_outline
 
 __all__ = ["ScrewParams", "ScrewExplorer"]
@@ -67,7 +67,7 @@ def _checked(func: str, values: dict) -> dict:
         elif name == "pitch":
             out[name] = real(value, func, name, low=-1e3, high=1e3)
         elif name == "point":
-            out[name] = tuple(float(v) for v in vector(value, func, name, (3,), limit=1e6))
+            out[name] = tuple(float(v) for v in vector(value, func, name, (3,), limit=SQUARED, why=SQUARED_WHY))
         elif name == "steps":
             out[name] = integer(value, func, name, low=1, high=100)
         else:
@@ -82,7 +82,9 @@ class ScrewExplorer:
     def __init__(self, params: ScrewParams | None = None, start=(0.9, 0.2, 0.1)):
         func = "ScrewExplorer"
         self.params = ScrewParams() if params is None else instance(params, func, "params", ScrewParams, "ScrewParams")
-        self.start = cga.translator(vector(start, func, "start", (3,), limit=1e6))  # the tool's first pose
+        self.start = cga.translator(
+            vector(start, func, "start", (3,), limit=SQUARED, why=SQUARED_WHY)
+        )  # the tool's first pose
         self.outline = tool_outline()
         self.fig = plt.figure(figsize=(6.5, 5.5))
         self.ax = self.fig.add_subplot(projection="3d")

@@ -18,9 +18,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from cga_lessons import exploration
-from cga_lessons.checks import real
+from cga_lessons.checks import real, relabel
 
-from ._inputs import relabel
 from .controls import slider_panel
 from .exploration import plot_nodes
 

@@ -27,10 +27,14 @@ import numpy as np
 from cga_lessons.algebra import Algebra, Multivector
 from cga_lessons.checks import fail, real
 
-from ._inputs import vector
 from .controls import slider_panel
+from .inputs import SQUARED, SQUARED_WHY, vector
 
 __all__ = ["ProductExplorer", "geometric_product", "reflect"]
+
+#: Why the products' vectors are limited to +-1e100: ``n v n^-1`` multiplies three of them, and (1e100)^3 stays
+#: within a float's range.
+_CUBED = "the products multiply up to three of them: (1e100)^3 must stay within a float's range"
 
 G2 = Algebra(2)
 
@@ -42,14 +46,14 @@ def geometric_product(a, b) -> tuple[Multivector, float, float]:
     >>> dot, wedge, str(ab)
     (5.0, 5.0, '5 + 5 e12')
     """
-    a, b = (vector(x, "geometric_product", k, (2,), limit=1e100) for k, x in (("a", a), ("b", b)))
+    a, b = (vector(x, "geometric_product", k, (2,), limit=1e100, why=_CUBED) for k, x in (("a", a), ("b", b)))
     ab = G2.vector([float(a[0]), float(a[1])]) * G2.vector([float(b[0]), float(b[1])])
     return ab, float(ab.scalar()), float(ab["e12"])
 
 
 def reflect(v, n) -> np.ndarray:
     """``-n v n^-1``: ``v`` reflected in the line orthogonal to ``n`` (2.84, with ``n^-1 = n / n^2``, 2.19)."""
-    v, n = vector(v, "reflect", "v", (2,), limit=1e100), vector(n, "reflect", "n", (2,), limit=1e100)
+    v, n = (vector(x, "reflect", k, (2,), limit=1e100, why=_CUBED) for k, x in (("v", v), ("n", n)))
     if not np.hypot(*n) > 0:
         raise fail("reflect", "n", "the zero vector has no inverse (n^2 = 0): no line to reflect in")
     V, N = G2.vector([float(v[0]), float(v[1])]), G2.vector([float(n[0]), float(n[1])])
@@ -83,7 +87,7 @@ class ProductExplorer:
         func = "ProductExplorer"
         self.angle, self.direction = _check(angle, func, "angle"), _check(direction, func, "direction")
         self.len_a, self.len_b = _check(len_a, func, "len_a", True), _check(len_b, func, "len_b", True)
-        self.test = vector(test, func, "test", (2,), limit=1e6)
+        self.test = vector(test, func, "test", (2,), limit=SQUARED, why=SQUARED_WHY)
         if not np.hypot(*self.test) > 0:
             raise fail(func, "test", "the vector to turn must not be zero")
         self.fig, (self.ax_vec, self.ax_prod, self.ax_rot) = plt.subplots(1, 3, figsize=(13.5, 4.6))

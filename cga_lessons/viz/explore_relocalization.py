@@ -30,7 +30,8 @@ import numpy as np
 from matplotlib.collections import LineCollection
 
 from cga_lessons import mapping2d
-from cga_lessons.checks import degenerate, integer, real
+from cga_lessons.checks import degenerate, integer, real, relabel
+from cga_lessons.checks import seed as as_seed
 from cga_lessons.relocalization import (
     HEADING_TOLERANCE,
     POSITION_TOLERANCE,
@@ -43,10 +44,9 @@ from cga_lessons.relocalization import (
     transform_points,
 )
 
-from ._inputs import coords, relabel, vector
-from ._inputs import scene as as_scene
-from ._inputs import seed as as_seed
 from .controls import slider_panel
+from .inputs import SQUARED, SQUARED_WHY, coords, vector
+from .inputs import scene as as_scene
 
 __all__ = ["RelocalizationExplorer", "true_partners"]
 
@@ -76,7 +76,7 @@ def true_partners(map_segments, scan_segments, pose, distance: float = 0.05, ang
     """
     func = "true_partners"
     M, S = (_segments(v, func, k) for k, v in (("map_segments", map_segments), ("scan_segments", scan_segments)))
-    pose = vector(pose, func, "pose", (3,), limit=1e6)
+    pose = vector(pose, func, "pose", (3,), limit=SQUARED, why=SQUARED_WHY)
     distance = real(distance, func, "distance", low=0.0, strict_low=True, high=1e6)
     angle = real(angle, func, "angle", low=0.0, strict_low=True, high=np.pi / 2)
     out = np.full(len(S), -1, int)
@@ -103,7 +103,7 @@ def true_partners(map_segments, scan_segments, pose, distance: float = 0.05, ang
 
 def _segments(value, func: str, name: str) -> np.ndarray:
     """Segments (k, 2, 2) of non-zero length, drawable."""
-    segs = coords(value, func, name, (None, 2, 2), limit=1e6)
+    segs = coords(value, func, name, (None, 2, 2), limit=SQUARED, why=SQUARED_WHY)
     short = np.flatnonzero(np.hypot(*(segs[:, 1] - segs[:, 0]).T) == 0)
     if len(short):
         raise degenerate(func, name, f"segment {short[0]} has zero length (its two ends coincide)")
@@ -142,7 +142,7 @@ class RelocalizationExplorer:
         func = "RelocalizationExplorer"
         self.scene = as_scene(scene, func)
         start = (8.0, 3.5, np.radians(30.0)) if pose is None else pose
-        self.pose = vector(start, func, "pose", (3,), limit=1e6)
+        self.pose = vector(start, func, "pose", (3,), limit=SQUARED, why=SQUARED_WHY)
         self.seed, self.n_show = as_seed(seed, func), integer(n_show, func, "n_show", low=1, high=50)
         with relabel(func, "scene"):
             self.ref = prepare_map(self.scene.walls)

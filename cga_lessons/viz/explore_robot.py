@@ -33,7 +33,8 @@ from cga_lessons.map3d import DOFS, FusedMap, Robot, RobotState
 
 from .controls import slider_panel
 from .map3d import plot_fused_map, robot_primitives
-from .scene3d import FRAME_COLORS, Box, Cylinder, Frame, box_faces, cylinder_grid
+from .scene3d import FRAME_COLORS, Box, Cylinder, Frame
+from .scene3d_matplotlib import box_faces, cylinder_grid
 
 __all__ = ["RobotExplorer"]
 
@@ -65,7 +66,7 @@ class RobotExplorer:
         Length (m) of the drawn line of sight along the left camera's optical axis (its +x); it stops
         sooner where it meets the floor.
     vis : meshcat Visualizer, optional
-        A viewer (:func:`cga_lessons.viz.meshcat_scene.open_viewer`) in which the robot moves too.
+        A viewer (:func:`cga_lessons.viz.meshcat_server.open_viewer`) in which the robot moves too.
     """
 
     def __init__(self, fused: FusedMap, robot: Robot | None = None, state: RobotState | None = None, *,

@@ -20,12 +20,12 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from cga_lessons import mapping2d
-from cga_lessons.checks import fail, real
+from cga_lessons.checks import fail, real, relabel
+from cga_lessons.checks import seed as as_seed
 
-from ._inputs import relabel, vector
-from ._inputs import scene as as_scene
-from ._inputs import seed as as_seed
 from .controls import slider_panel
+from .inputs import SQUARED, SQUARED_WHY, vector
+from .inputs import scene as as_scene
 from .laser import draw_scene
 
 __all__ = ["HoughExplorer"]
@@ -39,7 +39,9 @@ class HoughExplorer:
         self.scene = as_scene(scene, func)
         if pose is None and len(self.scene.trajectory) <= 60:
             raise fail(func, "pose", f"the scene's trajectory has no pose 60 ({len(self.scene.trajectory)} poses)")
-        self.pose = vector(self.scene.trajectory[60] if pose is None else pose, func, "pose", (3,), limit=1e6).copy()
+        self.pose = vector(
+            self.scene.trajectory[60] if pose is None else pose, func, "pose", (3,), limit=SQUARED, why=SQUARED_WHY
+        ).copy()
         self.seed = as_seed(seed, func)  # seed None: a noise-free scan
         self.max_range = real(max_range, func, "max_range", low=0.0, strict_low=True, high=1e3)
         self.fig, (self.ax_world, self.ax_hough) = plt.subplots(1, 2, figsize=(11, 4.3))

@@ -1,9 +1,9 @@
 """An explorer for notebook 07: the stereo rig's baseline, focal length and pixel noise against the depth error.
 
 :class:`DepthErrorExplorer` builds a parallel head (:func:`cga_lessons.stereo.rig.stereo_head`), triangulates
-noisy projections of points at several depths (A.14, :func:`cga_lessons.stereo.camera.triangulate`) and draws their RMS
-depth error beside the first-order law ``sigma_Z = Z^2 sqrt(2) sigma / (f b)`` of a parallel rig.  :meth:`update`
-changes the rig or the noise and redraws in place; :meth:`widget` adds sliders for a live session.
+noisy projections of points at several depths (A.14, :func:`cga_lessons.stereo.triangulation.triangulate`) and draws
+their RMS depth error beside the first-order law ``sigma_Z = Z^2 sqrt(2) sigma / (f b)`` of a parallel rig.
+:meth:`update` changes the rig or the noise and redraws in place; :meth:`widget` adds sliders for a live session.
 
     >>> ex = DepthErrorExplorer(seed=0)
     >>> bool(0.7 < ex.measured[-1] / ex.predicted[-1] < 1.3)  # the law holds to first order
@@ -16,11 +16,11 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from cga_lessons import stereo
-from cga_lessons.checks import fail, integer, real
+from cga_lessons.checks import fail, integer, real, relabel
 from cga_lessons.stereo import stereo_head
 
-from ._inputs import coords, relabel
 from .controls import slider_panel
+from .inputs import coords
 
 __all__ = ["DepthErrorExplorer"]
 
@@ -40,7 +40,15 @@ class DepthErrorExplorer:
         if depths is None:
             self.depths = np.linspace(1.0, 6.0, 11)
         else:
-            self.depths = coords(depths, func, "depths", (None,), at_least=1, limit=1e4)
+            self.depths = coords(
+                depths,
+                func,
+                "depths",
+                (None,),
+                at_least=1,
+                limit=1e4,
+                why="depths beyond 10 km are no stereo pair's (the error grows as z^2)",
+            )
             if np.any(self.depths <= 0):
                 raise fail(func, "depths", "depths must be > 0 (in front of the head)")
         self.n_points = integer(n_points, func, "n_points", low=1, high=100_000)

@@ -18,12 +18,12 @@ from dataclasses import dataclass
 import matplotlib.pyplot as plt
 import numpy as np
 
-from cga_lessons.checks import fail, integer, real, text
+from cga_lessons.checks import array, fail, integer, magnitude, real, text
 from cga_lessons.relocalization import MCLEstimate
 
-from ._inputs import LIMIT, axes, colormap, coord, coords, floats, optional_text, texts, vector
-from ._inputs import color as a_color
-from ._inputs import figsize as fig_size
+from .inputs import LIMIT, WHY, axes, colormap, coord, coords, optional_text, texts, vector
+from .inputs import color as a_color
+from .inputs import figsize as fig_size
 from .laser import draw_walls
 
 __all__ = ["metric_box", "Snapshot", "covariance_ellipse", "draw_particles", "draw_pose", "mcl_figure",
@@ -60,12 +60,11 @@ def _metric_box(ax, pts: np.ndarray, pad: float) -> None:
 
 def _covariance(cov, func: str, name: str = "cov") -> np.ndarray:
     """A (2, 2) or a pose's (3, 3) covariance: its x-y block, symmetric positive semi-definite, drawable."""
-    c = floats(cov, func, name, (None, None))
+    c = array(cov, func, name, (None, None))
     if c.shape not in ((2, 2), (3, 3)):
         raise fail(func, name, f"expected a (2, 2) or (3, 3) array, got {c.shape}")
     c = c[:2, :2]
-    if np.abs(c).max() > LIMIT:
-        raise fail(func, name, f"variances beyond {LIMIT:g} cannot be drawn")
+    magnitude(c, func, name, limit=LIMIT, why=WHY)
     if not np.allclose(c, c.T, atol=1e-12 * max(1.0, np.abs(c).max())) or np.linalg.eigvalsh(c).min() < -1e-12:
         raise fail(func, name, "not symmetric positive semi-definite")
     return c
@@ -113,7 +112,7 @@ def draw_particles(ax, particles, log_w=None, *, s: float = 2.0, cmap: str = PAR
 
 def _log_weights(log_w, func: str, n: int, name: str = "log_w") -> np.ndarray:
     """``n`` log-weights: not NaN, not +inf, at least one finite (-inf: a particle of weight zero)."""
-    lw = floats(log_w, func, name, (None,), finite=False)
+    lw = array(log_w, func, name, (None,), finite=False)
     if lw.shape != (n,) or np.any(np.isnan(lw)) or np.any(lw == np.inf) or not np.any(np.isfinite(lw)):
         raise fail(func, name, f"expected {n} numbers (not NaN or +inf, one at least finite), got {lw.shape}")
     return lw
@@ -259,8 +258,8 @@ def error_trace_figure(position_error, heading_error, converged, events=(), tole
         raise fail(func, "heading_error, converged", f"heading_error and converged (bools) must match "
                    f"position_error's {pe.shape}")  # fmt: skip
     events = _events(events, func)
-    tolerance = floats(tolerance, func, "tolerance", (2,))
-    if not np.all(tolerance > 0) or tolerance.max() > LIMIT:
+    tolerance = magnitude(array(tolerance, func, "tolerance", (2,)), func, "tolerance", limit=LIMIT, why=WHY)
+    if not np.all(tolerance > 0):
         raise fail(func, "tolerance", f"expected (metres, radians) > 0, got {tolerance.tolist()}")
     figsize = fig_size(figsize, func)
     fig, axes = plt.subplots(1, 2, figsize=figsize)

@@ -15,13 +15,14 @@ import numpy as np
 
 from cga_lessons import conformal as cga
 from cga_lessons import kinematics as kin
-from cga_lessons.checks import fail, flag, instance, integer, real, same_length
+from cga_lessons.checks import array, fail, flag, instance, integer, magnitude, real, same_length
+from cga_lessons.checks import batch as one_or_many
 from cga_lessons.kinematics import DHParameters
 
-from ._inputs import axes, colormap, coord, coords, floats, optional_text
-from ._inputs import color as a_color
-from ._inputs import figsize as fig_size
 from .future_work import metric_box
+from .inputs import axes, colormap, coord, coords, optional_text
+from .inputs import color as a_color
+from .inputs import figsize as fig_size
 
 __all__ = ["dh_home_points", "chain_points", "axis_segments", "draw_arm", "draw_frame", "arm_figure", "ik_figure"]
 
@@ -68,15 +69,12 @@ def _check_chain(ch, func):
 
 def _configurations(q, func: str, name: str, n: int, *, batch: bool = True) -> np.ndarray:
     """Joint values ``(n,)``, or ``(N, n)`` when ``batch``: finite, within +-1e6 (radians or metres)."""
-    try:
-        ndim = np.ndim(q)
-    except ValueError:  # ragged rows: refused by floats below
-        ndim = 1
-    a = floats(q, func, name, (None, None) if batch and ndim == 2 else (None,))
-    if a.shape[-1] != n or np.abs(a).max(initial=0.0) > 1e6:
-        want = f"({n},) or (N, {n})" if batch else f"({n},)"
-        raise fail(func, name, f"expected finite values of shape {want} within +-1e6, got {a.shape}")
-    return a
+    if batch:
+        a, single = one_or_many(q, func, name, (n,))
+        a = a[0] if single else a
+    else:
+        a = array(q, func, name, (n,))
+    return magnitude(a, func, name, limit=1e6, why="joint values are radians or metres of an arm on a table")
 
 
 def _default_points(ch):
@@ -105,7 +103,7 @@ def _link_points(ch, points, attached, func: str) -> tuple[np.ndarray, np.ndarra
             raise fail(func, "attached", "given without points: attached says which joints move each point")
         return _default_points(ch)
     pts = coords(points, func, "points", (None, 3), at_least=1)
-    att = np.zeros(len(pts), int) if attached is None else floats(attached, func, "attached", (len(pts),))
+    att = np.zeros(len(pts), int) if attached is None else array(attached, func, "attached", (len(pts),))
     if np.any(att != np.round(att)) or att.min() < 0 or att.max() > ch.n:
         raise fail(func, "attached", f"expected {len(pts)} integers in 0..{ch.n}")
     return pts, att.astype(int)

@@ -14,12 +14,12 @@ import numpy as np
 from matplotlib.patches import Patch
 
 from cga_lessons import stereo as st
-from cga_lessons.checks import fail, integer, real
+from cga_lessons.checks import array, fail, integer, real, relabel
 from cga_lessons.stereo import label_image
 
-from ._inputs import coords, floats, optional_text, relabel, texts
-from ._inputs import figsize as fig_size
 from .future_work import metric_box
+from .inputs import coords, optional_text, texts
+from .inputs import figsize as fig_size
 
 __all__ = ["PALETTE", "detections_figure", "detections_on_image", "depth_noise", "depth_noise_figure"]
 
@@ -99,7 +99,7 @@ def detections_figure(points, labels, truth, entities, matches=(), elev=22.0, az
     if not all(getattr(t, "kind", None) in _KINDS and isinstance(getattr(t, "params", None), dict) for t in truth):
         raise fail(func, "truth", "expected entities with a kind and params (TruthEntity)")
     kinds = [t.kind for t in truth]
-    lab = floats(labels, func, "labels", (len(X),))
+    lab = array(labels, func, "labels", (len(X),))
     if np.any(lab != np.round(lab)) or lab.min() < -1 or lab.max() >= len(kinds):
         raise fail(func, "labels", f"expected {len(X)} integers in -1..{len(kinds) - 1}")
     lab = lab.astype(int)
@@ -141,7 +141,7 @@ def detections_on_image(image, pixels, entities, step: int = 1, names=None, titl
     ``names[i]``), number of points and RMS distance.  Returns the figure.
     """
     func = "detections_on_image"
-    img = floats(image, func, "image", (None, None, 3))
+    img = array(image, func, "image", (None, None, 3))
     if not img.size or img.min() < 0 or img.max() > 255:
         raise fail(func, "image", f"expected an RGB image (H, W, 3) of values 0..255, got {img.shape}")
     px = coords(pixels, func, "pixels", (None, 2))
@@ -195,11 +195,8 @@ def _head(func: str, baseline, focal_px, sigma_d, where: str = "") -> tuple[floa
 
 def _depths(z, func: str, name: str) -> np.ndarray:
     """Depths (a number or an array of them) in (0, 1e6] m."""
-    try:
-        ndim = np.ndim(z)
-    except ValueError:  # ragged rows: refused by floats below
-        ndim = 1
-    a = np.asarray(real(z, func, name)) if ndim == 0 else floats(z, func, name, (None,) * ndim)
+    ndim = np.asarray(z, dtype=object).ndim  # ragged rows: one dimension, refused by the check
+    a = np.asarray(real(z, func, name)) if ndim == 0 else array(z, func, name, (None,) * ndim)
     if np.any(a <= 0) or np.any(a > 1e6):
         raise fail(func, name, "expected finite depths in (0, 1e6] m")
     return a
@@ -225,7 +222,7 @@ def depth_noise_figure(heads: dict, sigma_d: float = 1.0, figsize=(7.0, 3.8)):
         if not isinstance(label, str) or not isinstance(head, (list, tuple)) or len(head) != 3:
             raise fail(func, where, "expected a label (str) -> (baseline, focal_px, (near, far))")
         baseline, focal, _ = _head(func, head[0], head[1], sigma_d, f"{where} ")
-        near, far = floats(head[2], func, f"{where} (near, far)", (2,))
+        near, far = array(head[2], func, f"{where} (near, far)", (2,))
         if not (0 < near < far <= 1e6):
             raise fail(func, where, f"expected 0 < near < far <= 1e6, got ({near}, {far})")
         checked[label] = (baseline, focal, near, far)

@@ -11,11 +11,11 @@ from matplotlib.patches import Circle, Polygon
 from cga_lessons.checks import fail, flag, instance, real, same_length
 from cga_lessons.mapping2d import Scene
 
-from ._inputs import axes, coords, index_pairs, optional_text, scan_arrays, texts, trajectory, vector
-from ._inputs import color as a_color
-from ._inputs import colors as some_colors
-from ._inputs import dpi as fig_dpi
-from ._inputs import figsize as fig_size
+from .inputs import ANGLE_WHY, axes, coords, index_pairs, optional_text, scan_arrays, texts, trajectory, vector
+from .inputs import color as a_color
+from .inputs import colors as some_colors
+from .inputs import dpi as fig_dpi
+from .inputs import figsize as fig_size
 
 __all__ = [
     "new_axes",
@@ -174,7 +174,7 @@ def _hough_sets(hough_sets, func: str) -> list:
     for k, pair in enumerate(hough_sets):
         if not isinstance(pair, (list, tuple, np.ndarray)) or len(pair) != 2:
             raise fail(func, f"hough_sets[{k}]", "expected a pair (rho, theta) of arrays")
-        rho, theta = (coords(v, func, f"hough_sets[{k}]", (None,), limit=1e6) for v in pair)
+        rho, theta = (coords(v, func, f"hough_sets[{k}]", (None,), limit=1e6, why=ANGLE_WHY) for v in pair)
         same_length(func, **{f"hough_sets[{k}] rho": rho, f"hough_sets[{k}] theta": theta})
         out.append((rho, theta))
     return out

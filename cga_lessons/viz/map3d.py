@@ -14,12 +14,13 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
-from cga_lessons.checks import flag, instance, real
+from cga_lessons.checks import flag, instance, real, relabel
 from cga_lessons.map3d import FusedMap, Robot, RobotState
 
-from ._inputs import axes, optional_text, relabel, slash_path
-from ._inputs import figsize as fig_size
-from .scene3d import Box, Cylinder, Frame, PointCloud, Polyline, Quad, Sphere, draw_matplotlib, scene_bounds
+from .inputs import axes, optional_text, slash_path
+from .inputs import figsize as fig_size
+from .scene3d import Box, Cylinder, Frame, PointCloud, Polyline, Quad, Sphere, scene_bounds
+from .scene3d_matplotlib import draw_matplotlib
 
 __all__ = [
     "robot_primitives",

@@ -2,8 +2,9 @@
 
 The scene is the backend-free list of primitives of
 :mod:`cga_lessons.viz.scene3d`; :func:`show` uploads it (metres) to a viewer
-opened with :func:`open_viewer`, whose loopback-only server, which dies with its
-parent, is :mod:`cga_lessons.viz.meshcat_server`.  :func:`export_html` records
+opened with :func:`~cga_lessons.viz.meshcat_server.open_viewer`, whose loopback-only server, which dies
+with its parent, is :mod:`cga_lessons.viz.meshcat_server`.
+:func:`export_html` records
 the same commands without any server and writes meshcat's self-contained page
 (three.js inlined; opens offline); :func:`scene_iframe` embeds that page in a
 notebook cell's output, so a saved notebook and its HTML export show the scene.
@@ -23,10 +24,9 @@ import umsgpack
 
 from cga_lessons.algebra import InvalidInputError
 from cga_lessons.checks import fail, flag, instance, integer, new_path, real, text
-from cga_lessons.viz.meshcat_server import Viewer, ViewerError, close_viewer, open_viewer
 from cga_lessons.viz.scene3d import Box, Cylinder, Frame, PointCloud, Polyline, Quad, Sphere, check_scene, scene_bounds
 
-from ._inputs import LIMIT, coords
+from .inputs import LIMIT, coords
 
 with warnings.catch_warnings():  # meshcat 0.3.2 imports a pyzmq module that warns it is deprecated; harmless here
     warnings.filterwarnings("ignore", message="zmq.eventloop.ioloop is deprecated", category=DeprecationWarning)
@@ -35,10 +35,6 @@ with warnings.catch_warnings():  # meshcat 0.3.2 imports a pyzmq module that war
     from meshcat.servers.zmqserver import VIEWER_ROOT
 
 __all__ = [
-    "Viewer",
-    "ViewerError",
-    "open_viewer",
-    "close_viewer",
     "show",
     "set_camera",
     "scene_html",

@@ -13,10 +13,10 @@ import numpy as np
 
 from cga_lessons import conformal as cga
 from cga_lessons.algebra import Multivector
-from cga_lessons.checks import fail, real
+from cga_lessons.checks import fail, real, relabel
 
-from ._inputs import coords, optional_text, relabel, vector
-from .ch2 import set_equal_3d
+from .ch2_3d import set_equal_3d
+from .inputs import coords, optional_text, vector
 
 __all__ = ["tool_outline", "fig_motor_blend", "fig_scan_registration"]
 

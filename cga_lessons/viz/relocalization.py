@@ -6,12 +6,12 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.collections import LineCollection
 
-from cga_lessons.checks import fail, real, text
+from cga_lessons.checks import array, fail, real, text
 
-from ._inputs import axes, coords, floats, index_pairs, optional_text, scan_pair, trajectory, vector
-from ._inputs import colors as some_colors
-from ._inputs import dpi as fig_dpi
-from ._inputs import figsize as fig_size
+from .inputs import ANGLE_WHY, axes, coords, index_pairs, optional_text, scan_pair, trajectory, vector
+from .inputs import colors as some_colors
+from .inputs import dpi as fig_dpi
+from .inputs import figsize as fig_size
 from .laser import draw_scan, draw_walls, new_axes
 
 __all__ = [
@@ -38,10 +38,10 @@ def hough_figure(M_h, L_h=None, turned=None, turn=None, ax=None):
     turned by ``turn`` radians (they move along theta only).  Each set is ``(rho, theta)`` rows (k, 2).
     """
     func = "hough_figure"
-    M_h = coords(M_h, func, "M_h", (None, 2), limit=1e6)
-    L_h = None if L_h is None else coords(L_h, func, "L_h", (None, 2), limit=1e6)
+    M_h = coords(M_h, func, "M_h", (None, 2), limit=1e6, why=ANGLE_WHY)
+    L_h = None if L_h is None else coords(L_h, func, "L_h", (None, 2), limit=1e6, why=ANGLE_WHY)
     if turned is not None:
-        turned = coords(turned, func, "turned", (None, 2), limit=1e6)
+        turned = coords(turned, func, "turned", (None, 2), limit=1e6, why=ANGLE_WHY)
         if L_h is None or len(turned) != len(L_h):
             raise fail(func, "turned", "expected the rows of L_h after the turn: as many as L_h")
     turn = None if turn is None else real(turn, func, "turn", low=-1e6, high=1e6)
@@ -180,12 +180,12 @@ def rates_figure(x, series, xlabel, ax=None, title=None, counts=None):
         raise fail(func, "series", "expected a dict of 1 to 5 labels -> rates (one per x)")
     for label, y in series.items():
         text(label, func, "series", empty=True)
-        y = floats(y, func, f"series[{label!r}]", x.shape, finite=False)  # NaN: no sample, not drawn
+        y = array(y, func, f"series[{label!r}]", x.shape, finite=False)  # NaN: no sample, not drawn
         if np.any(np.isinf(y)) or np.any(y[~np.isnan(y)] < 0) or np.any(y[~np.isnan(y)] > 1):
             raise fail(func, f"series[{label!r}]", "rates must lie in [0, 1] (NaN: no sample)")
     xlabel, title = text(xlabel, func, "xlabel", empty=True), optional_text(title, func, "title")
     if counts is not None:
-        counts = floats(counts, func, "counts", x.shape)
+        counts = array(counts, func, "counts", x.shape)
         if np.any(counts < 0) or np.any(counts != np.round(counts)) or np.any(counts > 1e15):
             raise fail(func, "counts", "expected whole numbers from 0 to 1e15, one per x")
         counts = counts.astype(int)

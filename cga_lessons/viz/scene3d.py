@@ -1,8 +1,8 @@
 """A small, backend-free description of a 3D scene, and its matplotlib drawing.
 
 The scene is a flat list of *primitives* (frozen dataclasses) in metres, in one
-world frame.  The same list feeds :func:`draw_matplotlib` (a static figure that
-nbval can store) and :mod:`cga_lessons.viz.meshcat_scene` (the live browser
+world frame.  The same list feeds :func:`~cga_lessons.viz.scene3d_matplotlib.draw_matplotlib` (a static
+figure that nbval can store) and :mod:`cga_lessons.viz.meshcat_scene` (the live browser
 viewer and the offline HTML export), so both views show the same geometry at
 1:1 scale.
 
@@ -33,9 +33,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from cga_lessons.algebra import GeometryError
-from cga_lessons.checks import degenerate, fail, flag, real, text
+from cga_lessons.checks import array, degenerate, fail, real, text
 
-from ._inputs import LIMIT, axes, coords, floats, slash_path
+from .inputs import LIMIT, coords, slash_path
 
 __all__ = [
     "Box",
@@ -48,8 +48,6 @@ __all__ = [
     "PRIMITIVE_TYPES",
     "check_scene",
     "scene_bounds",
-    "draw_matplotlib",
-    "set_equal_3d",
 ]
 
 _ORTHO_TOL = 1e-6
@@ -88,7 +86,7 @@ def _scalar(obj, fld, *, positive=False, lo=None, hi=None):
 
 def _color(obj, fld="color"):
     func = type(obj).__name__
-    arr = floats(getattr(obj, fld), func, fld, (3,))
+    arr = array(getattr(obj, fld), func, fld, (3,))
     if np.any(arr < 0) or np.any(arr > 1):
         raise fail(func, fld, f"colour components must be floats in [0, 1], got {arr.tolist()}")
     object.__setattr__(obj, fld, tuple(float(c) for c in arr))
@@ -343,118 +341,3 @@ def _bounds(prims, func: str) -> tuple[np.ndarray, np.ndarray]:
 def scene_bounds(primitives) -> tuple[np.ndarray, np.ndarray]:
     """Axis-aligned bounds ``(lo (3,), hi (3,))`` of all primitives (a bounding box of each shape)."""
     return _bounds(check_scene(primitives, "scene_bounds"), "scene_bounds")
-
-
-def _box(lo, hi, pad, func: str):
-    lo, hi = coords(lo, func, "lo", (3,)), coords(hi, func, "hi", (3,))
-    if np.any(hi < lo):
-        raise fail(func, "hi", f"must be >= lo on every axis, got lo {lo.tolist()} and hi {hi.tolist()}")
-    return lo, hi, real(pad, func, "pad", low=0.0, high=10.0)
-
-
-def _equal_3d(ax, lo, hi, pad):
-    centre = (lo + hi) / 2
-    half = max(float(np.max(hi - lo)) / 2 * (1 + pad), 1e-3)
-    ax.set_xlim(centre[0] - half, centre[0] + half)
-    ax.set_ylim(centre[1] - half, centre[1] + half)
-    ax.set_zlim(centre[2] - half, centre[2] + half)
-    ax.set_box_aspect((1, 1, 1))
-    return ax
-
-
-def set_equal_3d(ax, lo, hi, pad=0.05):
-    """Make a matplotlib 3D axis show the box ``lo..hi`` at 1:1:1 scale (a cube around its centre).
-
-    ``pad`` widens the cube by that fraction (0 to 10).
-    """
-    ax = axes(ax, "set_equal_3d", three_d=True, optional=False)
-    return _equal_3d(ax, *_box(lo, hi, pad, "set_equal_3d"))
-
-
-# ---------------------------------------------------------------- matplotlib drawing
-def box_faces(corners):
-    idx = [(0, 1, 3, 2), (4, 5, 7, 6), (0, 1, 5, 4), (2, 3, 7, 6), (0, 2, 6, 4), (1, 3, 7, 5)]
-    return [corners[list(f)] for f in idx]
-
-
-def _sphere_grid(center, radius, n=14):
-    u = np.linspace(0, 2 * np.pi, n + 1)
-    v = np.linspace(0, np.pi, n // 2 + 1)
-    x = center[0] + radius * np.outer(np.cos(u), np.sin(v))
-    y = center[1] + radius * np.outer(np.sin(u), np.sin(v))
-    z = center[2] + radius * np.outer(np.ones_like(u), np.cos(v))
-    return x, y, z
-
-
-def cylinder_grid(cyl, n=16):
-    R = cyl.axis_rotation()
-    t = np.linspace(0, 2 * np.pi, n + 1)
-    ring = cyl.radius * (np.outer(np.cos(t), R[:, 0]) + np.outer(np.sin(t), R[:, 1]))  # (n+1, 3)
-    grid = np.stack([cyl.start + ring, cyl.end + ring])  # (2, n+1, 3)
-    return grid[..., 0], grid[..., 1], grid[..., 2]
-
-
-def draw_matplotlib(ax, primitives, *, limits=None, labels=True, pad=0.05):
-    """Draw primitives on a matplotlib 3D axis at equal aspect (1 m is the same length on x, y and z).
-
-    Parameters
-    ----------
-    ax : mpl_toolkits.mplot3d.Axes3D or None
-        Target axis; ``None`` makes a new 6x5 inch figure with one 3D axis.
-    primitives : iterable of scene3d primitives (nested lists allowed)
-    limits : ((3,), (3,)) or None
-        Bounds to frame; by default :func:`scene_bounds` of the primitives.
-    labels : bool
-        Axis labels in metres.
-
-    Returns
-    -------
-    ax
-    """
-    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
-
-    func = "draw_matplotlib"
-    ax = axes(ax, func, three_d=True)
-    prims = check_scene(primitives, func)
-    if limits is None:
-        lo, hi = _bounds(prims, func) if prims else (np.zeros(3) - 1, np.zeros(3) + 1)
-    else:
-        box = floats(limits, func, "limits", (2, 3))
-        if np.any(box[1] < box[0]) or np.abs(box).max() > LIMIT:
-            raise fail(func, "limits", f"expected (lo, hi) with lo <= hi, drawable, got {box.tolist()}")
-        lo, hi = box
-    lo, hi, pad = _box(lo, hi, pad, func)
-    labels = flag(labels, func, "labels")
-    if ax is None:
-        import matplotlib.pyplot as plt
-
-        fig = plt.figure(figsize=(6, 5), dpi=80)
-        ax = fig.add_subplot(projection="3d")
-    for p in prims:
-        if isinstance(p, Box):
-            ax.add_collection3d(
-                Poly3DCollection(
-                    box_faces(p.corners()), facecolors=p.color, alpha=p.opacity, edgecolors="0.25", linewidths=0.3
-                )
-            )
-        elif isinstance(p, Quad):
-            ax.add_collection3d(
-                Poly3DCollection([p.corners], facecolors=p.color, alpha=p.opacity, edgecolors="0.35", linewidths=0.3)
-            )
-        elif isinstance(p, Sphere):
-            ax.plot_surface(*_sphere_grid(p.center, p.radius), color=p.color, alpha=p.opacity, linewidth=0, shade=True)
-        elif isinstance(p, Cylinder):
-            ax.plot_surface(*cylinder_grid(p), color=p.color, alpha=p.opacity, linewidth=0, shade=True)
-        elif isinstance(p, Polyline):
-            ax.plot(*p.points.T, color=p.color, lw=p.width * 0.6)
-        elif isinstance(p, PointCloud):
-            ax.scatter(*p.points.T, color=p.color, s=max(1.0, (p.size * 400) ** 2 / 16), depthshade=False)
-        elif isinstance(p, Frame):
-            for seg, col in zip(p.axes(), FRAME_COLORS):
-                ax.plot(*seg.T, color=col, lw=1.5)
-    _equal_3d(ax, lo, hi, pad)
-    if labels:
-        ax.set_xlabel("x (m)")
-        ax.set_ylabel("y (m)")
-        ax.set_zlabel("z (m)")
-    return ax

@@ -6,10 +6,10 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from cga_lessons import stereo as st
-from cga_lessons.checks import fail, instance, real
+from cga_lessons.checks import array, fail, instance, real, relabel
 
-from ._inputs import axes, coords, floats, optional_text, relabel, texts
-from ._inputs import figsize as fig_size
+from .inputs import axes, coords, optional_text, texts
+from .inputs import figsize as fig_size
 
 __all__ = [
     "plot_views",
@@ -24,11 +24,8 @@ _COLORS = plt.cm.tab10(np.arange(10))
 
 def _image(value, func: str, name: str) -> np.ndarray:
     """An image (H, W) or (H, W, 3 or 4) of finite values 0..255 (floats: 0..1 is full scale), as given."""
-    try:
-        ndim = np.ndim(value)
-    except ValueError:
-        ndim = 2
-    img = floats(value, func, name, (None,) * (ndim if ndim in (2, 3) else 2))
+    ndim = np.asarray(value, dtype=object).ndim  # ragged rows: one dimension, refused by the check
+    img = array(value, func, name, (None,) * (ndim if ndim in (2, 3) else 2))
     if not img.size or (img.ndim == 3 and img.shape[2] not in (3, 4)) or img.min() < 0 or img.max() > 255:
         raise fail(func, name, f"expected an image (H, W) or (H, W, 3 or 4) of values 0..255, got {img.shape}")
     return np.asarray(value)
@@ -221,10 +218,10 @@ def plot_plane_segmentation(image, labels, fits, names=None, figsize=(5.4, 3.9))
     from matplotlib.patches import Patch
 
     func = "plot_plane_segmentation"
-    image = floats(image, func, "image", (None, None, 3))
+    image = array(image, func, "image", (None, None, 3))
     if not image.size or image.min() < 0 or image.max() > 255:
         raise fail(func, "image", f"expected an RGB image (H, W, 3) of values 0..255, got {image.shape}")
-    labels = floats(labels, func, "labels", image.shape[:2])
+    labels = array(labels, func, "labels", image.shape[:2])
     if not isinstance(fits, (list, tuple)):
         raise fail(func, "fits", f"expected a list of plane fits (dicts: inliers, rms), got {type(fits).__name__}")
     for i, f in enumerate(fits):

@@ -21,6 +21,7 @@ from cga_lessons.algebra import (
     any_sympy,
     commutator,
     exp,
+    finite_multivector,
     is_real_batch,
     is_real_single,
     is_sympy,
@@ -40,6 +41,7 @@ OTHER_ALGEBRA = Algebra(2).vector([1.0, 1.0])  # a multivector of another algebr
 NULL = G41.blade("e+") + G41.blade("e-")  # squares to 0: no inverse
 T = sympy.Symbol("t")
 SYMBOLIC = G3.blade("e1", T) + G3.blade("e23", 2 * T)
+CHECKER = {"func": "the caller's own name, trusted", "name": "the caller's own argument name, trusted"}
 ABSMAX_NAN = "absmax of NaN is NaN, its documented contract: it is the coefficient helper of the checks themselves"
 
 
@@ -56,6 +58,15 @@ CASES = [
     Case(commutator, {"A": e1, "B": X}, kinds={"A": [1.0], "B": [1.0]}, extra={"B": [OTHER_ALGEBRA]}),
     Case(exp, {"B": BIV}, kinds={"B": [V, X]}, extra={"B": [1e300 * BIV, 1e8 * (e1 ^ e2)]}),
     Case(exp, {"B": G3.scalar(0.5) + BIV}, name="exp (scalar + bivector)", extra={"B": [G3.scalar(1e4)]}),
+    # a check for other functions: the error names the caller (func) and the caller's argument (name, here "X")
+    Case(finite_multivector, {"X": X, "func": "caller", "name": "X"}, label="caller", skip=CHECKER, kinds={"X": [1.0]}),
+    Case(
+        finite_multivector,
+        {"X": BATCH, "func": "caller", "name": "X"},
+        label="caller",
+        skip=CHECKER,
+        name="finite_multivector (batch)",
+    ),
     Case(absmax, {"v": -2.5}, nonfinite_ok=ABSMAX_NAN),
     Case(absmax, {"v": np.array([1.0, -3.0])}, name="absmax (array)", nonfinite_ok=ABSMAX_NAN),
     Case(all_finite, {"arr": np.array([1.0, 2.0])}),

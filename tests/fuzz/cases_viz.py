@@ -21,7 +21,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from cga_lessons import conformal as cga  # noqa: E402
+from cga_lessons.viz import ch2_3d as c3d  # noqa: E402
+from cga_lessons.viz import ch2_accuracy as c2a  # noqa: E402
+from cga_lessons.viz import ch2_transformations as c2t  # noqa: E402
 from cga_lessons.viz import scene3d as s3  # noqa: E402
+from cga_lessons.viz import scene3d_matplotlib as s3m  # noqa: E402
 from fuzz.harness import Case  # noqa: E402
 
 _TMP = Path(tempfile.mkdtemp(prefix="cga-fuzz-viz-"))
@@ -101,9 +105,9 @@ _SCENE_CASES = [
                                                             s3.Sphere("g/b", (0, 0, 0), 1.0)],
                                [_scene()[0], "ball"], {"a": 1}]}),
     Case(s3.scene_bounds, lambda: {"primitives": _scene()}, extra={"primitives": [[], [[]]]}),
-    Case(s3.draw_matplotlib, lambda: {"ax": None, "primitives": _scene(), "limits": None, "labels": True, "pad": 0.05},
+    Case(s3m.draw_matplotlib, lambda: {"ax": None, "primitives": _scene(), "limits": None, "labels": True, "pad": 0.05},
          strict=True, extra={"ax": [_ax()], "limits": [((0, 0, 0), (1, 1)), ((1, 1, 1), (0, 0, 0)), (np.nan, 1)]}),
-    Case(s3.set_equal_3d, lambda: {"ax": _ax3d_shared(), "lo": (0.0, 0.0, 0.0), "hi": (1.0, 1.0, 1.0), "pad": 0.05},
+    Case(s3m.set_equal_3d, lambda: {"ax": _ax3d_shared(), "lo": (0.0, 0.0, 0.0), "hi": (1.0, 1.0, 1.0), "pad": 0.05},
          strict=True, extra={"ax": [_ax()], "hi": [(-1.0, 0.0, 0.0)], "pad": [-1.0]}),
 ]  # fmt: skip
 
@@ -113,6 +117,12 @@ def _mc():
     from cga_lessons.viz import meshcat_scene as mc
 
     return mc
+
+
+def _server():
+    from cga_lessons.viz import meshcat_server
+
+    return meshcat_server
 
 
 def _controls():
@@ -130,7 +140,7 @@ def _existing_file() -> Path:
 _MESHCAT_CASES = [
     Case(_controls().slider_panel, lambda: {"show": _show_x, "x": _slider()}, positional=("show",), strict=True,
          extra={"show": [print, lambda y: y]}),
-    Case(_mc().close_viewer, lambda: {"vis": _mc().Visualizer(window=_mc()._RecordingWindow())}, strict=True),
+    Case(_server().close_viewer, lambda: {"vis": _mc().Visualizer(window=_mc()._RecordingWindow())}, strict=True),
     Case(_mc().show, lambda: {"vis": _recording_vis(), "primitives": _scene(), "clear": False}, strict=True,
          extra={"primitives": [[_scene()[0], "ball"]]}),
     Case(_mc().set_camera, lambda: {"vis": _recording_vis(), "lo": (0.0, 0.0, 0.0), "hi": (1.0, 1.0, 1.0),
@@ -193,35 +203,35 @@ _CH2_CASES = [
     Case(_ch2().fig_stereographic_1d, {"xs": [-1.0, 0.5, 2.0]}, strict=True),
     Case(_ch2().fig_null_cone, {"xs": [-1.0, 0.5]}, strict=True),
     Case(_ch2().fig_minkowski_plane, {}),
-    Case(_ch2().fig_entities, lambda: {"points": [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0]], "point_pair": _PAIR,
+    Case(c3d.fig_entities, lambda: {"points": [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0]], "point_pair": _PAIR,
                                        "sphere": _SPHERE, "plane": _PLANE, "line": _LINE, "circle": _CIRCLE},
          strict=True,
          allow={k: ["None"] for k in ("points", "point_pair", "sphere", "plane", "line", "circle", "title")},
          kinds={"point_pair": _WRONG_PAIR, "sphere": _WRONG_SPHERE, "plane": _WRONG_PLANE, "line": [_CIRCLE, _PLANE],
                 "circle": [_LINE, _SPHERE]}),
-    Case(_ch2().grid_lines, {"lo": -1.0, "hi": 1.0, "n_lines": 3, "n_pts": 5}, strict=True,
+    Case(c2t.grid_lines, {"lo": -1.0, "hi": 1.0, "n_lines": 3, "n_pts": 5}, strict=True,
          extra={"n_lines": [0, 10**9], "n_pts": [1, 10**9]}),
-    Case(_ch2().fig_inversion_grid, {"grid": _GRID, "image": _GRID * 0.5, "center": (0.3, 0.2, 0.0), "radius": 1.0,
+    Case(c2t.fig_inversion_grid, {"grid": _GRID, "image": _GRID * 0.5, "center": (0.3, 0.2, 0.0), "radius": 1.0,
                                      "window": (-2.5, 2.5, -2.5, 2.5), "highlight": 1}, strict=True,
          allow={"window": ["None"], "highlight": ["None"]},
          extra={"image": [_GRID[:1]], "radius": [0.0], "window": [(1.0, 0.0, 0.0, 1.0)], "highlight": [2, -1]}),
-    Case(_ch2().fig_two_reflections, {"shape": _TRIANGLE, "after_first": _TRIANGLE + 1.0,
+    Case(c2t.fig_two_reflections, {"shape": _TRIANGLE, "after_first": _TRIANGLE + 1.0,
                                       "after_second": _TRIANGLE + 2.0, "planes": _PLANES, "title": "two",
                                       "span": 3.0, "center": (0.0, 0.0, 0.0), "legend_loc": "best"}, strict=True,
          allow={"center": ["None"], "title": ["None"]},
          extra={"planes": [_PLANE_LIST[:1], [((0.0, 0.0, 1.0), 0.0, "z"), _PLANE_LIST[0]],
                            [(1.0, 2.0, 3.0)] * 2, [((np.nan, 1.0, 0.0), 0.0, "a"), _PLANE_LIST[0]]],
                 "after_first": [_TRIANGLE[:2]], "span": [0.0]}),
-    Case(_ch2().fig_screw_helix, {"points": [[1.0, 0.0, 0.0], [0.0, 1.0, 0.1], [-1.0, 0.0, 0.2]],
+    Case(c3d.fig_screw_helix, {"points": [[1.0, 0.0, 0.0], [0.0, 1.0, 0.1], [-1.0, 0.0, 0.2]],
                                   "axis_point": (0.0, 0.0, 0.0), "axis_direction": (0.0, 0.0, 1.0), "title": "helix"},
          strict=True, allow={"title": ["None"]}, extra={"axis_direction": [(0.0, 0.0, 0.0)]}),
-    Case(_ch2().set_equal_3d, lambda: {"ax": _ax3d_shared(), "pts": [[0.0, 0.0, 0.0], [1.0, 1.0, 1.0]], "pad": 0.3,
+    Case(c3d.set_equal_3d, lambda: {"ax": _ax3d_shared(), "pts": [[0.0, 0.0, 0.0], [1.0, 1.0, 1.0]], "pad": 0.3,
                                        "labels": ("x", "y", "z")}, strict=True, extra={"ax": [_ax()], "pad": [-1.0]}),
-    Case(_ch2().point_pair_accuracy, lambda: {"separations": [0.1, 1e-9], "distance": 4.0,
+    Case(c2a.point_pair_accuracy, lambda: {"separations": [0.1, 1e-9], "distance": 4.0,
                                               "rng": np.random.default_rng(0), "trials": 2}, strict=True,
          nonfinite_ok="documented: worst is NaN where every trial raised",
          extra={"separations": [[0.0], [-1.0]], "trials": [0, 10**9], "rng": [0, np.random.RandomState(0)]}),
-    Case(_ch2().fig_point_pair_accuracy, lambda: {"separations": [1e-3, 1e-1], "curves": _accuracy()}, strict=True,
+    Case(c2a.fig_point_pair_accuracy, lambda: {"separations": [1e-3, 1e-1], "curves": _accuracy()}, strict=True,
          extra={"separations": [[0.0, 1.0]], "curves": [{}, {"a": (1, 2)}, {"a": ([np.inf, 1.0], [0, 0], [0, 0])},
                                                           {3: ([1.0, 1.0], [0, 0], [0, 0])}]}),
 ]  # fmt: skip
@@ -443,8 +453,8 @@ def _arm():
 
 @functools.cache
 def _cloud():
-    from cga_lessons.stereo.detect import DetectedEntity
     from cga_lessons.stereo.detect_scenes import TruthEntity
+    from cga_lessons.stereo.detect_search import DetectedEntity
 
     X = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [2.0, 0.5, 0.8], [2.0, 0.5, 0.2]])
     plane = {"normal": np.array([0, 0, 1.0]), "center": np.array([0.5, 0.5, 0]), "distance": 0.0}
@@ -762,6 +772,6 @@ for _case in CASES:
     _none_documented(_case)
 
 EXEMPT = {
-    "viz.meshcat_scene.Viewer": "a meshcat Visualizer whose construction starts a server process (loopback)",
-    "viz.meshcat_scene.open_viewer": "starts a meshcat server process; its argument checks are in tests/test_viewer.py",
+    "viz.meshcat_server.Viewer": "a meshcat Visualizer whose construction starts a server process (loopback)",
+    "viz.meshcat_server.open_viewer": "starts a meshcat server process; its argument checks: tests/test_viewer.py",
 }

@@ -109,7 +109,7 @@ ENTRIES = [
         title="back-projected ray X(lambda) = P+ x + lambda C; midpoint triangulation (fig. A.4)",
         status="numeric",
         implementation="cga_lessons.stereo.camera.back_project, cga_lessons.stereo.camera.pseudo_inverse, "
-        "cga_lessons.stereo.camera.triangulate",
+        "cga_lessons.stereo.triangulation.triangulate",
         test=_T
         + "test_back_projected_rays_A14_pass_through_the_points, "
         + _T

@@ -17,21 +17,21 @@ ENTRIES = [
         label="3.1",
         title="line a x + b y + c = 0 through the first and last point",
         status="numeric",
-        implementation=f"{L}.line_through, {L}.split_points",
+        implementation=f"cga_lessons.mapping2d.segment.line_through, {L}.split_points",
         test=f"{TL}::test_line_through_and_point_distance_3_1_3_2, {TL}::test_split_points_at_a_corner_and_not_on_a_line",
     ),
     Entry(
         label="3.2",
         title="distance of a point to a line",
         status="numeric",
-        implementation=f"{L}.point_line_distance, {L}.split_points",
+        implementation=f"cga_lessons.mapping2d.segment.point_line_distance, {L}.split_points",
         test=f"{TL}::test_line_through_and_point_distance_3_1_3_2, {TL}::test_split_points_at_a_corner_and_not_on_a_line",
     ),
     Entry(
         label="3.3",
         title="Hough normal form x cos(theta) + y sin(theta) = rho; the segment structure",
         status="numeric",
-        implementation=f"{L}.Segment",
+        implementation="cga_lessons.mapping2d.segment.Segment",
         test=f"{TL}::test_segment_members_3_3",
     ),
     Entry(
@@ -39,7 +39,7 @@ ENTRIES = [
         title="v' = R(theta_o) v + T_o",
         status="numeric",
         implementation=(
-            f"cga_lessons.mapping2d.laser.compose, {L}.Segment.transformed, {G}.PlainGeometry.transform, "
+            f"cga_lessons.mapping2d.poses.compose, cga_lessons.mapping2d.segment.Segment.transformed, {G}.PlainGeometry.transform, "
             f"{G}.PlainGeometry.to_global_rows"
         ),
         test=(
@@ -146,7 +146,7 @@ ENTRIES = [
         label="3.15",
         title="closest point to the origin",
         status="erratum",
-        implementation=f"{C}.point_pair_structure, cga_lessons.conformal.entities.line_closest_point",
+        implementation=f"{C}.point_pair_structure, cga_lessons.conformal.lines_circles.line_closest_point",
         printed="p = -(L* . E) . ((e+ . L) I_E)",
         correct="p = (L* . E) . ((e+ . L) I_E), L* normalised by (2.126) (the sign of the moment 2.128)",
         test=f"{TM}::test_eq_3_15_erratum_printed_sign_gives_the_antipode, {TM}::test_point_pair_structure_3_14_3_15",

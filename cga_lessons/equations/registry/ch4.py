@@ -41,7 +41,7 @@ ENTRIES = [
         label="4.4",
         title="x' = M_lu x ~M_lu (laser entities to the unified frame)",
         status="numeric",
-        implementation=f"{R}.to_unified, cga_lessons.map3d.robot.Robot.laser_to_unified, cga_lessons.map3d.build_fused_map",
+        implementation=f"{R}.to_unified, cga_lessons.map3d.robot.Robot.laser_to_unified, cga_lessons.map3d.fuse.build_fused_map",
         test=f"{T}::test_eq_4_4_moves_laser_entities_like_the_matrix, "
         f"{TM}::test_scan_segments_land_at_laser_height_on_the_walls",
     ),
@@ -92,7 +92,7 @@ ENTRIES = [
         label="4.10",
         title="x' = M_eu x ~M_eu (stereo entities to the unified frame)",
         status="numeric",
-        implementation=f"{R}.to_unified, cga_lessons.map3d.robot.Robot.stereo_to_unified, cga_lessons.map3d.build_fused_map",
+        implementation=f"{R}.to_unified, cga_lessons.map3d.robot.Robot.stereo_to_unified, cga_lessons.map3d.fuse.build_fused_map",
         test=f"{T}::test_eq_4_10_moves_stereo_entities_like_the_matrix, "
         f"{TM}::test_noise_free_tour_recovers_the_truth, {TM}::test_view_entities_are_the_fits_of_the_moved_points",
     ),

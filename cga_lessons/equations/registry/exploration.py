@@ -11,7 +11,7 @@ ENTRIES = [
         label="3.1",
         title="L1 distance B from every node to a point of the sphere; nearest-node loop for occupied nodes",
         status="numeric",
-        implementation="cga_lessons.exploration.l1_distances, cga_lessons.exploration.occupied_nodes_loop",
+        implementation="cga_lessons.exploration.nodes.l1_distances, cga_lessons.exploration.nodes.occupied_nodes_loop",
         test="tests/test_exploration.py::test_l1_distance_equation_3_1, "
         "tests/test_exploration.py::test_loop_matches_indexed_and_brute_force",
         note="The loop skips an analysed node for the current point only; removing it for good can lose "
