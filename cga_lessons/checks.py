@@ -201,10 +201,43 @@ def _shape_text(shape) -> str:
     return "(" + ", ".join(parts) + ("," if len(parts) == 1 else "") + ")"
 
 
-def array(value, func: str, name: str, shape: tuple, *, finite: bool = True, at_least: int = 0) -> np.ndarray:
+def _values(a: np.ndarray, func: str, name: str, limit, why: str) -> None:
+    """Refuse NaN or inf in ``a`` and, with a ``limit``, magnitudes beyond it (:func:`magnitude`'s words).
+
+    One pass for what a call costs: a few values are read as Python floats; a large array by its maximum and minimum
+    (NaN makes both comparisons false, inf the strict ones), with no array of flags made.
+    """
+    if a.size == 0:
+        return
+    if a.size <= 16:
+        vals = a.ravel().tolist()
+        if not all(map(math.isfinite, vals)):
+            raise fail(func, name, "contains NaN or inf")
+        big = max(map(abs, vals))
+    else:
+        hi, lo = float(a.max()), float(a.min())
+        if not (hi < math.inf and lo > -math.inf):
+            raise fail(func, name, "contains NaN or inf")
+        big = max(hi, -lo)
+    if limit is not None and big > limit:
+        raise fail(func, name, f"magnitudes up to {big:.3g}, beyond {limit:.3g}: {why}")
+
+
+def array(
+    value,
+    func: str,
+    name: str,
+    shape: tuple,
+    *,
+    finite: bool = True,
+    at_least: int = 0,
+    limit: float | None = None,
+    why: str = "squares overflow a float",
+) -> np.ndarray:
     """``value`` as a float array of ``shape`` (``None`` matches any length), finite by default.
 
-    ``at_least`` is the least length of the first axis.
+    ``at_least`` is the least length of the first axis; ``limit`` (with its reason ``why``) the largest magnitude
+    accepted, as :func:`magnitude` says it.
 
     >>> array([[1, 2]], "f", "uv", (None, 2)).shape
     (1, 2)
@@ -216,15 +249,26 @@ def array(value, func: str, name: str, shape: tuple, *, finite: bool = True, at_
     a = _as_float_array(value, func, name)
     if a.ndim != len(shape) or any(s is not None and s != d for s, d in zip(shape, a.shape)):
         raise fail(func, name, f"expected shape {_shape_text(shape)}, got {a.shape}")
-    if finite and not np.all(np.isfinite(a)):
-        raise fail(func, name, "contains NaN or inf")
+    if finite:
+        _values(a, func, name, limit, why)
     if a.ndim and len(a) < at_least:
         raise fail(func, name, f"expected at least {at_least} rows, got {len(a)}")
     return a
 
 
-def batch(value, func: str, name: str, tail: tuple, *, finite: bool = True, at_least: int = 0):
-    """``value`` of shape ``tail`` (one item) or ``(N,) + tail`` (a batch), as ``(array (N,)+tail, single)``.
+def batch(
+    value,
+    func: str,
+    name: str,
+    tail: tuple,
+    *,
+    finite: bool = True,
+    at_least: int = 0,
+    limit: float | None = None,
+    why: str = "squares overflow a float",
+):
+    """``value`` of shape ``tail`` (one item) or ``(N,) + tail`` (a batch), as ``(array (N,)+tail, single)``;
+    finite, and within ``limit`` when one is given (as :func:`array`).
 
     >>> a, single = batch([1, 2, 3], "f", "x", (3,))
     >>> a.shape, single
@@ -237,8 +281,8 @@ def batch(value, func: str, name: str, tail: tuple, *, finite: bool = True, at_l
     if a.ndim != len(tail) + 1 or a.shape[1:] != tuple(tail):
         one, many = _shape_text(tail), _shape_text((None, *tail))
         raise fail(func, name, f"expected shape {one} or {many}, got {a.shape}")
-    if finite and not np.all(np.isfinite(a)):
-        raise fail(func, name, "contains NaN or inf")
+    if finite:
+        _values(a, func, name, limit, why)
     if len(a) < at_least:
         raise fail(func, name, f"expected at least {at_least} items, got {len(a)}")
     return a, single

@@ -53,9 +53,7 @@ def check_points(x, func: str, name: str = "x", *, limit: bool = False):
         return list(x), True
     if checks.is_symbolic(x) and _is_sympy_matrix(x):
         return [x[i] for i in range(3)], True
-    arr, single = checks.batch(x, func, name, (3,))
-    if limit:
-        checks.magnitude(arr, func, name, limit=COORD_LIMIT, why=COORD_WHY)
+    arr, single = checks.batch(x, func, name, (3,), limit=COORD_LIMIT if limit else None, why=COORD_WHY)
     return (arr[0] if single else arr), False
 
 
