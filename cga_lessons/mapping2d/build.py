@@ -91,7 +91,7 @@ from .corrections import odometry_covariance
 from .geometry import PlainGeometry, SegmentSet
 from .inputs import pose, reach, scan_list
 from .laser import scan_points_unchecked
-from .lines import extract_unchecked, extraction_settings
+from .lines import extract_unchecked, extraction_defaults, extraction_settings
 from .loops import LoopCloser
 from .params import MapParams
 from .poses import compose_unchecked, relative_unchecked
@@ -197,7 +197,7 @@ def _inputs(scans, odometry, method, params, mount, max_range, extraction, recor
         raise checks.fail(f, ", ".join(sorted(bad)), f"unknown parameter(s) {sorted(bad)} (see MapParams)")
     if overrides:
         params = MapParams(**{**params.__dict__, **overrides})
-    ext = {"max_range": reach(max_range, f, "max_range")}
+    ext = {**extraction_defaults(), "max_range": reach(max_range, f, "max_range")}
     if extraction is not None:
         if not isinstance(extraction, dict):
             raise checks.fail(f, "extraction", f"expected a dict of extract_segments settings, got {extraction!r}")

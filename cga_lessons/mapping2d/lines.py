@@ -25,6 +25,8 @@ faces of a thin wall apart, and it is what the thesis's remark
 
 from __future__ import annotations
 
+import inspect
+
 import numpy as np
 
 from cga_lessons import checks
@@ -308,24 +310,31 @@ def extraction_settings(settings: dict, func: str, prefix: str = "") -> dict:
     return out
 
 
+def extraction_defaults() -> dict:
+    """The default settings of :func:`extract_segments`, read off its signature (the one place they are written)."""
+    params = inspect.signature(extract_segments).parameters
+    return {name: params[name].default for name in EXTRACTION}
+
+
 def extract_unchecked(
     r,
     a,
     *,
-    xi: float = 0.03,
-    phi_xi: float = np.radians(5.0),
-    min_points: int = 6,
-    min_length: float = 0.15,
-    max_gap: float = 0.20,
-    jump_ratio: float = 5.0,
-    max_range: float = np.inf,
-    edge_tolerance: float = 0.15,
+    xi: float,
+    phi_xi: float,
+    min_points: int,
+    min_length: float,
+    max_gap: float,
+    jump_ratio: float,
+    max_range: float,
+    edge_tolerance: float,
     func: str = "extract_segments",
     names: tuple = ("ranges", "angles"),
 ):
     """:func:`extract_segments` of checked arguments (a scan from :func:`~cga_lessons.mapping2d.inputs.scan` with
-    ``increasing=True``, settings from :func:`extraction_settings`); ``func`` and ``names`` name the caller and
-    its arguments in the error of a scan whose readings overflow."""
+    ``increasing=True``, every setting checked by :func:`extraction_settings`, the others from
+    :func:`extraction_defaults`); ``func`` and ``names`` name the caller and its arguments in the error of a scan
+    whose readings overflow."""
     r = r.copy()
     r[~np.isfinite(r) | (r <= 0) | (r >= max_range)] = np.inf
     ok = np.isfinite(r)
