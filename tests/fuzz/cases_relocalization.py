@@ -48,23 +48,12 @@ from cga_lessons.relocalization import (
 from cga_lessons.relocalization.coverage import build_coverage
 from cga_lessons.relocalization.mcl_search import SearchConfig
 from cga_lessons.relocalization.sampling import KLDConfig
+from conftest import wall_polygons  # the suite's own thin walls (tests/conftest.py)
 from fuzz.harness import Case
-
-
-def _walls(outline, thickness=0.1):
-    """Thin wall polygons along a closed outline (as tests/conftest.py's ``hall``)."""
-    out = []
-    for a, b in zip(outline, np.roll(outline, -1, axis=0)):
-        d = (b - a) / np.hypot(*(b - a))
-        n = np.array([-d[1], d[0]]) * thickness / 2
-        a2, b2 = a - d * thickness / 2, b + d * thickness / 2
-        out.append(np.array([a2 - n, b2 - n, b2 + n, a2 + n]))
-    return out
-
 
 _OUTLINE = np.array([[0, 0], [4, 0], [4, 1.5], [5, 1.5], [5, 3.5], [0, 3.5]], float)
 _BOX = np.array([[1.0, 1.0], [1.6, 1.0], [1.6, 1.4], [1.0, 1.4]])
-SCENE = Scene("tiny", _walls(_OUTLINE) + [_BOX], np.zeros((1, 3)))
+SCENE = Scene("tiny", wall_polygons(_OUTLINE) + [_BOX], np.zeros((1, 3)))
 MAP = np.concatenate(
     [np.stack([_OUTLINE, np.roll(_OUTLINE, -1, axis=0)], axis=1), np.stack([_BOX, np.roll(_BOX, -1, axis=0)], axis=1)]
 )
