@@ -1,6 +1,7 @@
 """The package's layers, read from its source: every module imports only from layers below its own.
 
-Layer 0 is ``errors``, ``checks`` and ``paths`` (the latter two may import ``errors``); 1 ``algebra``; 2
+Layer 0 is ``errors``, ``checks``, ``paths`` and ``config``, in that order within the layer (each may import the
+ones before it); 1 ``algebra``; 2
 ``conformal``; 3 ``symbolic``, ``mapping2d``, ``stereo``, ``exploration``, ``kinematics``; 4 ``map3d``,
 ``relocalization``; 5 ``equations``, ``exercises``, ``viz``; 6 ``cli``.
 A module may import its own package's modules and any package of a lower layer, another package only through its
@@ -27,6 +28,7 @@ LAYERS = {
     "errors": 0,
     "checks": 0,
     "paths": 0,
+    "config": 0,
     "algebra": 1,
     "conformal": 2,
     "symbolic": 3,
@@ -41,6 +43,8 @@ LAYERS = {
     "viz": 5,
     "cli": 6,
 }
+#: The order within layer 0: a module there may import those of a lower rank.
+LAYER0_RANK = {"errors": 0, "checks": 1, "paths": 2, "config": 2}
 DRAWING = ("matplotlib", "meshcat", "ipywidgets", "IPython")
 PACKAGES = {k for k in LAYERS if (PACKAGE / k / "__init__.py").is_file()}
 MODULES_ARE_FACE = {"viz"}
@@ -116,7 +120,9 @@ def violations_of(path: Path, source: str | None = None) -> list[str]:
                 continue
             if target not in LAYERS:
                 out.append(f"{where}: imports {target!r} from the package's root; import it from its layer")
-            elif LAYERS[target] >= LAYERS[own] and not (target == "errors" and LAYERS[own] == 0):
+            elif LAYERS[target] >= LAYERS[own] and not (
+                LAYERS[own] == 0 and LAYERS[target] == 0 and LAYER0_RANK[target] < LAYER0_RANK[own]
+            ):
                 out.append(
                     f"{where}: {own} (layer {LAYERS[own]}) imports {module}{'' if names is None else ' ' + str(names)}"
                     f" of {target} (layer {LAYERS[target]}): only lower layers may be imported"
@@ -149,6 +155,9 @@ def test_the_check_finds_an_upward_import_a_root_import_and_a_drawing(tmp_path):
     assert any("private" in v for v in violations_of(fake, "from .geometry import _hidden\n"))
     assert any("private" in v for v in violations_of(fake, "from cga_lessons.conformal import _hidden\n"))
     assert violations_of(fake, "from cga_lessons.errors import InvalidInputError\n") == []
+    # within layer 0: config may use checks, checks may not use config
+    assert violations_of(PACKAGE / "config.py", "from cga_lessons import checks\n") == []
+    assert any("layer 0" in v for v in violations_of(PACKAGE / "checks.py", "from cga_lessons import config\n"))
 
 
 def test_the_root_holds_at_most_eight_modules_and_every_layer_is_a_package():
