@@ -18,9 +18,9 @@ import nbformat
 import numpy as np
 import pytest
 
-from cga_lessons import data_path, equations
+from cga_lessons import cli, data_path, equations
 from cga_lessons.cli import SEGMENT_COLUMNS
-from cga_lessons.cli import commands as cli
+from cga_lessons.cli.progress import Progress
 from cga_lessons.mapping2d import laser, read_carmen_log, wrap_angle
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -332,7 +332,7 @@ def test_progress_bar_redraws_in_place_on_a_terminal():
         def isatty(self):
             return True
 
-    bar = cli.Progress(4, "x", stream=Tty())
+    bar = Progress(4, "x", stream=Tty())
     for k in range(5):
         bar.update(k)
     bar.close()

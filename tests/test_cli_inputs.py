@@ -1,4 +1,4 @@
-"""The command line against hostile inputs and output paths (cga_lessons.cli, cga_lessons.cli.io).
+"""The command line against hostile inputs and output paths (cga_lessons.cli, its errors, inputs and outputs).
 
 Every case must give exit status 1 and a one-line error on stderr naming the problem, no traceback, and leave
 the file system as it was: no partial file, the user's files intact, no symbolic link followed.  The truth is
@@ -13,10 +13,11 @@ import nbformat
 import numpy as np
 import pytest
 
+from cga_lessons import cli
 from cga_lessons.algebra import InvalidInputError
 from cga_lessons.cli import SEGMENT_COLUMNS, segments_csv
-from cga_lessons.cli import commands as cli
-from cga_lessons.cli import io as cli_io
+from cga_lessons.cli import errors as cli_errors
+from cga_lessons.cli import map2d as cli_map2d
 from cga_lessons.mapping2d import Segment, laser
 
 HEADER = ",".join(SEGMENT_COLUMNS)
@@ -76,7 +77,7 @@ def no_build(monkeypatch):
     def fail(*args, **kwargs):
         raise AssertionError("map2d built the map before checking its outputs")
 
-    monkeypatch.setattr(cli, "_build_map_with_progress", fail)
+    monkeypatch.setattr(cli_map2d, "_build_map_with_progress", fail)
 
 
 # --------------------------------------------------------------------------- relocalize: the map file
@@ -268,18 +269,18 @@ def test_write_segments_csv_replaces_a_symbolic_link_only_with_overwrite(tmp_pat
     link.symlink_to(target)
     dangling.symlink_to(tmp_path / "nowhere.csv")
     for p in (link, dangling):
-        with pytest.raises(cli_io.OutputPathError, match="symbolic link"):
+        with pytest.raises(cli_errors.OutputPathError, match="symbolic link"):
             cli.write_segments_csv(p, seg)
         assert p.is_symlink()
         cli.write_segments_csv(p, seg, overwrite=True)
         assert not p.is_symlink() and p.read_text().startswith("x_start,")
     assert target.read_text() == "the user's file\n" and not (tmp_path / "nowhere.csv").exists()
     (tmp_path / "folder.csv").mkdir()
-    with pytest.raises(cli_io.OutputPathError, match="is a folder"):
+    with pytest.raises(cli_errors.OutputPathError, match="is a folder"):
         cli.write_segments_csv(tmp_path / "folder.csv", seg, overwrite=True)
 
 
 def test_cli_errors_are_value_errors():
     assert issubclass(cli.CLIError, ValueError) and cli.CLIError.__module__ == "cga_lessons.cli"
-    for cls in (cli_io.OutputPathError, cli_io.OutputExistsError, cli_io.InputFileError):
+    for cls in (cli_errors.OutputPathError, cli_errors.OutputExistsError, cli_errors.InputFileError):
         assert issubclass(cls, cli.CLIError) and issubclass(cls, InvalidInputError)

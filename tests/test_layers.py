@@ -1,9 +1,8 @@
 """The package's layers, read from its source: every module imports only from layers below its own.
 
-Layer 0 is ``errors``, ``checks``, ``paths`` and ``config``, in that order within the layer (each may import the
-ones before it); 1 ``algebra``; 2
-``conformal``; 3 ``symbolic``, ``mapping2d``, ``stereo``, ``exploration``, ``kinematics``; 4 ``map3d``,
-``relocalization``; 5 ``equations``, ``exercises``, ``viz``; 6 ``cli``.
+Layer 0 is ``errors``, ``checks``, then ``paths``, ``files`` and ``config`` (a module there may import those of a lower
+rank, ``LAYER0_RANK``); 1 ``algebra``; 2 ``conformal``; 3 ``symbolic``, ``mapping2d``, ``stereo``, ``exploration``,
+``kinematics``; 4 ``map3d``, ``relocalization``; 5 ``equations``, ``exercises``, ``viz``; 6 ``cli``.
 A module may import its own package's modules and any package of a lower layer, another package only through its
 facade (its ``__init__``: names, not modules; ``viz`` is the one package whose modules are its face), and no private
 name (``_x``) of another module; layers 0-4 never draw (no matplotlib, meshcat or widgets).  The package's
@@ -28,6 +27,7 @@ LAYERS = {
     "errors": 0,
     "checks": 0,
     "paths": 0,
+    "files": 0,
     "config": 0,
     "algebra": 1,
     "conformal": 2,
@@ -44,7 +44,7 @@ LAYERS = {
     "cli": 6,
 }
 #: The order within layer 0: a module there may import those of a lower rank.
-LAYER0_RANK = {"errors": 0, "checks": 1, "paths": 2, "config": 2}
+LAYER0_RANK = {"errors": 0, "checks": 1, "paths": 2, "files": 2, "config": 2}
 DRAWING = ("matplotlib", "meshcat", "ipywidgets", "IPython")
 PACKAGES = {k for k in LAYERS if (PACKAGE / k / "__init__.py").is_file()}
 MODULES_ARE_FACE = {"viz"}

@@ -271,12 +271,12 @@ def test_export_html_refuses_to_overwrite(tmp_path):
 
 
 def test_export_html_leaves_no_partial_file(tmp_path, monkeypatch):
-    import cga_lessons.viz.meshcat_scene as mc
+    from cga_lessons import files
 
     def fail_midway(*args, **kwargs):
         raise OSError("disk full")
 
-    monkeypatch.setattr(mc.os, "replace", fail_midway)
+    monkeypatch.setattr(files.os, "fsync", fail_midway)
     with pytest.raises(OSError, match="disk full"):
         export_html(small_scene(), tmp_path / "scene.html")
     assert list(tmp_path.iterdir()) == []

@@ -1,7 +1,7 @@
 """``cga-lessons export-html``: the stored, executed notebooks as a static site that loads nothing from the network.
 
 The pages are built in a hidden temporary folder and moved into ``--out-dir`` only when every notebook has
-been exported (:class:`cga_lessons.cli.io.StagedOutputs`): a notebook that cannot be read or converted is
+been exported (:class:`cga_lessons.cli.outputs.StagedOutputs`): a notebook that cannot be read or converted is
 named in a one-line error and leaves no page behind, so the next run starts from where the site was.
 
 Formulas are typeset offline by a copy of MathJax 2.7 in the site's ``mathjax/`` folder
@@ -16,11 +16,13 @@ import os
 import shutil
 import sys
 from pathlib import Path
+from typing import NamedTuple
 
 from cga_lessons.paths import PROJECT_ROOT
 
 from . import site_math
-from .io import CLIError, OutputExistsError, OutputPathError, StagedOutputs, check_output_dir, check_output_files
+from .errors import CLIError, OutputExistsError, OutputPathError
+from .outputs import StagedOutputs, check_output_dir, check_output_files
 
 __all__ = ["export_html"]
 
@@ -68,7 +70,14 @@ class _StagedSite(StagedOutputs):
         return super().commit()
 
 
-def _mathjax_copy(out: Path, force: bool) -> tuple[Path, list[str]] | None:
+class _MathJaxCopy(NamedTuple):
+    """The bundled MathJax to copy into the site: the folder it comes from and the site's names of its files."""
+
+    source: Path
+    names: list[str]
+
+
+def _mathjax_copy(out: Path, force: bool) -> _MathJaxCopy | None:
     """Where the bundled MathJax comes from and the site's names of its files; None (and a warning) without it.
 
     Checks the site's ``mathjax/`` folder as :func:`check_output_files` checks a page: a symbolic link or a file
@@ -91,7 +100,7 @@ def _mathjax_copy(out: Path, force: bool) -> tuple[Path, list[str]] | None:
         raise OutputExistsError(f"will not overwrite {folder} (pass --force to replace)")
     names = [f"{site_math.MATHJAX_DIR}/{name}" for name in site_math.mathjax_files(source)]
     check_output_files([out / name for name in names], overwrite=force, force_hint="--force")
-    return source, names
+    return _MathJaxCopy(source, names)
 
 
 def export_html(args) -> int:
@@ -107,7 +116,7 @@ def export_html(args) -> int:
     check_output_dir(out)  # before nbconvert's (slow) import and any page
     check_output_files([out / name for name in names], overwrite=args.force, force_hint="--force")
     copy = None if args.mathjax_url else _mathjax_copy(out, args.force)
-    copied = copy[1] if copy else []
+    copied = copy.names if copy else []
     head = {"cga_mathjax_head": site_math.head_html()} if copy else {}
 
     import nbformat
@@ -145,7 +154,7 @@ def export_html(args) -> int:
             pages.append((name, title))
         stage.path("index.html").write_text(_index_page(pages, bool(copy or args.mathjax_url)), encoding="utf-8")
         if copy:
-            source, prefix = copy[0], f"{site_math.MATHJAX_DIR}/"
+            source, prefix = copy.source, f"{site_math.MATHJAX_DIR}/"
             for name in copied:
                 try:
                     shutil.copyfile(source / name.removeprefix(prefix), stage.path(name))

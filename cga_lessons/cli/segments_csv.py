@@ -1,7 +1,8 @@
 """The segments CSV of the command line: the map files ``map2d`` writes and ``relocalize`` reads.
 
-Written atomically through :func:`cga_lessons.cli.io.atomic_write` (every segment checked before the file is
-opened; an existing file is kept unless ``overwrite``), read through :func:`cga_lessons.cli.io.read_csv_rows`
+Written whole or not at all by the package's file writer, :func:`cga_lessons.files.atomic_open` (every segment
+checked before the file is opened; an existing file is kept unless ``overwrite``), read through
+:func:`cga_lessons.cli.inputs.read_csv_rows`
 (binary, UTF-16, over-long lines and absurd point counts refused with the file and line named).
 """
 
@@ -13,8 +14,11 @@ import os
 from pathlib import Path
 
 from cga_lessons.errors import GeometryError, InvalidInputError
+from cga_lessons.files import atomic_open
 
-from .io import InputFileError, OutputExistsError, OutputPathError, atomic_write, read_csv_rows  # noqa: F401
+from .errors import InputFileError, OutputPathError
+from .inputs import read_csv_rows
+from .outputs import check_output_files
 
 __all__ = ["SEGMENT_COLUMNS", "MAX_SEGMENT_POINTS", "read_segments_csv", "write_segments_csv"]
 
@@ -29,7 +33,7 @@ def write_segments_csv(path, segments, *, overwrite: bool = False) -> Path:
     :data:`SEGMENT_COLUMNS`; metres and radians, ``rho``/``theta`` the Hough form (3.3) about the origin.
 
     Every segment is checked before the file is opened, and the file is written to a temporary file in the
-    same folder and renamed onto ``path`` (:func:`cga_lessons.cli.io.atomic_write`): a bad segment or an
+    same folder and renamed onto ``path`` (:func:`cga_lessons.files.atomic_open`): a bad segment or an
     interrupted write leaves no partial file and no existing file is touched.
 
     Raises
@@ -37,9 +41,10 @@ def write_segments_csv(path, segments, *, overwrite: bool = False) -> Path:
     InvalidInputError
         A segment without finite end points, ``rho`` and ``theta`` or with a point count that is not an
         integer from 0 to :data:`MAX_SEGMENT_POINTS`.
-    cga_lessons.cli.io.OutputExistsError
-        ``path`` exists and ``overwrite`` is false (also a ``FileExistsError``).
-    cga_lessons.cli.io.OutputPathError
+    cga_lessons.cli.errors.OutputExistsError
+        ``path`` exists and ``overwrite`` is false (also a ``FileExistsError``; a file that appears while the
+        map is written raises :class:`cga_lessons.files.ExistingFileError`, a ``FileExistsError`` too).
+    cga_lessons.cli.errors.OutputPathError
         ``path`` is a folder, or a symbolic link and ``overwrite`` is false (with it, the link itself is
         replaced, never its target), or its folder does not exist.
     """
@@ -70,12 +75,15 @@ def write_segments_csv(path, segments, *, overwrite: bool = False) -> Path:
         except (AttributeError, TypeError, ValueError, OverflowError) as exc:
             raise InvalidInputError(f"{f}: segments: segment {i} ({type(s).__name__}): {exc}") from None
     try:
-        with atomic_write(path, "w", overwrite=overwrite, encoding="utf-8", newline="") as out:
-            w = csv.writer(out)
-            w.writerow(SEGMENT_COLUMNS)
-            w.writerows(rows)
+        check_output_files([path], overwrite=overwrite)  # the command line's rules: links and folders named
+        if not path.parent.is_dir():
+            raise OutputPathError(f"cannot write {str(path)!r}: no such folder {str(path.parent)!r}")
     except OutputPathError as exc:  # the same error, naming the function and its argument
         raise type(exc)(f"{f}: path: {exc}") from None
+    with atomic_open(path, f, overwrite=overwrite, newline="") as out:
+        w = csv.writer(out)
+        w.writerow(SEGMENT_COLUMNS)
+        w.writerows(rows)
     return path
 
 

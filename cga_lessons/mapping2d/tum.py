@@ -11,24 +11,24 @@ the argument and the problem.
 from __future__ import annotations
 
 import math
-import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
 from cga_lessons import checks
 from cga_lessons.algebra import InvalidInputError
+from cga_lessons.files import ExistingFileError, atomic_write
 
 from .poses import wrap_unchecked
 
 __all__ = ["TrajectoryFileExistsError", "write_tum", "read_tum"]
 
 
-class TrajectoryFileExistsError(InvalidInputError, FileExistsError):
+class TrajectoryFileExistsError(ExistingFileError):
     """:func:`write_tum` was asked to write over an existing file without ``overwrite=True``.
 
-    Both an :class:`~cga_lessons.algebra.InvalidInputError` (a ``ValueError``) and a ``FileExistsError``.
+    An :class:`~cga_lessons.files.ExistingFileError`, so both an :class:`~cga_lessons.algebra.InvalidInputError`
+    (a ``ValueError``) and a ``FileExistsError``.
     """
 
 
@@ -95,44 +95,13 @@ def write_tum(path, poses, timestamps, *, overwrite: bool = False) -> Path:
     overwrite = checks.flag(overwrite, func, "overwrite")
     p = checks.array(poses, func, "poses", (None, 3), at_least=1)
     ts = _timestamps(timestamps, len(p), func)
-    path = Path(path) if isinstance(path, (str, Path)) and str(path) else path
-    if isinstance(path, Path) and path.exists() and not path.is_dir() and not overwrite:
-        raise TrajectoryFileExistsError(f"{func}: path: {str(path)!r} exists (pass overwrite=True to replace it)")
-    path = checks.new_path(path, func, "path", overwrite=overwrite)
     half = p[:, 2] / 2
     rows = np.column_stack([ts, p[:, 0], p[:, 1], np.zeros(len(p)), np.zeros((len(p), 2)), np.sin(half), np.cos(half)])
     text = "".join(" ".join(repr(float(v)) for v in row) + "\n" for row in rows)
-    _write_atomically(path, text, overwrite, func)
-    return path
-
-
-def _write_atomically(path: Path, text: str, overwrite: bool, func: str) -> None:
-    """Write ``text`` to a temporary file beside ``path``, then rename (or, without ``overwrite``, hard-link) it
-    onto ``path``: a reader never sees a partial file, and an interrupted write leaves nothing behind."""
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
     try:
-        with os.fdopen(fd, "w") as f:
-            umask = os.umask(0o022)
-            os.umask(umask)
-            os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes it private; a trajectory file is an ordinary file
-            f.write(text)
-            f.flush()
-            os.fsync(f.fileno())
-        exists = TrajectoryFileExistsError(f"{func}: path: {str(path)!r} exists (pass overwrite=True to replace it)")
-        if overwrite:
-            os.replace(tmp, path)
-        else:
-            try:  # a hard link fails if the file appeared meanwhile, so nothing is ever overwritten
-                os.link(tmp, path)
-            except FileExistsError:
-                raise exists from None
-            except OSError:  # no hard links on this file system: check, then rename
-                if path.exists():
-                    raise exists from None
-                os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
+        return atomic_write(path, text, func, overwrite=overwrite)
+    except ExistingFileError as exc:
+        raise TrajectoryFileExistsError(str(exc)) from None
 
 
 def read_tum(path, *, planar_tol: float = 1e-6):

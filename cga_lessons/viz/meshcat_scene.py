@@ -14,8 +14,6 @@ from __future__ import annotations
 
 import base64
 import html as _html
-import os
-import tempfile
 import warnings
 from pathlib import Path
 
@@ -23,7 +21,8 @@ import numpy as np
 import umsgpack
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.checks import fail, flag, instance, integer, new_path, real, text
+from cga_lessons.checks import fail, flag, instance, integer, real, text
+from cga_lessons.files import atomic_open
 from cga_lessons.viz.scene3d import Box, Cylinder, Frame, PointCloud, Polyline, Quad, Sphere, check_scene, scene_bounds
 
 from .inputs import LIMIT, coords
@@ -237,22 +236,14 @@ def export_html(primitives, path, *, overwrite: bool = False, frame_camera: bool
     """Write the scene to a self-contained HTML file that opens offline in a browser; return its path.
 
     Refuses to replace an existing file unless ``overwrite=True`` (``force=True``, its older name, too).  The
-    parent folder must exist.  The page is written to a temporary file beside ``path`` and renamed onto it, so a
-    failed export leaves no partial file.  No server process is started.
+    parent folder must exist.  The page is written by :func:`cga_lessons.files.atomic_open`: to a temporary file
+    beside ``path``, renamed onto it, so a failed export leaves no partial file.  No server process is started.
     """
     func = "export_html"
     overwrite = flag(overwrite, func, "overwrite") or (force is not None and flag(force, func, "force"))
-    path = new_path(path, func, "path", overwrite=overwrite)
-    page = _page(_nonempty(primitives, func), flag(frame_camera, func, "frame_camera"), 1.3)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as out:
-            out.write(page)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return path
+    with atomic_open(path, func, overwrite=overwrite) as out:  # the path is checked before the page is made
+        out.write(_page(_nonempty(primitives, func), flag(frame_camera, func, "frame_camera"), 1.3))
+    return Path(path)
 
 
 # ====================================================================== embedded in a notebook's output
