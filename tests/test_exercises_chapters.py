@@ -20,7 +20,6 @@ from cga_lessons import conformal as cga
 from cga_lessons import exercises, mapping2d
 from cga_lessons import map3d as rb
 from cga_lessons.map3d.tour import homogeneous_chains
-from cga_lessons.mapping2d import conformal as cmap
 from cga_lessons.mapping2d import laser, lines
 from cga_lessons.relocalization import hough as hough
 from cga_lessons.relocalization import thesis as thesis
@@ -49,7 +48,7 @@ def _corridor_left_over():
 
 def _closest_point():
     seg = mapping2d.Segment([2.0, 1.0], [0.0, 3.0])
-    return cmap.point_pair_structure(cmap.segment_point_pair(seg))["closest_point"]
+    return mapping2d.point_pair_structure(mapping2d.segment_point_pair(seg)).closest_point
 
 
 def _sphere_wedge_square():
@@ -59,7 +58,7 @@ def _sphere_wedge_square():
 
 
 def _camera_matrix():
-    return cga.motor_to_matrix(rb.chain_motors(x=1.5, y=-0.5, theta=2.0, pan=0.3, tilt=0.2)["M_eu"])
+    return cga.motor_to_matrix(rb.chain_motors(x=1.5, y=-0.5, theta=2.0, pan=0.3, tilt=0.2).M_eu)
 
 
 def _printed_4_3_distance():
@@ -138,8 +137,8 @@ def test_printed_laser_chain_misses_by_the_closed_form():
         phi = rng.uniform(0.1, 3.0)
         g = rb.RobotGeometry(laser_mount=(0.3, 0.1, 0.35, phi))
         m = rb.chain_motors(g, x=x, y=y, theta=theta)
-        printed = cga.motor_to_matrix(rb.laser_chain_as_printed(m["M_cl"], m["M_pos"]))[:3, 3]
-        correct = homogeneous_chains(g, x=x, y=y, theta=theta)["laser"][:3, 3]
+        printed = cga.motor_to_matrix(rb.laser_chain_as_printed(m.M_cl, m.M_pos))[:3, 3]
+        correct = homogeneous_chains(g, x=x, y=y, theta=theta).laser[:3, 3]
         expected = 2 * math.hypot(x, y) * math.sin(phi / 2)
         assert np.linalg.norm(printed - correct) == pytest.approx(expected, rel=1e-9)
         got = exercises.evaluate(
@@ -149,7 +148,7 @@ def test_printed_laser_chain_misses_by_the_closed_form():
 
 
 def test_camera_truth_is_the_library_homogeneous_chain():
-    H = homogeneous_chains(x=1.5, y=-0.5, theta=2.0, pan=0.3, tilt=0.2)["camera_left"]
+    H = homogeneous_chains(x=1.5, y=-0.5, theta=2.0, pan=0.3, tilt=0.2).camera_left
     assert exercises.evaluate("ch4.1", H).verdict == "right"
 
 
@@ -163,7 +162,7 @@ def test_corridor_lines_leave_the_along_wall_direction_open():
 
 def test_hough_match_sphere_reject_example_is_case_5_of_the_library():
     g, local = ([0.0, 1.0], [2.0, 1.0]), RIGHT["ch3.6"]()
-    assert cmap.sphere_case(*map(np.array, g), *local) == 5
+    assert mapping2d.sphere_case(*map(np.array, g), *local) == 5
     s_g, s_l = mapping2d.Segment(*g), mapping2d.Segment(*local)
     assert math.hypot(lines.diff_theta(s_g.theta, s_l.theta), s_g.rho - s_l.rho) < 1e-12
 
@@ -210,12 +209,12 @@ def test_a_rounded_answer_is_right_and_told_the_exact_value():
 def _wrong_camera(**change):
     state = dict(x=1.5, y=-0.5, theta=2.0, pan=0.3, tilt=0.2)
     state.update(change)
-    return cga.motor_to_matrix(rb.chain_motors(**state)["M_eu"])
+    return cga.motor_to_matrix(rb.chain_motors(**state).M_eu)
 
 
 def _printed_camera():
     m = rb.chain_motors(x=1.5, y=-0.5, theta=2.0, pan=0.3, tilt=0.2)
-    return cga.motor_to_matrix(rb.stereo_chain_as_printed(m["T_opt"], m["T_ep"], m["R_pt"]))
+    return cga.motor_to_matrix(rb.stereo_chain_as_printed(m.T_opt, m.T_ep, m.R_pt))
 
 
 def _right_order_view():
@@ -256,7 +255,7 @@ WRONG = [
     ("ch4.1", 2 * _camera_matrix(), "last row"),
     ("ch4.1", np.diag([2.0, 1.0, 1.0, 1.0]), "not a rotation"),
     ("ch4.1", _camera_matrix()[:3], "shape"),
-    ("ch4.1", cga.motor_to_matrix(rb.chain_motors(x=1.5, y=-0.5, theta=2.0, pan=0.3, tilt=0.2)["M_lu"]), "off"),
+    ("ch4.1", cga.motor_to_matrix(rb.chain_motors(x=1.5, y=-0.5, theta=2.0, pan=0.3, tilt=0.2).M_lu), "off"),
     ("ch4.2", 0, "straight ahead"),
     ("ch4.2", sp.sqrt(x**2 + y**2) * phi, "arc length"),
     ("ch4.2", sp.sqrt(x**2 + y**2) * sp.sin(phi / 2), "constant factor"),

@@ -362,7 +362,7 @@ def test_float_table_route_for_large_products():
     rng = np.random.default_rng(11)
     M = cga.motor(rng.normal(size=3), 0.7, rng.normal(size=3))
     X = cga.up(rng.normal(size=3))
-    assert len(M.coeffs) * len(X.coeffs) >= G41._TABLE_TERMS
+    assert len(M.coeffs) * len(X.coeffs) >= G41._products.TABLE_TERMS
     for _ in range(3):
         assert close(M * X, naive_gp(M, X), atol=1e-14)
         assert close(M * X * ~M, naive_gp(naive_gp(M, X), naive_reverse(M)), atol=1e-13)
@@ -371,16 +371,15 @@ def test_float_table_route_for_large_products():
 def test_products_of_many_blade_sets_stay_correct_when_the_caches_fill():
     rng = np.random.default_rng(12)
     alg = Algebra(4, 1)
-    old = alg._CACHE_LIMIT
-    alg._CACHE_LIMIT = 8
+    alg._products.cache_limit = 8
     try:
         for ka, kb in itertools.product((1, 3, 9), (2, 5, 11)):
             A, B = random_mv(alg, rng, ka), random_mv(alg, rng, kb)
             for _ in range(2):
                 assert close(A * B, naive_gp(A, B), atol=1e-13)
-        assert len(alg._product_cache) <= 8
+        assert len(alg._products.cache) <= 8
     finally:
-        alg._CACHE_LIMIT = old
+        alg._products.cache_limit = 1024
 
 
 def test_batched_down_is_the_single_point_route_and_the_affine_map():

@@ -17,7 +17,7 @@ from cga_lessons import conformal as cga
 from cga_lessons import kinematics as kin
 from cga_lessons import map3d as rb
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
-from cga_lessons.conformal.versor_log import motor_log
+from cga_lessons.conformal import motor_log
 from cga_lessons.kinematics.arms import DHParameters, dh_chain, panda, ur5
 from cga_lessons.kinematics.ik import IKOptions, inverse_kinematics, twist_error
 from cga_lessons.kinematics.motor_numbers import multiply_batches
@@ -318,16 +318,16 @@ def test_geometer_chains_equal_todays_robot_code(skew, rng):
     q = np.column_stack([c[k] for k in rb.DOFS])
     m = rb.chain_motors(g, **c)
     cam = kin.forward_matrix(geo.camera, q)
-    truth = m["M_eu_lines"] if skew else m["M_eu"]  # axes that miss: the footnote's chain about the lines
+    truth = m.M_eu_lines if skew else m.M_eu  # axes that miss: the footnote's chain about the lines
     assert pose_errors(cam, motor_matrices(truth)) <= (TOL, TOL)
-    assert pose_errors(kin.forward_matrix(geo.laser, q[:, :3]), motor_matrices(m["M_lu"])) <= (TOL, TOL)
+    assert pose_errors(kin.forward_matrix(geo.laser, q[:, :3]), motor_matrices(m.M_lu)) <= (TOL, TOL)
     if not skew:  # the Robot class itself, one state at a time, read through the package's motor_to_matrix
         robot = rb.Robot(g)
         for i in range(20):
             robot.set_state(rb.RobotState(**{k: float(v[i]) for k, v in c.items()}))
             f = robot.frames()
-            assert pose_errors(cam[i], f["camera_left"]) <= (TOL, TOL)
-            assert pose_errors(kin.forward_matrix(geo.laser, q[i, :3]), f["laser"]) <= (TOL, TOL)
+            assert pose_errors(cam[i], f.camera_left) <= (TOL, TOL)
+            assert pose_errors(kin.forward_matrix(geo.laser, q[i, :3]), f.laser) <= (TOL, TOL)
 
 
 # ---------------------------------------------------------------- inputs

@@ -16,6 +16,8 @@ modules:
 * :mod:`~cga_lessons.algebra.exponential_coefficients`: The scalar coefficients of the closed-form exponential of a
   bivector (2.37)
 * :mod:`~cga_lessons.algebra.inverse`: Norms and the inverse of a multivector (2.19)
+* :mod:`~cga_lessons.algebra.involutions`: Grade projection, the involutions and the dual of a multivector
+  (2.16-2.18, 2.31-2.35)
 * :mod:`~cga_lessons.algebra.motor_matrices`: Motors of G(4,1) in closed form: their rotor and translation read off
   the coefficients, and their matrices built from (R, t) in the null basis (2.102, 2.141-2.144)
 * :mod:`~cga_lessons.algebra.multivector`: The Multivector type of :mod:`cga_lessons.algebra` and its operators

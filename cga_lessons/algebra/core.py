@@ -13,7 +13,8 @@ a SymPy expression.  Every product runs over the non-zero blades only, with
 the (blade, blade, result, sign) terms found once per pair of blade sets and
 cached, so one code path serves the numeric chapters and the symbolic proofs.
 
-How a product runs (see :meth:`Algebra._product`; the routes agree to the bit
+How a product runs (see :meth:`ProductTerms.product <cga_lessons.algebra.products.ProductTerms.product>`; the
+routes agree to the bit
 except the float table, which agrees to round-off):
 
 * the first time a pair of blade sets meets, an interpreted loop over its terms;
@@ -53,10 +54,11 @@ from there.  The code lives in one module per idea::
     core.py                     Algebra: blades as bitmaps, signs (2.10), names, constructors
     multivector.py              Multivector and its operators; commutator (2.36)
     access.py                   reading coefficients (X["e12"]), batches, arrays; isclose and ==
+    involutions.py              grade projection, reverse, grade involution, dual (2.16-2.18, 2.31-2.35)
     operands.py                 the checks of operands: what the operators and methods refuse
-    products.py                 cached product terms, compiled straight-line code, float tables
-    versor_matrices.py          versor matrices per grade in closed form (2.82), apply_matrices
-    motor_matrices.py           motors' matrices from (R, t) in the null basis (2.141-2.144), motor_tolerance
+    products.py                 ProductTerms: cached product terms, compiled straight-line code, float tables
+    versor_matrices.py          VersorActions: versor matrices per grade in closed form (2.82), apply_matrices
+    motor_matrices.py           MotorMatrices: motors' matrices from (R, t) in the null basis (2.141-2.144)
     inverse.py                  norms and the inverse (2.19)
     display.py                  text and LaTeX display, SymPy helpers (simplify, expand, subs)
     exponential.py              exp of a bivector (2.37)
@@ -79,11 +81,11 @@ from .coefficients import (
     is_sympy,
     is_zero,
 )
-from .motor_matrices import MotorMatricesMixin
+from .motor_matrices import MotorMatrices
 from .multivector import Multivector
 from .operands import AlgebraKind, BladeNameError, blade_bitmaps, coefficient, coefficient_array
-from .products import ProductTermsMixin
-from .versor_matrices import VersorMatricesMixin
+from .products import ProductTerms, left_matrix
+from .versor_matrices import VersorActions
 
 __all__ = [
     "Algebra",
@@ -120,7 +122,7 @@ def _reorder_sign(a: int, b: int) -> int:
     return -1 if swaps & 1 else 1
 
 
-class Algebra(ProductTermsMixin, VersorMatricesMixin, MotorMatricesMixin, AlgebraKind):
+class Algebra(AlgebraKind):
     """The geometric algebra G(p, q, r), equations (2.9)-(2.10).
 
     Parameters
@@ -141,10 +143,10 @@ class Algebra(ProductTermsMixin, VersorMatricesMixin, MotorMatricesMixin, Algebr
     >>> float((e1 * e2) ** 2)
     -1.0
 
-    The products come from :class:`~cga_lessons.algebra.products.ProductTermsMixin`,
-    the versor matrices from :class:`~cga_lessons.algebra.versor_matrices.VersorMatricesMixin` and
-    :class:`~cga_lessons.algebra.motor_matrices.MotorMatricesMixin`;
-    this class holds the sign table and the caches they read.
+    This class holds the sign table (2.10) and the blade names, and three helpers that read them: its products
+    (:class:`~cga_lessons.algebra.products.ProductTerms`), the versor matrices
+    (:class:`~cga_lessons.algebra.versor_matrices.VersorActions`) and the motors' closed form
+    (:class:`~cga_lessons.algebra.motor_matrices.MotorMatrices`), with the caches they share.
     """
 
     def __init__(self, p: int, q: int = 0, r: int = 0, labels=None):
@@ -184,13 +186,15 @@ class Algebra(ProductTermsMixin, VersorMatricesMixin, MotorMatricesMixin, Algebr
         for b, nm in self.blade_names.items():
             self._name_to_blade[nm] = (b, 1)
         self.pseudoscalar_blade = self.dim - 1
-        self._product_cache: dict = {}
-        self._table_cache: dict = {}
-        self._versor_cache: dict = {}
         #: True where the reverse (2.32) flips the sign of a blade
         self._rev_flip = [bool((g * (g - 1) // 2) & 1) for g in self.grades]
         #: blades of each grade in the order of (2.9)
         self.grade_blades = [[b for b in order if self.grades[b] == k] for k in range(n + 1)]
+        # The helpers that read the tables above (composed, not inherited), and the caches two of them share.
+        tables, versors = {}, {}
+        self._products = ProductTerms(self)
+        self._motors = MotorMatrices(self, tables, versors)
+        self._versors = VersorActions(self, self._motors, tables, versors)
 
     # ------------------------------------------------------------------ names
     def _make_name(self, blade: int) -> str:
@@ -302,3 +306,58 @@ class Algebra(ProductTermsMixin, VersorMatricesMixin, MotorMatricesMixin, Algebr
         if arr.ndim == 1:
             return Multivector(self, {b: float(arr[i]) for i, b in enumerate(blades) if arr[i] != 0})
         return Multivector(self, {b: arr[..., i] for i, b in enumerate(blades)})
+
+    # ------------------------------------------------- linear maps as matrices
+    def left_matrix(self, A: Multivector, blades_in=None, blades_out=None) -> np.ndarray:
+        """Matrix of ``X -> A X`` restricted to the given input/output blades (A one numeric multivector)."""
+        return left_matrix(self, A, blades_in, blades_out)
+
+    def versor_matrices(self, V: Multivector, grades) -> dict | None:
+        """Matrices of ``X -> V X^ V^-1`` (2.82) on the given grades, or None.
+
+        For a single numeric versor V (real coefficients, ``V ~V`` a non-zero
+        scalar up to round-off) returns a :class:`~cga_lessons.algebra.versor_matrices.VersorMatrices`,
+        ``{grade: k x k matrix}`` over the blades of that grade in the order of
+        (2.9) (``self.grade_blades``): the outermorphism of the versor, built
+        in closed form with no multivector products, for a motor of G(4,1)
+        from its rotation and translation (:meth:`rigid_motion`), otherwise
+        from one cached bilinear table per blade set
+        (:meth:`~cga_lessons.algebra.versor_matrices.VersorActions.sandwich_table`).
+        X^ is the grade involution, applied when V is odd.  Returns None for
+        anything else (SymPy or batched coefficients, mixed parity, not a
+        versor); the caller then uses the plain sandwich.
+        """
+        return self._versors.matrices(V, grades)
+
+    def apply_matrices(self, mats: dict, X: Multivector) -> Multivector:
+        """Apply per-grade matrices (from :meth:`versor_matrices`) to X, single or batched.
+
+        ``mats`` is ``{grade: k x k matrix}`` over the blades of each grade in the order of (2.9); see
+        :meth:`~cga_lessons.algebra.versor_matrices.VersorActions.apply_unchecked` for how a batch is applied.
+        """
+        return self._versors.apply(mats, X)
+
+    def rigid_motion(self, V: Multivector):
+        """``(R, t)`` of a motor of G(4,1): V moves the point x to ``R x + t`` (2.102, 2.103); else None.
+
+        V is a single numeric multivector.  Written ``V = R + e n`` (2.140,
+        2.143), with R in the even subalgebra of G3 (scalar and e12, e13, e23:
+        the rotor ``(V ^ E) E`` of 2.141) and n in the odd one, V is a motor
+        when it is even and commutes with e: its e+ and e- parts are equal and
+        it has no E = e+e- part.  The parts that break this (the differences of
+        the e+ and e- coefficients, the E blades, and the trivector of ``n ~R``,
+        which must vanish for ``V ~V`` to be a scalar, 2.145) must be within
+        :func:`motor_tolerance` of the largest coefficient: ``VERSOR_TOLERANCE``
+        plus the round-off a product of motors leaves in its e+/e- terms, up to
+        ``MOTOR_TOLERANCE_CAP``.  A motor built by ``motor``, ``translator``,
+        ``rotor`` or ``matrix_to_motor`` has no defect at all, at any distance.
+
+        Both parts are read linearly off the coefficients: ``R`` is the
+        rotation matrix of the rotor part normalised by its own norm (2.141),
+        and ``t = 2 <n ~R>_1 / (R ~R)`` (2.142-2.144, divided by ``R ~R`` so that
+        a scaled motor ``s M``, the same versor action ``V X V^-1``, gives the
+        same motion), with n the negated e- coefficients.  So ``R x + t`` holds
+        to machine precision at any distance, where the e+/e- form of a point
+        at x holds ``x^2/2``.  Cached by value; the arrays are read-only.
+        """
+        return self._motors.rigid_motion(V)

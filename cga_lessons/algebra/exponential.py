@@ -386,10 +386,10 @@ def _exp_series(B: Multivector, terms: int = 30) -> Multivector:
     alg = B.algebra
     with np.errstate(over="ignore", invalid="ignore"):  # unchecked products: the test below names exp
         for i in range(1, terms):
-            term = alg._product(term, X, "gp")._scale(1.0 / i)
+            term = alg._products.product(term, X, "gp")._scale(1.0 / i)
             out = out._plus(term)
         for _ in range(k):
-            out = alg._product(out, out, "gp")
+            out = alg._products.product(out, out, "gp")
     bad = [b for b, v in out._c.items() if not np.all(np.isfinite(v))]
     if bad:
         raise InvalidInputError(f"exp: B: the result overflows a float (coefficients of B up to {size:.3g})")

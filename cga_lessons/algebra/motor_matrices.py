@@ -2,14 +2,15 @@
 built from (R, t) in the null basis (2.102, 2.141-2.144).
 
 A motor (even, commuting with the point at infinity e, 2.102) takes a route of its own in
-:meth:`~cga_lessons.algebra.versor_matrices.VersorMatricesMixin.versor_matrices`:
-:meth:`MotorMatricesMixin.rigid_motion` reads the rotor R and the translation t linearly off the coefficients
-(2.141-2.144), and the matrices are built in closed form from (R, t) in the null basis (e1, e2, e3, e, e0), where no
-entry is a difference of large terms (see :mod:`cga_lessons.algebra.versor_matrices`).  :func:`motor_tolerance` says
-how far a multivector may be from a motor.
+:meth:`~cga_lessons.algebra.versor_matrices.VersorActions.matrices`:
+:meth:`MotorMatrices.rigid` (or :func:`motor_parts`) reads the rotor R and the translation t linearly off the
+coefficients (2.141-2.144), and the matrices are built in closed form from (R, t) in the null basis
+(e1, e2, e3, e, e0), where no entry is a difference of large terms (see :mod:`cga_lessons.algebra.versor_matrices`).
+:func:`motor_tolerance` says how far a multivector may be from a motor.
 
-:class:`MotorMatricesMixin` is mixed into :class:`~cga_lessons.algebra.Algebra` (which owns the caches and the
-null-basis tables it reads); it is not used alone.
+Each :class:`~cga_lessons.algebra.Algebra` holds one :class:`MotorMatrices` (with the caches it shares with the
+algebra's :class:`~cga_lessons.algebra.versor_matrices.VersorActions`) and delegates
+:meth:`Algebra.rigid_motion <cga_lessons.algebra.Algebra.rigid_motion>` to it.
 """
 
 from __future__ import annotations
@@ -26,7 +27,7 @@ from .multivector import Multivector
 from .operands import nonnegative, not_finite, same_algebra
 from .versor_matrices import VERSOR_TOLERANCE, VersorMatrices
 
-__all__ = ["motor_tolerance", "MOTOR_TOLERANCE_CAP", "MotorMatricesMixin"]
+__all__ = ["motor_tolerance", "motor_parts", "MOTOR_TOLERANCE_CAP", "MotorMatrices"]
 
 #: The most a motor's defects may reach, relative to its largest coefficient (see ``motor_tolerance``).
 MOTOR_TOLERANCE_CAP = 1e-8
@@ -59,110 +60,46 @@ def motor_tolerance(vmax, n_norm, r_norm):
         ) from None
 
 
-class MotorMatricesMixin:
-    """Motor matrices of :class:`~cga_lessons.algebra.Algebra` (mixed into it, next to
-    :class:`~cga_lessons.algebra.versor_matrices.VersorMatricesMixin`)."""
+class MotorMatrices:
+    """The motors of one :class:`~cga_lessons.algebra.Algebra` of signature (4, 1, 0): their ``(R, t)`` read off
+    the coefficients (cached by value), the null-basis tables and their matrices in closed form.
+
+    ``table_cache`` and ``versor_cache`` are the caches it shares with the algebra's
+    :class:`~cga_lessons.algebra.versor_matrices.VersorActions`.
+    """
+
+    def __init__(self, algebra, table_cache: dict, versor_cache: dict):
+        self.algebra = algebra
+        self.motor_algebra = algebra.signature == (4, 1, 0)
+        self.n, self.dim = algebra.n, algebra.dim
+        self.grades, self.grade_blades = algebra.grades, algebra.grade_blades
+        self.table_cache, self.versor_cache = table_cache, versor_cache
 
     def rigid_motion(self, V: Multivector):
-        """``(R, t)`` of a motor of G(4,1): V moves the point x to ``R x + t`` (2.102, 2.103); else None.
-
-        V is a single numeric multivector.  Written ``V = R + e n`` (2.140,
-        2.143), with R in the even subalgebra of G3 (scalar and e12, e13, e23:
-        the rotor ``(V ^ E) E`` of 2.141) and n in the odd one, V is a motor
-        when it is even and commutes with e: its e+ and e- parts are equal and
-        it has no E = e+e- part.  The parts that break this (the differences of
-        the e+ and e- coefficients, the E blades, and the trivector of ``n ~R``,
-        which must vanish for ``V ~V`` to be a scalar, 2.145) must be within
-        :func:`motor_tolerance` of the largest coefficient: ``VERSOR_TOLERANCE``
-        plus the round-off a product of motors leaves in its e+/e- terms, up to
-        ``MOTOR_TOLERANCE_CAP``.  A motor built by ``motor``, ``translator``,
-        ``rotor`` or ``matrix_to_motor`` has no defect at all, at any distance.
-
-        Both parts are read linearly off the coefficients: ``R`` is the
-        rotation matrix of the rotor part normalised by its own norm (2.141),
-        and ``t = 2 <n ~R>_1 / (R ~R)`` (2.142-2.144, divided by ``R ~R`` so that
-        a scaled motor ``s M``, the same versor action ``V X V^-1``, gives the
-        same motion), with n the negated e- coefficients.  So ``R x + t`` holds
-        to machine precision at any distance, where the e+/e- form of a point
-        at x holds ``x^2/2``.  Cached by value; the arrays are read-only.
-        """
-        if type(V) is not Multivector or V.algebra is not self:
-            same_algebra(V, self, "Algebra.rigid_motion", "V", Multivector)
-        hit = self._rigid_motion(V)
+        """:meth:`Algebra.rigid_motion <cga_lessons.algebra.Algebra.rigid_motion>`: :meth:`rigid` with V checked."""
+        if type(V) is not Multivector or V.algebra is not self.algebra:
+            same_algebra(V, self.algebra, "Algebra.rigid_motion", "V", Multivector)
+        hit = self.rigid(V)
         if hit is None and not_finite(V) is not None:
             raise fail("Algebra.rigid_motion", "V", f"coefficient of {not_finite(V)} is NaN or inf")
         return hit
 
-    def _rigid_motion(self, V: Multivector):
+    def rigid(self, V: Multivector):
         """:meth:`rigid_motion` of a multivector of this algebra (unchecked: the fast paths' call)."""
         c = V._c
         if not c or not is_real_single(V):
             return None
         key = ("rigid", tuple(c), tuple(c.values()))
-        hit = self._versor_cache.get(key, False)
+        hit = self.versor_cache.get(key, False)
         if hit is not False:
             return hit
-        hit = self._motor_parts(c) if self.signature == (4, 1, 0) and not_finite(V) is None else None
-        if len(self._versor_cache) >= 256:
-            self._versor_cache.clear()
-        self._versor_cache[key] = hit
+        hit = motor_parts(c, self.grades) if self.motor_algebra and not_finite(V) is None else None
+        if len(self.versor_cache) >= 256:
+            self.versor_cache.clear()
+        self.versor_cache[key] = hit
         return hit
 
-    def _motor_parts(self, c: dict):
-        """``(R, t)`` of :meth:`rigid_motion` from the coefficient map ``c``, or None."""
-        grades = self.grades
-        for b in c:
-            if grades[b] & 1:
-                return None
-        vmax = max([abs(float(v)) for v in c.values()])
-        if not (0.0 < vmax < math.inf):
-            return None
-        get = c.get
-        r0, r12, r13, r23 = float(get(0, 0.0)), float(get(3, 0.0)), float(get(5, 0.0)), float(get(6, 0.0))
-        rn = math.hypot(r0, r12, r13, r23)  # |R| = sqrt(R ~R) (2.141), no overflow
-        if rn == 0.0:
-            return None
-        q0, q12, q13, q23 = r0 / rn, r12 / rn, r13 / rn, r23 / rn
-        # e n = (e+ + e-) n puts -n on the e- blades e1- e2- e3- e123- (and on the e+ ones, for a motor)
-        m1, m2, m3, m123 = float(get(17, 0.0)), float(get(18, 0.0)), float(get(20, 0.0)), float(get(23, 0.0))
-        n1, n2, n3, n123 = -m1, -m2, -m3, -m123
-        nn = math.hypot(n1, n2, n3, n123)
-        tri = n123 * q0 - n1 * q23 + n2 * q13 - n3 * q12  # <n ~R>_3 / |R|, zero when n = t R / 2
-        anti = max(
-            abs(float(get(9, 0.0)) - m1),
-            abs(float(get(10, 0.0)) - m2),
-            abs(float(get(12, 0.0)) - m3),
-            abs(float(get(15, 0.0)) - m123),
-            abs(float(get(24, 0.0))),
-            abs(float(get(27, 0.0))),
-            abs(float(get(29, 0.0))),
-            abs(float(get(30, 0.0))),
-            abs(tri),
-        )
-        ratio = nn / rn
-        rel = min(VERSOR_TOLERANCE + 16 * _EPS * ratio * ratio, MOTOR_TOLERANCE_CAP)  # motor_tolerance, floats
-        if not anti <= rel * vmax:  # also refuses NaN
-            return None
-        s = 2.0 / rn  # t = 2 <n ~R>_1 / (R ~R)  (2.144)
-        t0 = s * (n1 * q0 + n2 * q12 + n3 * q13 + n123 * q23)
-        t1 = s * (n2 * q0 - n1 * q12 + n3 * q23 - n123 * q13)
-        t2 = s * (n3 * q0 - n1 * q13 - n2 * q23 + n123 * q12)
-        if not (math.isfinite(t0) and math.isfinite(t1) and math.isfinite(t2)):
-            return None
-        # The unit quaternion (w, x, y, z) of R = w - x e23 - y e31 - z e12 (2.96; e31 = -e13) and its matrix.
-        w, x, y, z = q0, -q23, q13, -q12
-        Rm = np.array(
-            [
-                [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - z * w), 2.0 * (x * z + y * w)],
-                [2.0 * (x * y + z * w), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - x * w)],
-                [2.0 * (x * z - y * w), 2.0 * (y * z + x * w), 1.0 - 2.0 * (x * x + y * y)],
-            ]
-        )
-        t = np.array([t0, t1, t2])
-        Rm.flags.writeable = t.flags.writeable = False
-        return Rm, t
-
-    def _null_tables(self, g: int):
+    def null_tables(self, g: int):
         """Index tables of grade g for the null basis (e1, e2, e3, e, e0) of G(4,1).
 
         Returns ``(keep, pairs, P, Pinv, comp, sign)``: ``pairs`` the
@@ -174,7 +111,7 @@ class MotorMatricesMixin:
         matrices (below).
         """
         key = ("null-basis", g)
-        hit = self._table_cache.get(key)
+        hit = self.table_cache.get(key)
         if hit is not None:
             return hit
         blades = self.grade_blades[g]
@@ -199,11 +136,11 @@ class MotorMatricesMixin:
             s = np.array([-1.0 if sum(bits(b)) & 1 else 1.0 for b in blades])
             sign = s[:, None] * s[None, :]
         hit = (keep, list(zip(ip, im)), P, Pinv, comp, sign)
-        self._table_cache[key] = hit
+        self.table_cache[key] = hit
         return hit
 
-    def _motor_info(self, rigid: tuple, d: float, grades: tuple):
-        """:meth:`_versor_info` of a motor, built in closed form from its ``(R, t)``.
+    def info(self, rigid: tuple, d: float, grades: tuple):
+        """:meth:`~cga_lessons.algebra.versor_matrices.VersorActions.info` of a motor, in closed form from ``(R, t)``.
 
         In the null basis (e1, e2, e3, e, e0) the motor maps ``x -> R x + (R x . t) e``,
         ``e -> e`` and ``e0 -> e0 + t + t^2/2 e`` (T up(x) ~T = up(x + t), 2.101, 2.62), so on grade 1::
@@ -214,13 +151,13 @@ class MotorMatricesMixin:
         minors of N for k = 2, and for k = 3, 4 the complementary minors of
         ``N^-1 = [[R^T, 0, -R^T t], [-t^T, 1, t^2/2], [0, 0, 1]]`` (Jacobi;
         det N = 1).  No entry is a difference of large terms.  The e+/e-
-        matrices are ``Pinv C P`` (:meth:`_null_tables`), on grade 1 written
+        matrices are ``Pinv C P`` (:meth:`null_tables`), on grade 1 written
         out: ``[[R, -t, t], [u^T, 1 - h, h], [u^T, -h, 1 + h]]`` with
         ``u = R^T t``, ``h = t^2/2``.  A motor is even, so ``V X^ V^-1 = V X V^-1``
         and ``V X ~V = d V X V^-1`` with ``d = R ~R``.
 
-        ``null[g]`` (what :meth:`apply_matrices` uses) is ``K = T_row C T_col``:
-        it takes each e+/e- pair of coefficients as ``(a, w) = (a, b - a)``
+        ``null[g]`` (what :meth:`~cga_lessons.algebra.versor_matrices.VersorActions.apply` uses) is
+        ``K = T_row C T_col``: it takes each e+/e- pair of coefficients as ``(a, w) = (a, b - a)``
         (the e coefficient is ``a + w/2``: T_col) and returns ``(a', w')``
         with ``a' = c' - w'/2`` the e+ coefficient (T_row); then ``b' = a' + w'``.
         So only ``b - a`` and ``a' + w'`` are computed outside the matrix
@@ -235,7 +172,7 @@ class MotorMatricesMixin:
         N, unit1, Ni = _motor_grade1(*rigid, inverse=3 in grades or 4 in grades)
         null, unit = {}, {}
         for g in grades:
-            _, pairs, P, Pinv, comp, sign = self._null_tables(g)
+            _, pairs, P, Pinv, comp, sign = self.null_tables(g)
             if g == 1:  # its K (below) is N itself
                 null[1], unit[1] = N, unit1
                 continue
@@ -244,7 +181,7 @@ class MotorMatricesMixin:
             elif g == 2:
                 C = _minors2(N, comp)
             elif g == 3:
-                C = sign * _minors2(Ni, self._null_tables(2)[4])[np.ix_(comp, comp)].T
+                C = sign * _minors2(Ni, self.null_tables(2)[4])[np.ix_(comp, comp)].T
             else:
                 C = sign * Ni[np.ix_(comp, comp)].T
             C = np.array(C)
@@ -263,10 +200,66 @@ class MotorMatricesMixin:
         return d, 0, VersorMatrices(raw, rigid, raw_null), VersorMatrices(unit, rigid, null)
 
 
+def motor_parts(c: dict, grades) -> tuple | None:
+    """``(R, t)`` of a motor of G(4,1) from its coefficient map ``c`` (blade bitmap -> float), or None when it is
+    not one (:meth:`Algebra.rigid_motion <cga_lessons.algebra.Algebra.rigid_motion>`); ``grades[b]`` is the grade
+    of blade b."""
+    for b in c:
+        if grades[b] & 1:
+            return None
+    vmax = max([abs(float(v)) for v in c.values()])
+    if not (0.0 < vmax < math.inf):
+        return None
+    get = c.get
+    r0, r12, r13, r23 = float(get(0, 0.0)), float(get(3, 0.0)), float(get(5, 0.0)), float(get(6, 0.0))
+    rn = math.hypot(r0, r12, r13, r23)  # |R| = sqrt(R ~R) (2.141), no overflow
+    if rn == 0.0:
+        return None
+    q0, q12, q13, q23 = r0 / rn, r12 / rn, r13 / rn, r23 / rn
+    # e n = (e+ + e-) n puts -n on the e- blades e1- e2- e3- e123- (and on the e+ ones, for a motor)
+    m1, m2, m3, m123 = float(get(17, 0.0)), float(get(18, 0.0)), float(get(20, 0.0)), float(get(23, 0.0))
+    n1, n2, n3, n123 = -m1, -m2, -m3, -m123
+    nn = math.hypot(n1, n2, n3, n123)
+    tri = n123 * q0 - n1 * q23 + n2 * q13 - n3 * q12  # <n ~R>_3 / |R|, zero when n = t R / 2
+    anti = max(
+        abs(float(get(9, 0.0)) - m1),
+        abs(float(get(10, 0.0)) - m2),
+        abs(float(get(12, 0.0)) - m3),
+        abs(float(get(15, 0.0)) - m123),
+        abs(float(get(24, 0.0))),
+        abs(float(get(27, 0.0))),
+        abs(float(get(29, 0.0))),
+        abs(float(get(30, 0.0))),
+        abs(tri),
+    )
+    ratio = nn / rn
+    rel = min(VERSOR_TOLERANCE + 16 * _EPS * ratio * ratio, MOTOR_TOLERANCE_CAP)  # motor_tolerance, floats
+    if not anti <= rel * vmax:  # also refuses NaN
+        return None
+    s = 2.0 / rn  # t = 2 <n ~R>_1 / (R ~R)  (2.144)
+    t0 = s * (n1 * q0 + n2 * q12 + n3 * q13 + n123 * q23)
+    t1 = s * (n2 * q0 - n1 * q12 + n3 * q23 - n123 * q13)
+    t2 = s * (n3 * q0 - n1 * q13 - n2 * q23 + n123 * q12)
+    if not (math.isfinite(t0) and math.isfinite(t1) and math.isfinite(t2)):
+        return None
+    # The unit quaternion (w, x, y, z) of R = w - x e23 - y e31 - z e12 (2.96; e31 = -e13) and its matrix.
+    w, x, y, z = q0, -q23, q13, -q12
+    Rm = np.array(
+        [
+            [1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - z * w), 2.0 * (x * z + y * w)],
+            [2.0 * (x * y + z * w), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - x * w)],
+            [2.0 * (x * z - y * w), 2.0 * (y * z + x * w), 1.0 - 2.0 * (x * x + y * y)],
+        ]
+    )
+    t = np.array([t0, t1, t2])
+    Rm.flags.writeable = t.flags.writeable = False
+    return Rm, t
+
+
 def _motor_grade1(Rm: np.ndarray, t: np.ndarray, inverse: bool):
     """The grade-1 matrices of the motor ``(R, t)``: N in the null basis (e1, e2, e3, e, e0), the e+/e- matrix
     ``Pinv N P`` written out (the e+ column -t, 1 - h, -h; the e- column t, h, 1 + h) and, if ``inverse``,
-    ``N^-1`` (else None); see :meth:`MotorMatricesMixin._motor_info`."""
+    ``N^-1`` (else None); see :meth:`MotorMatrices.info`."""
     (a, b, c), (e, f, g_), (k, l, m) = Rm.tolist()
     tx, ty, tz = t.tolist()
     ux, uy, uz = a * tx + e * ty + k * tz, b * tx + f * ty + l * tz, c * tx + g_ * ty + m * tz  # R^T t

@@ -7,7 +7,8 @@ e.g. one conformal point per row of a point cloud) or a SymPy expression; see
 :mod:`cga_lessons.algebra.coefficients`.  The products behind the operators
 are the algebra's (:mod:`cga_lessons.algebra.products`), the fast sandwich of
 a versor is its matrices per grade (:mod:`cga_lessons.algebra.versor_matrices`); the
-norms and the inverse (2.19) live in :mod:`cga_lessons.algebra.inverse`, the
+grades, involutions and dual live in :mod:`cga_lessons.algebra.involutions`, the
+norms and the inverse (2.19) in :mod:`cga_lessons.algebra.inverse`, the
 text/LaTeX display and the SymPy helpers in :mod:`cga_lessons.algebra.display`.
 
 The operators and the thesis's notation for each are tabled in :mod:`cga_lessons.algebra`.
@@ -24,10 +25,8 @@ import numpy as np
 from cga_lessons.checks import fail, instance, integer
 from cga_lessons.errors import DegenerateGeometryError, GeometryError
 
-from .access import AccessMixin
+from . import access, display, inverse, involutions
 from .coefficients import is_real_batch, is_real_single, is_zero
-from .display import DisplayMixin
-from .inverse import NormsAndInverseMixin
 from .operands import AlgebraKind, finite_multivector, finite_out, no_inverse, not_finite, scalar_operand
 
 if TYPE_CHECKING:
@@ -36,7 +35,7 @@ if TYPE_CHECKING:
 __all__ = ["Multivector", "commutator"]
 
 
-class Multivector(AccessMixin, NormsAndInverseMixin, DisplayMixin):
+class Multivector:
     """A multivector of an :class:`~cga_lessons.algebra.Algebra`: a sparse map blade -> coefficient.
 
     Coefficients are floats, NumPy arrays (a batch, all of one shape) or SymPy
@@ -53,9 +52,9 @@ class Multivector(AccessMixin, NormsAndInverseMixin, DisplayMixin):
     without inverse, and (for single multivectors) NaN or inf coefficients
     and results that overflow; see :mod:`cga_lessons.algebra.operands`.
 
-    Coefficient access comes from :class:`~cga_lessons.algebra.access.AccessMixin`, the norms and the
-    inverse (2.19) from :class:`~cga_lessons.algebra.inverse.NormsAndInverseMixin`, the display and the
-    SymPy helpers from :class:`~cga_lessons.algebra.display.DisplayMixin`.
+    The operators are defined here; the other methods are plain functions of :mod:`~cga_lessons.algebra.access`
+    (coefficients, comparisons), :mod:`~cga_lessons.algebra.involutions` (grades, involutions, dual),
+    :mod:`~cga_lessons.algebra.inverse` (norms, inverse 2.19) and :mod:`~cga_lessons.algebra.display`.
     """
 
     __slots__ = ("algebra", "_c")
@@ -121,7 +120,11 @@ class Multivector(AccessMixin, NormsAndInverseMixin, DisplayMixin):
         if other is NotImplemented:
             return NotImplemented
         try:
-            out = self.algebra._product(other, self, kind) if reflected else self.algebra._product(self, other, kind)
+            out = (
+                self.algebra._products.product(other, self, kind)
+                if reflected
+                else self.algebra._products.product(self, other, kind)
+            )
         except ValueError as exc:
             raise self._mismatch(func, other, exc) from None
         return finite_out(out, func)
@@ -170,7 +173,7 @@ class Multivector(AccessMixin, NormsAndInverseMixin, DisplayMixin):
             if other.algebra is not self.algebra:
                 self._coerce(other, "Multivector *")  # raises: another algebra
             try:
-                out = self.algebra._product(self, other, "gp")
+                out = self.algebra._products.product(self, other, "gp")
             except ValueError as exc:
                 raise self._mismatch("Multivector *", other, exc) from None
             return finite_out(out, "Multivector *")
@@ -258,11 +261,11 @@ class Multivector(AccessMixin, NormsAndInverseMixin, DisplayMixin):
             return NotImplemented
         alg = self.algebra
         if other._c and (is_real_single(other) or is_real_batch(other)):
-            info = alg._versor_info(self, tuple(other.grades_present()))
+            info = alg._versors.info(self, tuple(other.grades_present()))
             if info is not None:
-                return finite_out(alg._apply_matrices(info[2], other), func)
+                return finite_out(alg._versors.apply_unchecked(info[2], other), func)
         try:
-            return finite_out(alg._product(alg._product(self, other, "gp"), ~self, "gp"), func)
+            return finite_out(alg._products.product(alg._products.product(self, other, "gp"), ~self, "gp"), func)
         except ValueError as exc:
             raise self._mismatch(func, other, exc) from None
 
@@ -292,60 +295,55 @@ class Multivector(AccessMixin, NormsAndInverseMixin, DisplayMixin):
         out = Multivector(alg, {0: 1.0})
         while k:
             if k & 1:
-                out = alg._product(out, base, "gp")
+                out = alg._products.product(out, base, "gp")
             k >>= 1
             if k:
-                base = alg._product(base, base, "gp")
+                base = alg._products.product(base, base, "gp")
                 if not_finite(base) is not None:
                     break  # overflowed: the check below names it
         return finite_out(out if not k else base, func, "k")
 
-    # ----------------------------------------------------------- involutions
-    def __invert__(self):
-        """Reverse (2.32-2.33): grade k gets the sign (-1)^(k(k-1)/2)."""
-        flip = self.algebra._rev_flip
-        return mv_from_dict(self.algebra, {b: (-v if flip[b] else v) for b, v in self._c.items()})
-
-    def reverse(self):
-        return ~self
-
-    def involute(self):
-        """Grade involution (2.35): grade k gets the sign (-1)^k."""
-        g = self.algebra.grades
-        return Multivector(self.algebra, {b: (-v if g[b] & 1 else v) for b, v in self._c.items()})
-
-    def conjugate(self):
-        """Clifford conjugate: reverse of the grade involution."""
-        return (~self).involute()
-
-    def grade(self, *ks):
-        """Grade projection <M>_k (2.18); several grades give their sum (zero above the dimension)."""
-        alg = self.algebra
-        for k in ks:
-            if type(k) is not int or k < 0:  # a grade above the dimension is allowed: its part is zero
-                integer(k, "Multivector.grade", "k", low=0)
-        g = alg.grades
-        return Multivector(alg, {b: v for b, v in self._c.items() if g[b] in ks})
-
-    def even(self):
-        """Even part (2.16)."""
-        g = self.algebra.grades
-        return Multivector(self.algebra, {b: v for b, v in self._c.items() if g[b] % 2 == 0})
-
-    def odd(self):
-        """Odd part (2.17)."""
-        g = self.algebra.grades
-        return Multivector(self.algebra, {b: v for b, v in self._c.items() if g[b] % 2 == 1})
-
-    def dual(self):
-        """Dual M* = M I^-1 (2.31)."""
-        alg = self.algebra
-        return finite_out(alg._product(self, alg.pseudoscalar().inv(), "gp"), "Multivector.dual", "self")
-
-    def undual(self):
-        """Inverse of :meth:`dual`: M I."""
-        alg = self.algebra
-        return finite_out(alg._product(self, alg.pseudoscalar(), "gp"), "Multivector.undual", "self")
+    # ------------------------------------------- methods that are plain functions of other modules
+    # reading and comparing (access.py)
+    __getitem__ = access.coefficient
+    blades = access.blades
+    items = access.items
+    coeffs = property(access.coeffs)
+    shape = property(access.shape)
+    __len__ = access.length
+    __iter__ = access.iterate
+    __getattr__ = access.no_attribute  # blade access as attributes is deliberately not offered: X["e12"] is explicit
+    batch_item = access.batch_item
+    to_array = access.to_array
+    grades_present = access.grades_present
+    scalar = access.scalar
+    __float__ = access.to_float
+    isclose = access.isclose
+    __eq__ = access.equals
+    __ne__ = access.not_equals
+    __hash__ = None
+    iszero = access.iszero
+    # grades, involutions, dual (involutions.py)
+    __invert__ = reverse = involutions.reverse
+    involute = involutions.involute
+    conjugate = involutions.conjugate
+    grade = involutions.grade
+    even = involutions.even
+    odd = involutions.odd
+    dual = involutions.dual
+    undual = involutions.undual
+    # norms and the inverse (inverse.py)
+    norm2 = inverse.norm2
+    norm = inverse.norm
+    normalized = inverse.normalized
+    inv = inverse.inv
+    # display and SymPy helpers (display.py)
+    simplify = display.simplify
+    expand = display.expand
+    subs = display.subs
+    map = display.map_coefficients
+    __repr__ = display.text
+    _repr_latex_ = display.latex
 
 
 def mv_from_dict(algebra, coeffs: dict):
@@ -380,7 +378,7 @@ def commutator(A: Multivector, B: Multivector) -> Multivector:
         raise fail("commutator", "B", f"is a multivector of {B.algebra}, not of A's {A.algebra}")
     alg = A.algebra
     try:
-        diff = alg._product(A, B, "gp")._plus(-alg._product(B, A, "gp"))
+        diff = alg._products.product(A, B, "gp")._plus(-alg._products.product(B, A, "gp"))
     except ValueError as exc:
         raise fail("commutator", "A, B", f"batches of shapes {A.shape} and {B.shape} do not combine ({exc})") from None
     return finite_out(Multivector(alg, {b: v / 2 for b, v in diff._c.items()}), "commutator", "A, B")

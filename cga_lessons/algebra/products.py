@@ -5,7 +5,7 @@ Every product of :mod:`cga_lessons.algebra` (geometric (2.11), outer (2.14,
 product) loops over the non-zero blades of its two operands only.  The terms
 of one pair of blade sets, with their signs from the axioms (2.10), are found
 once and cached, and then run by one of three routes (see
-:meth:`ProductTermsMixin._product`):
+:meth:`ProductTerms.product`):
 
 * the first time a pair of blade sets meets, an interpreted loop over its
   terms (:func:`run_product`);
@@ -17,8 +17,9 @@ once and cached, and then run by one of three routes (see
   small matrix product ``outer(a, b).ravel() @ table`` with a cached table of
   signs (agrees to round-off).
 
-:class:`ProductTermsMixin` is mixed into :class:`~cga_lessons.algebra.Algebra`,
-which owns the sign table and the cache it reads; it is not used alone.
+Each :class:`~cga_lessons.algebra.Algebra` holds one :class:`ProductTerms` (its cache of terms and compiled
+code, reading the algebra's sign table); :func:`left_matrix` is the matrix of a left product, behind
+:meth:`Algebra.left_matrix <cga_lessons.algebra.Algebra.left_matrix>`.
 """
 
 from __future__ import annotations
@@ -83,22 +84,36 @@ def run_product(groups, va, vb):
     return out
 
 
-class ProductTermsMixin:
-    """The products of :class:`~cga_lessons.algebra.Algebra` (mixed into it).
+class ProductTerms:
+    """The products of one :class:`~cga_lessons.algebra.Algebra`: its cache of terms and compiled code.
 
-    Reads the algebra's ``grades``, ``_sign_list`` (the signs of (2.10)) and
-    ``_product_cache``, all set by ``Algebra.__init__``.
+    Reads the algebra's ``grades`` and its table of signs (2.10); the algebra holds one and calls
+    :meth:`product` for every product of its multivectors.
     """
 
-    def _terms(self, keys_a: tuple, keys_b: tuple, kind: str):
-        """List of (blade_a, blade_b, result_blade, sign) for a product (cached by :meth:`_product_entry`).
+    #: uses of one pair of blade sets before its product is compiled to straight-line code
+    COMPILE_AFTER = 2
+    #: products with at least this many terms run as one small matrix product for float coefficients
+    TABLE_TERMS = 40
+
+    def __init__(self, algebra, cache_limit: int = 1024):
+        self.algebra = algebra
+        self.grades = algebra.grades
+        self.sign_list = algebra._sign_list
+        #: entries per cache; a full cache is emptied and refilled
+        self.cache_limit = cache_limit
+        #: ``{(blades of A, blades of B, kind): entry}``, see :meth:`entry`
+        self.cache: dict = {}
+
+    def terms(self, keys_a: tuple, keys_b: tuple, kind: str):
+        """List of (blade_a, blade_b, result_blade, sign) for a product (cached by :meth:`entry`).
 
         ``kind`` is one of ``"gp"`` (geometric), ``"op"`` (outer),
         ``"ip"`` (the thesis's inner product), ``"lc"`` (left contraction),
         ``"sp"`` (scalar product).
         """
         grades = self.grades
-        sign = self._sign_list
+        sign = self.sign_list
         terms = []
         for a in keys_a:
             ga = grades[a]
@@ -120,36 +135,29 @@ class ProductTermsMixin:
                 terms.append((a, b, r, s))
         return terms
 
-    #: uses of one pair of blade sets before its product is compiled to straight-line code
-    _COMPILE_AFTER = 2
-    _CACHE_LIMIT = 1024  # entries per cache; a full cache is emptied and refilled
-
-    #: products with at least this many terms run as one small matrix product for float coefficients
-    _TABLE_TERMS = 40
-
-    def _product_entry(self, key):
+    def entry(self, key):
         """Cache entry ``[compiled or None, result blades, uses, grouped terms, table or None]``."""
         keys_a, keys_b, kind = key
-        terms = self._terms(keys_a, keys_b, kind)
+        terms = self.terms(keys_a, keys_b, kind)
         pos_a = {b: i for i, b in enumerate(keys_a)}
         pos_b = {b: j for j, b in enumerate(keys_b)}
         grouped: dict = {}
         for a, b, r, s in terms:
             grouped.setdefault(r, []).append((pos_a[a], pos_b[b], s))
         table = None
-        if len(terms) >= self._TABLE_TERMS and len(keys_a) * len(keys_b) <= 256:  # tables stay <= 64 kB
+        if len(terms) >= self.TABLE_TERMS and len(keys_a) * len(keys_b) <= 256:  # tables stay <= 64 kB
             nb = len(keys_b)
             table = np.zeros((len(keys_a) * nb, len(grouped)))
             for col, group in enumerate(grouped.values()):
                 for i, j, s in group:
                     table[i * nb + j, col] = s
-        if len(self._product_cache) >= self._CACHE_LIMIT:
-            self._product_cache.clear()
+        if len(self.cache) >= self.cache_limit:
+            self.cache.clear()
         entry = [None, tuple(grouped), 0, list(grouped.values()), table]
-        self._product_cache[key] = entry
+        self.cache[key] = entry
         return entry
 
-    def _product(self, A: Multivector, B: Multivector, kind: str) -> Multivector:
+    def product(self, A: Multivector, B: Multivector, kind: str) -> Multivector:
         """Product of two multivectors over their non-zero blades only.
 
         The terms of one pair of blade sets are found once and cached.  From
@@ -161,38 +169,41 @@ class ProductTermsMixin:
         """
         ca, cb = A._c, B._c
         key = (tuple(ca), tuple(cb), kind)
-        entry = self._product_cache.get(key)
+        entry = self.cache.get(key)
         if entry is None:
-            entry = self._product_entry(key)
+            entry = self.entry(key)
         table = entry[4]
         if table is not None and is_float_single(A) and is_float_single(B):
             va = np.fromiter(ca.values(), dtype=float, count=len(ca))
             vb = np.fromiter(cb.values(), dtype=float, count=len(cb))
-            return mv_from_pairs(self, entry[1], (np.outer(va, vb).ravel() @ table).tolist())
+            return mv_from_pairs(self.algebra, entry[1], (np.outer(va, vb).ravel() @ table).tolist())
         fn = entry[0]
         if fn is None:
             entry[2] += 1
-            if entry[2] < self._COMPILE_AFTER:
-                return mv_from_pairs(self, entry[1], run_product(entry[3], list(ca.values()), list(cb.values())))
+            if entry[2] < self.COMPILE_AFTER:
+                return mv_from_pairs(
+                    self.algebra, entry[1], run_product(entry[3], list(ca.values()), list(cb.values()))
+                )
             fn = entry[0] = compile_product(entry[3], len(ca), len(cb))
-        return mv_from_pairs(self, entry[1], fn(ca.values(), cb.values()))
+        return mv_from_pairs(self.algebra, entry[1], fn(ca.values(), cb.values()))
 
-    # ------------------------------------------------ linear maps as matrices
-    def left_matrix(self, A: Multivector, blades_in=None, blades_out=None) -> np.ndarray:
-        """Matrix of ``X -> A X`` restricted to the given input/output blades (A one numeric multivector)."""
-        func = "Algebra.left_matrix"
-        same_algebra(A, self, func, "A", Multivector)
-        if not is_real_single(A):
-            raise fail(func, "A", "expected one multivector with real number coefficients (not a batch, not SymPy)")
-        finite_multivector(A, func, "A")
-        blades_in = self.blade_order if blades_in is None else blade_bitmaps(blades_in, func, "blades_in", self.dim)
-        blades_out = self.blade_order if blades_out is None else blade_bitmaps(blades_out, func, "blades_out", self.dim)
-        pos = {b: i for i, b in enumerate(blades_out)}
-        mat = np.zeros((len(blades_out), len(blades_in)))
-        for j, b in enumerate(blades_in):
-            for a, c in A._c.items():
-                s = self._sign_list[a][b]
-                r = a ^ b
-                if s and r in pos:
-                    mat[pos[r], j] += s * float(c)
-        return finite_result(mat, func, "the matrix")
+
+def left_matrix(alg, A: Multivector, blades_in=None, blades_out=None) -> np.ndarray:
+    """Matrix of ``X -> A X`` in the algebra ``alg`` restricted to the given input/output blades (A one numeric
+    multivector); :meth:`Algebra.left_matrix <cga_lessons.algebra.Algebra.left_matrix>`."""
+    func = "Algebra.left_matrix"
+    same_algebra(A, alg, func, "A", Multivector)
+    if not is_real_single(A):
+        raise fail(func, "A", "expected one multivector with real number coefficients (not a batch, not SymPy)")
+    finite_multivector(A, func, "A")
+    blades_in = alg.blade_order if blades_in is None else blade_bitmaps(blades_in, func, "blades_in", alg.dim)
+    blades_out = alg.blade_order if blades_out is None else blade_bitmaps(blades_out, func, "blades_out", alg.dim)
+    pos = {b: i for i, b in enumerate(blades_out)}
+    mat = np.zeros((len(blades_out), len(blades_in)))
+    for j, b in enumerate(blades_in):
+        for a, c in A._c.items():
+            s = alg._sign_list[a][b]
+            r = a ^ b
+            if s and r in pos:
+                mat[pos[r], j] += s * float(c)
+    return finite_result(mat, func, "the matrix")

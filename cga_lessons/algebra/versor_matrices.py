@@ -2,10 +2,10 @@
 
 A versor V acts linearly on each grade: ``X -> V X^ V^-1`` (2.82) maps grade-k
 blades to grade-k blades.  For a single numeric versor,
-:meth:`VersorMatricesMixin.versor_matrices` builds that action as one matrix per
+:meth:`VersorActions.matrices` builds that action as one matrix per
 grade, from one cached bilinear table per blade set (no sandwich products):
 with ``v`` the coefficients of V, ``outer(v, v).ravel() @ T`` gives ``V ~V``
-and every matrix at once.  :meth:`VersorMatricesMixin.apply_matrices` then applies
+and every matrix at once.  :meth:`VersorActions.apply` then applies
 the matrices to one entity or to a whole batch with one matrix product per
 grade, so moving a million points by a motor costs one 5x5 matrix product.
 ``V >> X`` (:meth:`~cga_lessons.algebra.multivector.Multivector.__rshift__`, the
@@ -13,7 +13,7 @@ sandwich of (2.98, 2.101, 2.103)) and :func:`cga_lessons.conformal.versors.apply
 this route by themselves.
 
 Motors of G(4,1) (even, commuting with the point at infinity e, 2.102) take a
-route of their own, :meth:`~cga_lessons.algebra.motor_matrices.MotorMatricesMixin.rigid_motion`: the rotor R and the
+route of their own, :meth:`~cga_lessons.algebra.motor_matrices.MotorMatrices.rigid`: the rotor R and the
 translation t are read linearly off the coefficients (2.141-2.144), and the
 matrices are built in closed form from (R, t) in the null basis
 (e1, e2, e3, e, e0), where no entry is a difference of large terms, and applied
@@ -21,8 +21,9 @@ there (:class:`VersorMatrices`).  In the e+/e- basis a motor translating by t
 has entries such as 1 - t^2/2 and a point at x has e+/e- coefficients of size
 x^2/2, so the plain product loses ~eps |t|^2 |x|^2 to cancellation.
 
-:class:`VersorMatricesMixin` is mixed into :class:`~cga_lessons.algebra.Algebra`,
-which owns the sign table and the caches it reads; it is not used alone.
+Each :class:`~cga_lessons.algebra.Algebra` holds one :class:`VersorActions` (with the caches of its tables and
+versors) and delegates :meth:`Algebra.versor_matrices <cga_lessons.algebra.Algebra.versor_matrices>` and
+:meth:`Algebra.apply_matrices <cga_lessons.algebra.Algebra.apply_matrices>` to it.
 """
 
 from __future__ import annotations
@@ -44,7 +45,7 @@ def stack_rows(vals, shape: tuple) -> np.ndarray:
 
     No copy when they already are the consecutive rows of one C-contiguous
     float block (the layout :func:`~cga_lessons.conformal.points.up` and
-    :meth:`Algebra.apply_matrices` produce).
+    :meth:`VersorActions.apply` produce).
     """
     base = getattr(vals[0], "base", None)
     if (
@@ -102,10 +103,10 @@ def _scratch(size: int) -> np.ndarray:
 class VersorMatrices(dict):
     """``{grade: k x k matrix}`` of a versor's action in the blade order of (2.9), e+/e- basis.
 
-    Returned by :meth:`Algebra.versor_matrices <VersorMatricesMixin.versor_matrices>`.  For a motor of G(4,1)
+    Returned by :meth:`Algebra.versor_matrices <cga_lessons.algebra.Algebra.versor_matrices>`.  For a motor of G(4,1)
     two more attributes are set (None otherwise): ``rigid``, the ``(R, t)`` of ``rigid_motion``, and
-    ``null``, the same action on the coordinates in which :meth:`apply_matrices` applies it (each pair of
-    e+/e- coefficients ``(a, b)`` taken as ``(a, b - a)``; see ``_motor_info``).  All arrays are read-only
+    ``null``, the same action on the coordinates in which :meth:`VersorActions.apply` applies it (each pair of
+    e+/e- coefficients ``(a, b)`` taken as ``(a, b - a)``; see ``MotorMatrices.info``).  All arrays are read-only
     (they are shared by a cache).
     """
 
@@ -117,15 +118,23 @@ class VersorMatrices(dict):
         self.null = null
 
 
-class VersorMatricesMixin:
-    """Versor matrices of :class:`~cga_lessons.algebra.Algebra` (mixed into it).
+class VersorActions:
+    """The versor matrices of one :class:`~cga_lessons.algebra.Algebra` (2.82): tables, versors and their action.
 
-    Reads the algebra's ``_sign_list`` (the signs of (2.10)), ``_rev_flip``,
-    ``grade_blades``, ``grades`` and the caches ``_table_cache`` and
-    ``_versor_cache``, all set by ``Algebra.__init__``.
+    Reads the algebra's signs (2.10), reverse signs, ``grades`` and ``grade_blades``; ``motors`` is the algebra's
+    :class:`~cga_lessons.algebra.motor_matrices.MotorMatrices` (the closed form of a motor of G(4,1)) and
+    ``table_cache``/``versor_cache`` the caches both share (bilinear and null-basis tables; versors by value).
     """
 
-    def _sandwich_table(self, keys: tuple, grades: tuple):
+    def __init__(self, algebra, motors, table_cache: dict, versor_cache: dict):
+        self.algebra = algebra
+        self.motors = motors
+        self.n, self.dim = algebra.n, algebra.dim
+        self.grades, self.grade_blades = algebra.grades, algebra.grade_blades
+        self.sign_list, self.rev_flip = algebra._sign_list, algebra._rev_flip
+        self.table_cache, self.versor_cache = table_cache, versor_cache
+
+    def sandwich_table(self, keys: tuple, grades: tuple):
         """Bilinear table of the sandwich ``V X ~V`` for versors with blades ``keys``.
 
         Returns ``(parity, T, slices)``: ``parity`` is 0 (all blades even), 1
@@ -137,10 +146,10 @@ class VersorMatricesMixin:
         matrix of ``X -> V X ~V`` (row-major) at ``w[slices[g]]``.
         """
         ck = (keys, grades)
-        hit = self._table_cache.get(ck)
+        hit = self.table_cache.get(ck)
         if hit is not None:
             return hit
-        sign, flip, dim, m = self._sign_list, self._rev_flip, self.dim, len(keys)
+        sign, flip, dim, m = self.sign_list, self.rev_flip, self.dim, len(keys)
         slices, width = {}, dim
         for g in grades:
             k = len(self.grade_blades[g])
@@ -169,17 +178,17 @@ class VersorMatricesMixin:
         parities = {self.grades[b] & 1 for b in keys}
         parity = parities.pop() if len(parities) == 1 else None
         hit = (parity, T.reshape(m * m, width), slices)
-        if len(self._table_cache) >= 128:  # up to ~270 kB each (16 blades, grade 2)
-            self._table_cache.clear()
-        self._table_cache[ck] = hit
+        if len(self.table_cache) >= 128:  # up to ~270 kB each (16 blades, grade 2)
+            self.table_cache.clear()
+        self.table_cache[ck] = hit
         return hit
 
-    def _versor_info(self, V: Multivector, grades: tuple):
+    def info(self, V: Multivector, grades: tuple):
         """``(d, parity, raw, unit)`` for a single numeric versor V, else None (cached by value).
 
         ``d = <V ~V>_0``; ``raw[g]`` is the matrix of ``X -> V X ~V`` and
         ``unit[g]`` that of ``X -> V X^ V^-1`` (2.82) on grade g, both
-        :class:`VersorMatrices`.  A motor of G(4,1) (:meth:`rigid_motion`) gets
+        :class:`VersorMatrices`.  A motor of G(4,1) (:meth:`MotorMatrices.rigid`) gets
         them in closed form from its rotation and translation.  Any other V is
         a versor here when its blades have one parity and ``V ~V`` is a
         non-zero scalar up to round-off: its other blades within
@@ -192,24 +201,24 @@ class VersorMatricesMixin:
         if not c or not is_real_single(V) or self.n > 5:
             return None
         ck = (tuple(c), tuple(c.values()), grades)
-        hit = self._versor_cache.get(ck)
+        hit = self.versor_cache.get(ck)
         if hit is not None:
             return hit
-        rigid = self._rigid_motion(V)
+        rigid = self.motors.rigid(V)
         if rigid is not None:
-            hit = self._motor_info(rigid, sum(float(c.get(b, 0.0)) ** 2 for b in ROTOR_BLADES), grades)
+            hit = self.motors.info(rigid, sum(float(c.get(b, 0.0)) ** 2 for b in ROTOR_BLADES), grades)
         else:
-            hit = self._table_info(ck, grades)
+            hit = self.table_info(ck, grades)
         if hit is None:
             return None
-        if len(self._versor_cache) >= 256:
-            self._versor_cache.clear()
-        self._versor_cache[ck] = hit
+        if len(self.versor_cache) >= 256:
+            self.versor_cache.clear()
+        self.versor_cache[ck] = hit
         return hit
 
-    def _table_info(self, ck: tuple, grades: tuple):
-        """:meth:`_versor_info` of a general versor, from the bilinear table of (2.82)."""
-        parity, T, slices = self._sandwich_table(ck[0], grades)
+    def table_info(self, ck: tuple, grades: tuple):
+        """:meth:`info` of a general versor, from the bilinear table of (2.82)."""
+        parity, T, slices = self.sandwich_table(ck[0], grades)
         if parity is None:
             return None
         v = np.array(ck[1], dtype=float)
@@ -231,25 +240,12 @@ class VersorMatricesMixin:
         w.flags.writeable = False
         return d, parity, VersorMatrices(raw), VersorMatrices(unit)
 
-    # ------------------------------------------------------------------ motors
-
-    def versor_matrices(self, V: Multivector, grades) -> dict | None:
-        """Matrices of ``X -> V X^ V^-1`` (2.82) on the given grades, or None.
-
-        For a single numeric versor V (real coefficients, ``V ~V`` a non-zero
-        scalar up to round-off) returns a :class:`VersorMatrices`,
-        ``{grade: k x k matrix}`` over the blades of that grade in the order of
-        (2.9) (``self.grade_blades``): the outermorphism of the versor, built
-        in closed form with no multivector products, for a motor of G(4,1)
-        from its rotation and translation (:meth:`rigid_motion`), otherwise
-        from one cached bilinear table per blade set (:meth:`_sandwich_table`).
-        X^ is the grade involution, applied when V is odd.  Returns None for
-        anything else (SymPy or batched coefficients, mixed parity, not a
-        versor); the caller then uses the plain sandwich.
-        """
+    def matrices(self, V: Multivector, grades) -> dict | None:
+        """:meth:`Algebra.versor_matrices <cga_lessons.algebra.Algebra.versor_matrices>`: :meth:`info` with V and
+        grades checked."""
         func = "Algebra.versor_matrices"
-        if type(V) is not Multivector or V.algebra is not self:
-            same_algebra(V, self, func, "V", Multivector)
+        if type(V) is not Multivector or V.algebra is not self.algebra:
+            same_algebra(V, self.algebra, func, "V", Multivector)
         if type(grades) is not tuple:
             if isinstance(grades, (str, bytes)) or not hasattr(grades, "__iter__"):
                 raise fail(func, "grades", f"expected a sequence of grades 0..{self.n}, got {grades!r:.40}")
@@ -259,30 +255,27 @@ class VersorMatricesMixin:
             if type(g) is not int or g < 0 or g > n:
                 grades = tuple(integer(g, func, "grades", low=0, high=n) for g in grades)
                 break
-        info = self._versor_info(V, grades)
+        info = self.info(V, grades)
         if info is None and not_finite(V) is not None:
             raise fail(func, "V", f"coefficient of {not_finite(V)} is NaN or inf")
         return None if info is None else info[3]
 
-    def apply_matrices(self, mats: dict, X: Multivector) -> Multivector:
-        """Apply per-grade matrices (from :meth:`versor_matrices`) to X, single or batched.
-
-        ``mats`` is ``{grade: k x k matrix}`` over the blades of each grade in the order of (2.9); see
-        :meth:`_apply_matrices` for how a batch is applied.
-        """
+    def apply(self, mats: dict, X: Multivector) -> Multivector:
+        """:meth:`Algebra.apply_matrices <cga_lessons.algebra.Algebra.apply_matrices>`: :meth:`apply_unchecked` with
+        the matrices and X checked."""
         func = "Algebra.apply_matrices"
-        if type(X) is not Multivector or X.algebra is not self:
-            same_algebra(X, self, func, "X", Multivector)
+        if type(X) is not Multivector or X.algebra is not self.algebra:
+            same_algebra(X, self.algebra, func, "X", Multivector)
         if type(mats) is not VersorMatrices:  # those of versor_matrices are finite and of the right shapes
             matrices_per_grade(mats, self.grade_blades, func)
         try:
-            out = self._apply_matrices(mats, X)
+            out = self.apply_unchecked(mats, X)
         except (TypeError, ValueError) as exc:
             raise fail(func, "X", f"expected real number or array coefficients ({exc})") from None
         return finite_out(out, func, "X")
 
-    def _apply_matrices(self, mats: dict, X: Multivector) -> Multivector:
-        """:meth:`apply_matrices` unchecked (the fast path of ``V >> X``).
+    def apply_unchecked(self, mats: dict, X: Multivector) -> Multivector:
+        """:meth:`apply` unchecked (the fast path of ``V >> X``).
 
         A batch costs, per grade, one ``(k, k) x (k, N)`` matrix product; when
         X's coefficient arrays of that grade are consecutive rows of one
@@ -295,7 +288,7 @@ class VersorMatricesMixin:
         basis: each pair of e+/e- coefficients ``(a, b)`` becomes
         ``((a + b)/2, b - a)`` (for a point, ``x^2/2`` and its weight, 2.111),
         then the null-basis matrix, then ``(c, w) -> (c - w/2, c + w/2)`` back
-        (folded into the matrix, see ``_motor_info``), so that no large e+/e-
+        (folded into the matrix, see ``MotorMatrices.info``), so that no large e+/e-
         terms cancel and a point keeps its weight to one rounding.
         """
         c = X._c
@@ -308,9 +301,9 @@ class VersorMatricesMixin:
                 if null is None:
                     vals += (mat @ np.array([c.get(b, 0.0) for b in blades], dtype=float)).tolist()
                 else:
-                    vals += self._apply_null_one(g, null[g], [float(c.get(b, 0.0)) for b in blades])
+                    vals += self.apply_null_one(g, null[g], [float(c.get(b, 0.0)) for b in blades])
                 keys += blades
-            return mv_from_pairs(self, keys, vals)
+            return mv_from_pairs(self.algebra, keys, vals)
         out = {}
         for g, mat in mats.items():
             blades = self.grade_blades[g]
@@ -319,7 +312,7 @@ class VersorMatricesMixin:
                 continue
             sub = mat if len(idx) == len(blades) else mat[:, idx]
             if null is not None:
-                res = self._apply_null(g, null[g], [c.get(b) for b in blades], batch)
+                res = self.apply_null(g, null[g], [c.get(b) for b in blades], batch)
             else:
                 block = stack_rows([c[blades[j]] for j in idx], batch)
                 res = sub @ (block if len(batch) == 1 else block.reshape(len(idx), -1))
@@ -329,11 +322,11 @@ class VersorMatricesMixin:
             for i, b in enumerate(blades):
                 if nz[i]:
                     out[b] = res[i]
-        return mv_from_dict(self, out)
+        return mv_from_dict(self.algebra, out)
 
-    def _apply_null_one(self, g: int, K: np.ndarray, x: list) -> list:
-        """The motor's ``K`` (:meth:`_motor_info`) on the grade-g e+/e- coefficients of one entity (floats)."""
-        pairs = self._null_tables(g)[1]
+    def apply_null_one(self, g: int, K: np.ndarray, x: list) -> list:
+        """The motor's ``K`` (``MotorMatrices.info``) on the grade-g e+/e- coefficients of one entity (floats)."""
+        pairs = self.motors.null_tables(g)[1]
         for i, j in pairs:  # (a, b) -> (a, b - a)
             x[j] -= x[i]
         y = (K @ np.array(x)).tolist()
@@ -341,15 +334,15 @@ class VersorMatricesMixin:
             y[j] += y[i]
         return y
 
-    def _apply_null(self, g: int, K: np.ndarray, rows: list, shape: tuple) -> np.ndarray:
-        """The motor's ``K`` (:meth:`_motor_info`) on a batch: ``rows`` holds the coefficient of each
+    def apply_null(self, g: int, K: np.ndarray, rows: list, shape: tuple) -> np.ndarray:
+        """The motor's ``K`` (``MotorMatrices.info``) on a batch: ``rows`` holds the coefficient of each
         grade-g blade (an array of ``shape``, a number, or None when absent).  Returns the (k, prod(shape))
         block of the e+/e- coefficients of the result.
 
         The input goes into a scratch block reused by the thread (``_scratch``),
         the e- rows as ``b - a``; after the product the e- rows get ``a' + w'``.
         """
-        pairs = self._null_tables(g)[1]
+        pairs = self.motors.null_tables(g)[1]
         k = len(rows)
         size = math.prod(shape)
         z = _scratch(k * size).reshape((k,) + shape)

@@ -15,6 +15,7 @@ from .core import (
     REGISTRY,
     STATUSES,
     THESIS_LABELS,
+    Coverage,
     Entry,
     check_registry,
     coverage,
@@ -36,6 +37,7 @@ from .readme import (
 
 __all__ = [
     "Entry",
+    "Coverage",
     "REGISTRY",
     "THESIS_LABELS",
     "coverage_summary",

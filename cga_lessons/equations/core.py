@@ -38,6 +38,7 @@ from cga_lessons.paths import PROJECT_ROOT
 
 __all__ = [
     "Entry",
+    "Coverage",
     "REGISTRY",
     "THESIS_LABELS",
     "STATUSES",
@@ -111,18 +112,18 @@ class Entry:
 
 
 def _load() -> dict[str, Entry]:
-    from . import registry as pkg
+    from . import registry as registry_package
 
-    reg: dict[str, Entry] = {}
-    for info in sorted(pkgutil.iter_modules(pkg.__path__), key=lambda m: m.name):
-        mod = importlib.import_module(f"{pkg.__name__}.{info.name}")
-        for entry in getattr(mod, "ENTRIES", []):
-            if entry.key in reg:
+    entries: dict[str, Entry] = {}
+    for info in sorted(pkgutil.iter_modules(registry_package.__path__), key=lambda m: m.name):
+        module = importlib.import_module(f"{registry_package.__name__}.{info.name}")
+        for entry in getattr(module, "ENTRIES", []):
+            if entry.key in entries:
                 raise ValueError(f"equation {entry.key} registered twice (in {info.name})")
-            reg[entry.key] = entry
+            entries[entry.key] = entry
     for label in THESIS_LABELS:
-        reg.setdefault(label, Entry(label=label, title="", status="todo"))
-    return reg
+        entries.setdefault(label, Entry(label=label, title="", status="todo"))
+    return entries
 
 
 #: label -> :class:`Entry`; thesis labels are ``"2.131"``, ``"A.14"``; the
@@ -130,10 +131,35 @@ def _load() -> dict[str, Entry]:
 REGISTRY: dict[str, Entry] = _load()
 
 
-def coverage(prefix: str | None = None) -> dict[str, int]:
+@dataclass(frozen=True)
+class Coverage:
+    """How many numbered equations have each status (:data:`STATUSES`): ``symbolic``, ``numeric``, ``definition``,
+    ``erratum`` (verified) and ``todo`` (not yet registered); ``total`` is their sum."""
+
+    symbolic: int
+    numeric: int
+    definition: int
+    erratum: int
+    todo: int
+
+    def __post_init__(self):
+        for name in STATUSES:
+            checks.integer(getattr(self, name), "Coverage", name, low=0)
+
+    @property
+    def total(self) -> int:
+        """The number of equations counted."""
+        return sum(getattr(self, name) for name in STATUSES)
+
+
+def coverage(prefix: str | None = None) -> Coverage:
     """Counts per status over the thesis's 196 equations (or those starting with ``prefix``, e.g. ``"2."``).
 
     A ``prefix`` no equation number starts with is refused.
+
+    >>> from cga_lessons import equations
+    >>> equations.coverage("2.").total
+    145
     """
     if prefix is not None:
         checks.text(prefix, "coverage", "prefix")
@@ -143,17 +169,17 @@ def coverage(prefix: str | None = None) -> dict[str, int]:
     for label in THESIS_LABELS:
         if prefix is None or label.startswith(prefix):
             counts[REGISTRY[label].status] += 1
-    return counts
+    return Coverage(**counts)
 
 
 def coverage_summary() -> str:
     """One line: how many of the 196 numbered equations are verified, by status."""
     c = coverage()
-    done = len(THESIS_LABELS) - c["todo"]
-    parts = ", ".join(f"{k} {c[k]}" for k in STATUSES if k != "todo")
-    extra = sum(1 for e in REGISTRY.values() if e.document != "thesis")
+    done = len(THESIS_LABELS) - c.todo
+    parts = ", ".join(f"{k} {getattr(c, k)}" for k in STATUSES if k != "todo")
+    extra = sum(1 for entry in REGISTRY.values() if entry.document != "thesis")
     return (
-        f"{done} of {len(THESIS_LABELS)} thesis equations registered ({parts}; todo {c['todo']}); "
+        f"{done} of {len(THESIS_LABELS)} thesis equations registered ({parts}; todo {c.todo}); "
         f"{extra} from the exploration document"
     )
 
@@ -202,18 +228,18 @@ def check_registry(root: Path | None = None) -> list[str]:
     """Problems in the registry: implementations that do not import, tests that do not exist (under ``root``)."""
     root = PROJECT_ROOT if root is None else checks.existing_path(root, "check_registry", "root", kind="folder")
     problems = []
-    for key, e in REGISTRY.items():
-        if e.status == "todo":
+    for key, entry in REGISTRY.items():
+        if entry.status == "todo":
             continue
-        if e.implementation:
-            for dotted in e.implementation.split(","):
+        if entry.implementation:
+            for dotted in entry.implementation.split(","):
                 try:
                     resolve(dotted.strip())
                 except Exception as exc:  # noqa: BLE001 - report every failure
                     problems.append(f"{key}: implementation {dotted.strip()!r} does not resolve ({exc})")
-        elif e.status in ("numeric", "symbolic"):
-            problems.append(f"{key}: status {e.status} but no implementation named")
-        for node in e.test.split(","):
+        elif entry.status in ("numeric", "symbolic"):
+            problems.append(f"{key}: status {entry.status} but no implementation named")
+        for node in entry.test.split(","):
             if not _test_exists(node.strip(), root):
                 problems.append(f"{key}: test {node.strip()!r} does not exist")
     return problems
@@ -222,15 +248,15 @@ def check_registry(root: Path | None = None) -> list[str]:
 def table(document: str | None = None) -> str:
     """The registry as a Markdown table (label, title, status, code, test); optionally one ``document``."""
     if document is not None:
-        checks.choice(document, "table", "document", sorted({e.document for e in REGISTRY.values()}))
+        checks.choice(document, "table", "document", sorted({entry.document for entry in REGISTRY.values()}))
     rows = ["| eq. | what | status | code | test |", "|---|---|---|---|---|"]
-    for key, e in REGISTRY.items():
-        if document and e.document != document:
+    for key, entry in REGISTRY.items():
+        if document and entry.document != document:
             continue
-        impl = f"`{e.implementation}`" if e.implementation else ""
-        test = f"`{e.test}`" if e.test else ""
-        status = e.status
-        if e.status == "erratum":
-            status = f"erratum: printed `{e.printed}`, correct `{e.correct}`"
-        rows.append(f"| {key} | {e.title} | {status} | {impl} | {test} |")
+        impl = f"`{entry.implementation}`" if entry.implementation else ""
+        test = f"`{entry.test}`" if entry.test else ""
+        status = entry.status
+        if entry.status == "erratum":
+            status = f"erratum: printed `{entry.printed}`, correct `{entry.correct}`"
+        rows.append(f"| {key} | {entry.title} | {status} | {impl} | {test} |")
     return "\n".join(rows)

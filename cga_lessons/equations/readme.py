@@ -13,9 +13,10 @@ import sys
 from pathlib import Path
 
 from cga_lessons import checks
+from cga_lessons.files import atomic_write
 from cga_lessons.paths import PROJECT_ROOT
 
-from .core import REGISTRY, STATUSES, THESIS_LABELS, Entry, coverage_summary, def_lines, resolve
+from .core import REGISTRY, STATUSES, THESIS_LABELS, Coverage, Entry, coverage_summary, def_lines, resolve
 
 __all__ = [
     "PARTS",
@@ -141,11 +142,12 @@ def _test_cell(e: Entry, root: Path) -> str:
     return "<br>".join(links)
 
 
-def _part_counts(part: str) -> dict[str, int]:
+def _part_counts(part: str) -> Coverage:
+    """How many of one part's equations have each status."""
     counts = dict.fromkeys(STATUSES, 0)
-    for e in ordered_entries(part):
-        counts[e.status] += 1
-    return counts
+    for entry in ordered_entries(part):
+        counts[entry.status] += 1
+    return Coverage(**counts)
 
 
 def readme_section(root: Path | None = None) -> str:
@@ -167,7 +169,7 @@ def readme_section(root: Path | None = None) -> str:
     for p in parts:
         c = _part_counts(p)
         name, what = PARTS[p]
-        lines.append(f"| {name}: {what} | {sum(c.values())} | " + " | ".join(str(c[s]) for s in STATUSES) + " |")
+        lines.append(f"| {name}: {what} | {c.total} | " + " | ".join(str(getattr(c, s)) for s in STATUSES) + " |")
     errata = [e for e in ordered_entries() if e.status == "erratum"]
     if errata:
         lines += [
@@ -195,12 +197,12 @@ def readme_section(root: Path | None = None) -> str:
         entries = ordered_entries(p)
         c = _part_counts(p)
         name, what = PARTS[p]
-        done = sum(c.values()) - c["todo"]
-        todo = f", <b>{c['todo']} todo</b>" if c["todo"] else ""
+        done = c.total - c.todo
+        todo = f", <b>{c.todo} todo</b>" if c.todo else ""
         lines += [
             "",
             "<details>",
-            f"<summary><b>{name}</b>: {what} ({done} of {sum(c.values())} equations registered{todo})</summary>",
+            f"<summary><b>{name}</b>: {what} ({done} of {c.total} equations registered{todo})</summary>",
             "",
             "| eq. | what | status | code | test |",
             "|---|---|---|---|---|",
@@ -282,7 +284,7 @@ def write_readme(path=None) -> bool:
     new = head + "\n" + readme_section() + tail
     if new == text:
         return False
-    path.write_text(new, encoding="utf-8")
+    atomic_write(path, new, "write_readme", overwrite=True)  # whole or not at all
     return True
 
 

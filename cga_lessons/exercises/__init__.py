@@ -3,8 +3,9 @@
 Layer 5 of the package: imports layers 0-4 only (``tests/test_layers.py`` checks it).  This facade exports the names
 in ``__all__``; its modules:
 
-* :mod:`~cga_lessons.exercises.ch2`: Exercises of chapter 2 (notebooks 01-04): products, the conformal model,
-  versors, entity properties
+* :mod:`~cga_lessons.exercises.ch2`: Exercises of chapter 2, notebooks 01 and 02: products and the conformal model
+* :mod:`~cga_lessons.exercises.ch2_motions`: Exercises of chapter 2, notebooks 03 and 04: versors (motors, rotors
+  about lines, screws) and entity properties
 * :mod:`~cga_lessons.exercises.ch3`: Exercises of chapter 3 (notebooks 05 and 06): diffTheta, rho seen from where, a
   corridor, point pairs, spheres
 * :mod:`~cga_lessons.exercises.ch4`: Exercises of chapter 4, section 4.2 (notebook 08): the stereo chain as a 4x4,

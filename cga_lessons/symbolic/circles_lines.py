@@ -63,7 +63,7 @@ def circle_properties() -> Derivation:
     """
     d = Derivation("Circles", ("2.78", "2.79", "2.80", "2.119", "2.120", "2.121", "2.122", "2.123", "2.124"))
     c = const()
-    e, e0, Ic = c["einf"], c["eo"], c["Ic"]
+    e, e0, Ic = c.einf, c.eo, c.Ic
     q = list(sp.symbols("q1:4", real=True))
     r = sp.Symbol("r", positive=True)
     n = [sp.Rational(2, 7), sp.Rational(3, 7), sp.Rational(6, 7)]
@@ -182,7 +182,7 @@ def line_properties() -> Derivation:
     """
     d = Derivation("Lines", ("2.81", "2.125", "2.126", "2.127", "2.128", "2.129", "2.130"))
     c = const()
-    e, E, IE, Ic, ep = c["einf"], c["E"], c["IE"], c["Ic"], c["ep"]
+    e, E, IE, Ic, ep = c.einf, c.E, c.IE, c.Ic, c.ep
     a_s = sp.symbols("a1:4", real=True)
     b_s = sp.symbols("b1:4", real=True)
     A, B = up(list(a_s)), up(list(b_s))

@@ -27,7 +27,7 @@ from sympy.polys.rings import PolyElement
 
 from cga_lessons import checks
 from cga_lessons.algebra import DegenerateGeometryError, GeometryError, Multivector
-from cga_lessons.conformal import G41, exact_constants, up
+from cga_lessons.conformal import G41, ModelConstants, exact_constants, up
 
 __all__ = [
     "Ring",
@@ -46,8 +46,9 @@ __all__ = [
 ]
 
 
-def const() -> dict:
-    """The exact constants ``e1 e2 e3 ep em einf eo E IE Ic`` of G(4,1) (SymPy rationals)."""
+def const() -> ModelConstants:
+    """The exact constants ``e1 e2 e3 ep em einf eo E IE Ic`` of G(4,1) (SymPy rationals, as fields of one
+    :class:`~cga_lessons.conformal.ModelConstants`)."""
     return exact_constants()
 
 
@@ -84,7 +85,7 @@ def scale3(k, a) -> list:
 
 def sphere_from_center(center, radius2) -> Multivector:
     """Standard-form sphere up(p) - rho^2 e / 2 (2.72), given the squared radius (exact)."""
-    return up([sp.sympify(v) for v in center]) - exact_constants()["einf"] * (sp.sympify(radius2) / 2)
+    return up([sp.sympify(v) for v in center]) - exact_constants().einf * (sp.sympify(radius2) / 2)
 
 
 class Ring:
@@ -148,7 +149,7 @@ class Ring:
         """The conformal point y + y^2 e / 2 + e0 (2.62) of a lifted Euclidean vector y."""
         c = exact_constants()
         y2 = (y * y).scalar()
-        return y + self.lift(c["einf"]) * self.scalar(self.element(y2) * sp.Rational(1, 2)) + self.lift(c["eo"])
+        return y + self.lift(c.einf) * self.scalar(self.element(y2) * sp.Rational(1, 2)) + self.lift(c.eo)
 
     def divide(self, X: Multivector, den) -> Multivector:
         """X / den, for a polynomial den that divides every coefficient exactly."""

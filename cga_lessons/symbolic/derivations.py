@@ -35,7 +35,7 @@ rotors_and_motors               2.135-2.145 (and 2.95, 2.106 on the way)
 :data:`ERRATA` lists the printed formulas that are wrong, with the correct
 form and the check that decides; :func:`verify_errata` reruns those checks.
 
-The code lives in :mod:`~cga_lessons.symbolic.model` (2.1-2.68),
+The code lives in :mod:`~cga_lessons.symbolic.axioms` (2.1-2.10), :mod:`~cga_lessons.symbolic.model` (2.38-2.68),
 :mod:`~cga_lessons.symbolic.entities` (spheres, planes, point pairs),
 :mod:`~cga_lessons.symbolic.circles_lines` and
 :mod:`~cga_lessons.symbolic.transformations` and :mod:`~cga_lessons.symbolic.versors` (transformations, rotors,
@@ -50,11 +50,10 @@ from dataclasses import dataclass
 
 from cga_lessons import checks
 
+from .axioms import basis_and_product_axioms, clifford_product_plane
 from .circles_lines import circle_properties, line_properties
 from .entities import point_pair_extraction, sphere_and_plane
 from .model import (
-    basis_and_product_axioms,
-    clifford_product_plane,
     minkowski_plane,
     null_cone_points,
     projection_rejection,

@@ -65,7 +65,7 @@ def sphere_and_plane() -> Derivation:
     """
     d = Derivation("Spheres and planes", tuple(f"2.{i}" for i in range(69, 78)))
     c = const()
-    e, e0, E, IE, Ic = c["einf"], c["eo"], c["E"], c["IE"], c["Ic"]
+    e, e0, E, IE, Ic = c.einf, c.eo, c.E, c.IE, c.Ic
     ps = sp.symbols("p1:4", real=True)
     xs = sp.symbols("x1:4", real=True)
     rho = sp.Symbol("rho", positive=True)
@@ -199,7 +199,7 @@ def point_pair_extraction() -> Derivation:
     a_s = sp.symbols("a1:4", real=True)
     b_s = sp.symbols("b1:4", real=True)
     ring = Ring([*a_s, *b_s])  # exact polynomial arithmetic, no relations
-    e, Ic = ring.lift(c["einf"]), ring.lift(c["Ic"])
+    e, Ic = ring.lift(c.einf), ring.lift(c.Ic)
     A, B = ring.lift(up(list(a_s))), ring.lift(up(list(b_s)))
     PP = A ^ B
     sample_a, sample_b = [1, 2, -1], [sp.Rational(1, 2), 0, 3]

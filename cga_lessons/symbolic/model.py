@@ -1,6 +1,6 @@
-"""Symbolic derivations of sections 2.1-2.3.3: the Clifford product, the
-stereographic projection, the Minkowski plane and conformal points,
-Eqs. (2.1)-(2.10) and (2.38)-(2.68).
+"""Symbolic derivations of sections 2.3-2.3.3: the stereographic projection, the Minkowski plane and conformal
+points, Eqs. (2.38)-(2.68) (the Clifford product and the axioms, 2.1-2.10, are in
+:mod:`cga_lessons.symbolic.axioms`).
 
 Each function returns a :class:`~cga_lessons.symbolic.core.Derivation`;
 ``d.holds`` is asserted by ``tests/test_symbolic.py``.
@@ -8,19 +8,16 @@ Each function returns a :class:`~cga_lessons.symbolic.core.Derivation`;
 
 from __future__ import annotations
 
-from math import comb
-
 import sympy as sp
 
 from cga_lessons.algebra import Algebra, Multivector
 from cga_lessons.conformal import up
 
-from .core import const, dot3, euclid, inverse, signature_list
+from .axioms import exact_basis
+from .core import const, dot3, euclid, inverse
 from .records import Derivation, derivation
 
 __all__ = [
-    "clifford_product_plane",
-    "basis_and_product_axioms",
     "stereographic_projection",
     "minkowski_plane",
     "MINKOWSKI_PROPERTIES",
@@ -30,103 +27,6 @@ __all__ = [
 
 ONE = sp.Integer(1)
 HALF = sp.Rational(1, 2)
-
-
-def _basis(alg: Algebra) -> list:
-    """Basis vectors of ``alg`` with exact coefficient 1."""
-    return [Multivector(alg, {1 << i: ONE}) for i in range(alg.n)]
-
-
-# --------------------------------------------------------------- 2.1 - 2.10
-@derivation
-def clifford_product_plane() -> Derivation:
-    """The Clifford product of vectors in R^2, Eqs. (2.1)-(2.8).
-
-    The multiplication rules (2.4) are *solved*, not assumed: writing the
-    unknown squares ``e1^2 = q1``, ``e2^2 = q2`` and the unknown symmetric
-    product ``e1 e2 + e2 e1 = k`` in the distributive expansion (2.3) and
-    asking that (2.2) hold for every x and y gives ``q1 = q2 = 1``, ``k = 0``.
-    The algebra's products are then compared with that solution and with the
-    coordinate forms of the dot (2.5) and outer (2.6) products.
-
-    Returns
-    -------
-    Derivation
-        values: ``rules`` (the solved q1, q2, k).
-    """
-    d = Derivation("Clifford product in the plane", ("2.1", "2.2", "2.3", "2.4", "2.5", "2.6", "2.7", "2.8"))
-    G2 = Algebra(2)
-    e1, e2 = _basis(G2)
-    x, y, a1, a2, b1, b2 = sp.symbols("x y a1 a2 b1 b2", real=True)
-    r = e1 * x + e2 * y
-    d.add("2.1 r r = |r|^2", "2.1", r * r, sp.sqrt(x**2 + y**2) ** 2)
-    d.add("2.2 (x e1 + y e2)^2 = x^2 + y^2", "2.2", (e1 * x + e2 * y) * (e1 * x + e2 * y), x**2 + y**2)
-    expansion = (e1 * e1) * x**2 + (e2 * e2) * y**2 + (e1 * e2 + e2 * e1) * (x * y)
-    d.add("2.3 distributive expansion", "2.3", expansion, r * r)
-    q1, q2, k = sp.symbols("q1 q2 k")
-    unknown = sp.Poly(x**2 * q1 + y**2 * q2 + x * y * k - (x**2 + y**2), x, y)
-    rules = sp.solve(unknown.coeffs(), [q1, q2, k], dict=True)
-    d.values["rules"] = rules
-    d.add_bool("2.4 rules solved uniquely", "2.4", len(rules) == 1, lhs=rules, rhs=[{q1: 1, q2: 1, k: 0}])
-    sol = rules[0] if rules else {q1: None, q2: None, k: None}
-    d.add("2.4 e1^2 = solved q1", "2.4", e1 * e1, sol[q1])
-    d.add("2.4 e2^2 = solved q2", "2.4", e2 * e2, sol[q2])
-    d.add("2.4 e1 e2 + e2 e1 = solved k", "2.4", e1 * e2 + e2 * e1, sol[k])
-    d.add("2.4 (e1 e2)^2 = -1", "2.4", (e1 * e2) * (e1 * e2), -ONE)
-    a = e1 * a1 + e2 * a2
-    b = e1 * b1 + e2 * b2
-    e12 = e1 * e2
-    d.add("2.5 a . b = a1 b1 + a2 b2", "2.5", a | b, a1 * b1 + a2 * b2)
-    d.add("2.5 a . b = <ab>_0", "2.5", (a * b).grade(0), a1 * b1 + a2 * b2)
-    d.add("2.6 a ^ b = (a1 b2 - a2 b1) e12", "2.6", a ^ b, e12 * (a1 * b2 - a2 * b1))
-    d.add("2.7 a ^ b = -b ^ a", "2.7", a ^ b, -(b ^ a))
-    d.add("2.8 ab = a.b + (a1 b2 - a2 b1) e12", "2.8", a * b, e12 * (a1 * b2 - a2 * b1) + (a1 * b1 + a2 * b2))
-    return d
-
-
-def basis_and_product_axioms(signatures=((2, 0, 0), (3, 0, 0), (4, 1, 0), (2, 1, 1))) -> Derivation:
-    """The basis of G(p,q,r) and the product axioms, Eqs. (2.9)-(2.10).
-
-    For each signature: the blades of grade k number C(n, k) (2.9), the
-    pseudoscalar is ``e1 ^ ... ^ en`` (2.9), ``e_i e_i`` is +1, -1, 0 for the
-    first p, next q and last r vectors, and ``e_i e_j = e_i ^ e_j = -e_j ^ e_i``
-    for i != j (2.10).  ``signatures``: distinct ``(p, q, r)``, each of dimension 1 to 10.
-    """
-    return _axioms(signature_list(signatures, "basis_and_product_axioms"))
-
-
-@derivation
-def _axioms(signatures: tuple) -> Derivation:
-    """:func:`basis_and_product_axioms` of checked signatures (computed once each)."""
-    d = Derivation("Basis blades and product axioms of G(p,q,r)", ("2.9", "2.10"))
-    for p, q, r in signatures:
-        alg = Algebra(p, q, r)
-        n = alg.n
-        vs = _basis(alg)
-        tag = f"G({p},{q},{r})"
-        counts = [sum(1 for b in range(alg.dim) if alg.grades[b] == k) for k in range(n + 1)]
-        d.add(f"2.9 {tag} blades per grade = C(n,k)", "2.9", counts, [comb(n, k) for k in range(n + 1)])
-        wedge = vs[0]
-        for v in vs[1:]:
-            wedge = wedge ^ v
-        d.add(f"2.9 {tag} I = e1 ^ ... ^ en", "2.9", wedge, Multivector(alg, {alg.dim - 1: ONE}))
-        squares = [(vs[i] * vs[i]).scalar() for i in range(n)]
-        metric = [1] * p + [-1] * q + [0] * r
-        d.add(f"2.10 {tag} e_i e_i = +1, -1, 0", "2.10", squares, metric)
-        pairs = [(i, j) for i in range(n) for j in range(n) if i != j]
-        d.add(
-            f"2.10 {tag} e_i e_j = e_i ^ e_j",
-            "2.10",
-            [vs[i] * vs[j] for i, j in pairs],
-            [vs[i] ^ vs[j] for i, j in pairs],
-        )
-        d.add(
-            f"2.10 {tag} e_i ^ e_j = -e_j ^ e_i",
-            "2.10",
-            [vs[i] ^ vs[j] for i, j in pairs],
-            [-(vs[j] ^ vs[i]) for i, j in pairs],
-        )
-    return d
 
 
 # --------------------------------------------------------------- 2.38 - 2.51
@@ -153,7 +53,7 @@ def stereographic_projection() -> Derivation:
     x = sp.Symbol("x", real=True, nonzero=True)
     a, m, q = sp.symbols("a m q", real=True)
     G2 = Algebra(2, labels=["1", "+"])
-    e1, ep = _basis(G2)
+    e1, ep = exact_basis(G2)
     d.add("2.38 x = x e1 + 0 e+ is on the e1 axis", "2.38", (e1 * x) | ep, 0)
     # (2.39) the line through the north pole (0, 1) and (x, 0), solved
     coef = sp.solve([m * 0 + q - 1, m * x + q], [m, q], dict=True)[0]
@@ -194,7 +94,7 @@ def _projected_point(d: Derivation, a_s, b_s, e1, ep, x):
     )
     d.add("2.48 x' is on the unit circle", "2.48", x1 * x1, 1)
     G21 = Algebra(2, 1, labels=["1", "+", "-"])
-    f1, fp, fm = _basis(G21)
+    f1, fp, fm = exact_basis(G21)
     x2 = f1 * a_s + fp * b_s + fm
     d.values["x2"] = x2
     d.add("2.49 x'' = x' + e-", "2.49", x2, f1 * (2 * x / (x**2 + 1)) + fp * ((x**2 - 1) / (x**2 + 1)) + fm)
@@ -214,7 +114,7 @@ def _projected_point(d: Derivation, a_s, b_s, e1, ep, x):
     d.add(
         "2.51 equals up(x e1) restricted to 1D",
         "2.51",
-        [X["e1"], X["e+"], X["e-"], X - const()["e1"] * X["e1"] - const()["ep"] * X["e+"] - const()["em"] * X["e-"]],
+        [X["e1"], X["e+"], X["e-"], X - const().e1 * X["e1"] - const().ep * X["e+"] - const().em * X["e-"]],
         [x3["e1"], x3["e+"], x3["e-"], 0],
     )
     d.add("2.51 x''' is null", "2.51", x3 * x3, 0)
@@ -257,14 +157,14 @@ def minkowski_plane() -> Derivation:
     """
     d = Derivation("Minkowski plane and null basis", ("2.52", "2.53", "2.54", "2.55", "2.56"))
     c = const()
-    ep, em = c["ep"], c["em"]
+    ep, em = c.ep, c.em
     d.add("2.52 e+^2 = 1", "2.52", ep * ep, 1)
     d.add("2.52 e-^2 = -1", "2.52", em * em, -1)
     d.add("2.52 e+ . e- = 0", "2.52", ep | em, 0)
     e0 = (em - ep) * HALF
     e = em + ep
-    d.add("2.53 model e0 = (e- - e+)/2", "2.53", c["eo"], e0)
-    d.add("2.53 model e = e- + e+", "2.53", c["einf"], e)
+    d.add("2.53 model e0 = (e- - e+)/2", "2.53", c.eo, e0)
+    d.add("2.53 model e = e- + e+", "2.53", c.einf, e)
     d.add("2.54 e0^2 = 0", "2.54", e0 * e0, 0)
     d.add("2.54 e^2 = 0", "2.54", e * e, 0)
     d.add("2.54 e . e0 = -1", "2.54", e | e0, -1)
@@ -278,7 +178,7 @@ def minkowski_plane() -> Derivation:
         note="e0 ^ e = -e+ e-: the printed definition has the wrong sign",
     )
     d.add("2.55 E = e ^ e0 = e+ e- (corrected)", "2.55", e ^ e0, ep * em)
-    d.add("2.55 model E = e+ e-", "2.55", c["E"], ep * em)
+    d.add("2.55 model E = e+ e-", "2.55", c.E, ep * em)
     variants = (("E = e+e-", ep * em, 3), ("E = e0^e", e0 ^ e, 4))
     for tag, E, col in variants:
         fails = []
@@ -307,23 +207,23 @@ def projection_rejection() -> Derivation:
     """
     d = Derivation("Projection and rejection, Ic", ("2.57", "2.58", "2.59", "2.60"))
     c = const()
-    E, Ic, IE = c["E"], c["Ic"], c["IE"]
+    E, Ic, IE = c.E, c.Ic, c.IE
     s = sp.symbols("a1:6", real=True)
-    basis = [c["e1"], c["e2"], c["e3"], c["ep"], c["em"]]
+    basis = [c.e1, c.e2, c.e3, c.ep, c.em]
     a = sum((b * si for si, b in zip(s, basis)), basis[0] * 0)
     P = (a | E) * E
     Pp = (a ^ E) * E
     d.add("2.57 P_E(a) + P_E^perp(a) = a", "2.57", P + Pp, a)
-    d.add("2.58 P_E(a) is the e+, e- part", "2.58", P, c["ep"] * s[3] + c["em"] * s[4])
+    d.add("2.58 P_E(a) is the e+, e- part", "2.58", P, c.ep * s[3] + c.em * s[4])
     al, be = sp.symbols("alpha beta")
-    eqs = [(c["eo"] * al + c["einf"] * be - P)[k] for k in ("e+", "e-")]
+    eqs = [(c.eo * al + c.einf * be - P)[k] for k in ("e+", "e-")]
     sol = sp.solve(eqs, [al, be], dict=True)
     d.values["alpha_beta"] = sol
     d.add_bool("2.58 alpha, beta solved uniquely", "2.58", len(sol) == 1, lhs=sol)
     if sol:
-        d.add("2.58 P_E(a) = alpha e0 + beta e", "2.58", c["eo"] * sol[0][al] + c["einf"] * sol[0][be], P)
+        d.add("2.58 P_E(a) = alpha e0 + beta e", "2.58", c.eo * sol[0][al] + c.einf * sol[0][be], P)
     Es = E * inverse(Ic)
-    d.add("2.59 (a ^ E) E is the Euclidean part", "2.59", Pp, c["e1"] * s[0] + c["e2"] * s[1] + c["e3"] * s[2])
+    d.add("2.59 (a ^ E) E is the Euclidean part", "2.59", Pp, c.e1 * s[0] + c.e2 * s[1] + c.e3 * s[2])
     d.add("2.59 (a . E*) ~E* = (a ^ E) E", "2.59", (a | Es) * ~Es, Pp)
     d.add("2.60 Ic = e+-123", "2.60", Ic, Ic.algebra.blade("e+-123", ONE))
     d.add("2.60 Ic = E IE", "2.60", Ic, E * IE)
@@ -352,7 +252,7 @@ def null_cone_points() -> Derivation:
     """
     d = Derivation("Conformal points and distances", tuple(f"2.{i}" for i in range(61, 69)))
     c = const()
-    e, e0, E, ep, em = c["einf"], c["eo"], c["E"], c["ep"], c["em"]
+    e, e0, E, ep, em = c.einf, c.eo, c.E, c.ep, c.em
     xs = sp.symbols("x1:4", real=True)
     a_s = sp.symbols("a1:4", real=True)
     b_s = sp.symbols("b1:4", real=True)
@@ -400,7 +300,7 @@ def null_cone_points() -> Derivation:
     d.add(
         "table 2.1 point dual x* = (-E x - x^2 e/2 + e0) I_E",
         "table 2.1",
-        X * inverse(c["Ic"]),
-        (e0 - E * x - e * (x2 / 2)) * c["IE"],
+        X * inverse(c.Ic),
+        (e0 - E * x - e * (x2 / 2)) * c.IE,
     )
     return d

@@ -30,7 +30,7 @@ def _general_vector(name: str):
     """A general vector of R^{4,1}: five symbols on e1, e2, e3, e+, e-."""
     c = const()
     s = sp.symbols(f"{name}1:6", real=True)
-    return c["e1"] * s[0] + c["e2"] * s[1] + c["e3"] * s[2] + c["ep"] * s[3] + c["em"] * s[4]
+    return c.e1 * s[0] + c.e2 * s[1] + c.e3 * s[2] + c.ep * s[3] + c.em * s[4]
 
 
 # --------------------------------------------------------------- 2.82 - 2.93
@@ -91,7 +91,7 @@ def _odd_versors(d: Derivation, X, xs) -> None:
 def _inversions(d: Derivation, X, xs) -> None:
     """(2.85)-(2.88) and table 2.2: inversion in the unit sphere and in a symbolic sphere."""
     c = const()
-    e, e0 = c["einf"], c["eo"]
+    e, e0 = c.einf, c.eo
     x = euclid(xs)
     x2 = dot3(xs, xs)
     # (2.85) the unit sphere at the origin
@@ -153,7 +153,7 @@ def _inversions(d: Derivation, X, xs) -> None:
 
 def _reflections_and_translation(d: Derivation, X, xs, cs) -> None:
     """(2.89)-(2.92) and table 2.2: reflection in the plane n + delta e, translation as two reflections."""
-    e = const()["einf"]
+    e = const().einf
     x = euclid(xs)
     # (2.89)-(2.91) reflection in the plane n + delta e, n a symbolic unit vector
     n = list(sp.symbols("n1:4", real=True))
@@ -228,7 +228,7 @@ def _reflections_and_translation(d: Derivation, X, xs, cs) -> None:
 
 def _rotation_about_point(d: Derivation, X, xs, cs) -> None:
     """(2.93) and table 2.2: rotation about the point c as two reflections."""
-    e = const()["einf"]
+    e = const().einf
     x = euclid(xs)
     # (2.93) rotation about c as two reflections, a and b unit normals
     a = list(sp.symbols("a1:4", real=True))

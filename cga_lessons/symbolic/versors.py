@@ -86,7 +86,7 @@ def _rotor_setting() -> SimpleNamespace:
         subs={sp.cos(th): ch**2 - sh**2, sp.sin(th): 2 * sh * ch, cos2: ch, sin2: sh},
     )
     back = {ch: cos2, sh: sin2}
-    e, e0, E, IE, Ic, em = (ring.lift(c[k]) for k in ("einf", "eo", "E", "IE", "Ic", "em"))
+    e, e0, E, IE, Ic, em = (ring.lift(getattr(c, k)) for k in ("einf", "eo", "E", "IE", "Ic", "em"))
     half = ring.scalar(HALF)
     X = ring.lift(up(xs))
     nv, tv, wv = ring.vector(n), ring.vector(ts), ring.vector(ws)
@@ -166,7 +166,7 @@ def _rotor_angle_and_axis(d: Derivation, sv: SimpleNamespace):
     L = R - ring.scalar(ch)
     d.add("2.137 L = R - c = (R - ~R)/2", "2.137", L, (R - ~R) * half, rel=ring)
     d.add("2.137 L = -sin(theta/2) n I_E", "2.137", L, l * ring.scalar(-sh), rel=ring)
-    Ls = L * ring.lift(inverse(c["Ic"]))
+    Ls = L * ring.lift(inverse(c.Ic))
     d.add("2.137 L* L* = sin(theta/2)^2: (2.126) divides by |sin(theta/2)|", "2.137", Ls * Ls, sh**2, rel=ring)
     d.add("2.137 L* . E = -sin(theta/2) n: the unit axis up to sign", "2.137", Ls | E, nv * ring.scalar(-sh), rel=ring)
     return rotated
@@ -269,7 +269,7 @@ def _rotation_about_line(d: Derivation, th, ch, sh, xs) -> None:
     r = list(sp.symbols("r1:4", real=True))
     a = list(sp.symbols("a1:4", real=True))
     ring = Ring([ch, sh, *r, *a, *xs], [ch**2 + sh**2 - 1, dot3(r, r) - 1])
-    e, Ic = ring.lift(c["einf"]), ring.lift(c["Ic"])
+    e, Ic = ring.lift(c.einf), ring.lift(c.Ic)
     Ld = e ^ ring.lift(up(a)) ^ ring.lift(up(add3(a, r)))
     d.add("2.109 the line through a and a + r is normalised: L* L* = 1", "2.109", Ld * Ld, 1, rel=ring)
     L = Ld * Ic
@@ -292,7 +292,7 @@ def _rotation_about_line(d: Derivation, th, ch, sh, xs) -> None:
         "2.109",
         RL,
         ring.lift(translator(a))
-        * (ring.vector(r) * ring.lift(c["IE"]) * ring.scalar(-sh) + ring.scalar(ch))
+        * (ring.vector(r) * ring.lift(c.IE) * ring.scalar(-sh) + ring.scalar(ch))
         * ring.lift(~translator(a)),
         rel=ring,
     )

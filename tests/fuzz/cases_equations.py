@@ -33,6 +33,7 @@ CASES = [
          strict=True, allow={k: ["None"] for k in ("implementation", "printed", "correct", "note")},
          extra={"label": ["2.999", "9.1"], "document": ["no-such-document"]}),
     Case(eq.coverage_summary),
+    Case(eq.Coverage, {"symbolic": 1, "numeric": 2, "definition": 3, "erratum": 4, "todo": 0}, strict=True),
     Case(eq.coverage, {"prefix": "2."}, strict=True, allow={"prefix": ["None"]}, extra={"prefix": ["9.", "x"]}),
     Case(eq.check_registry, {"root": PROJECT_ROOT}, allow={"root": ["None"]}),
     Case(eq.table, {"document": "exploration"}, strict=True, allow={"document": ["None"]}),
