@@ -16,9 +16,12 @@ from kingdon import Algebra as KingdonAlgebra
 
 from cga_lessons import conformal as cga
 from cga_lessons.algebra import Algebra, DegenerateGeometryError, InvalidInputError, Multivector
-from cga_lessons.conformal.blades import (
+from cga_lessons.conformal import (
+    BladeKind,
     blade_factors,
+    classify,
     dual,
+    intersect,
     is_blade,
     is_versor,
     join,
@@ -32,7 +35,6 @@ from cga_lessons.conformal.blades import (
     scalar_product,
     undual,
 )
-from cga_lessons.conformal.blades_classify import BladeKind, classify, intersect
 
 G = cga.G41
 K = KingdonAlgebra(4, 1)  # e1 e2 e3 e4 e5 with e4^2 = +1, e5^2 = -1: ours are e1 e2 e3 e+ e-

@@ -525,7 +525,7 @@ def test_fits_refuse_bad_input_by_name():
     with pytest.raises(DegenerateGeometryError, match=r"^fit_sphere_geometric: X: the points lie on a plane"):
         cga.fit_sphere_geometric(ring, init={"center": [0, 0, 1], "radius": 1.0})
     fit = cga.fit_sphere_geometric(sphere_pts, init={"center": [0.1, 0, 0], "radius": 2.0})
-    assert np.allclose(fit["center"], 0, atol=1e-12) and fit["radius"] == pytest.approx(1.0)
+    assert np.allclose(fit.center, 0, atol=1e-12) and fit.radius == pytest.approx(1.0)
     with pytest.raises(InvalidInputError, match=r"^fit_circle_euclidean: iterations: must be >= 0"):
         cga.fit_circle_euclidean(ring, iterations=-1)
     cloud = np.array([[x, y, 0.0] for x in range(4) for y in range(4)], float)

@@ -1,4 +1,4 @@
-"""Logarithm, roots and interpolation of motors; the dilator (cga_lessons.conformal.versor_log).
+"""Logarithm, roots and interpolation of motors; the dilator (cga_lessons.conformal.versor_log, versor_powers).
 
 Every check compares with an independent truth: the closed forms of the
 thesis (2.94, 2.100, 2.110) typed out here, NumPy rotation matrices for the
@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 
 from cga_lessons import conformal as cga
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
-from cga_lessons.conformal.versor_log import dilator, motor_interpolate, motor_log, rotor_log, versor_root, versor_sqrt
+from cga_lessons.conformal import dilator, motor_interpolate, motor_log, rotor_log, versor_root, versor_sqrt
 
 PROPS = settings(deadline=None, max_examples=40)
 

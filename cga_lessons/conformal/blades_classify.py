@@ -26,7 +26,8 @@ import numpy as np
 from cga_lessons import checks
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
 
-from .blades import dual, left_contraction, meet, require_blade, undual
+from .blades import dual, left_contraction, meet, undual
+from .blades_span import require_blade
 from .model import einf
 
 __all__ = ["BladeKind", "classify", "intersect"]

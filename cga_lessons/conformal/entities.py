@@ -29,7 +29,8 @@ from cga_lessons import checks
 from cga_lessons.algebra import Multivector, any_sympy, is_sympy
 
 from . import entities_frame as _F
-from .model import G41, IE, E, Ic, einf, ep, exact_constants
+from .entities_read import pair_points, read_pair, read_plane, read_sphere
+from .model import CONSTANTS, G41, ModelConstants, einf, exact_constants
 from .multivector_checks import COORD_LIMIT, check_points, multivector
 from .points import euclidean, normalize_point, read_point, up, vector
 
@@ -49,11 +50,12 @@ __all__ = [
 ]
 
 
-def constants_of(X: Multivector):
-    """Constants matching the coefficient kind of X (exact for SymPy)."""
+def constants_of(X: Multivector) -> ModelConstants:
+    """The constants of G(4,1) matching the coefficient kind of X: exact for SymPy (:func:`exact_constants`), else
+    the float ones (:data:`~cga_lessons.conformal.model.CONSTANTS`)."""
     if any_sympy(X):
         return exact_constants()
-    return {"einf": einf, "E": E, "IE": IE, "Ic": Ic, "ep": ep}
+    return CONSTANTS
 
 
 def require_nonzero(X: Multivector, func: str, args: str, what: str) -> Multivector:
@@ -79,13 +81,13 @@ def grade_of(X: Multivector, func: str, allowed: tuple[int, ...], arg: str | Non
 def standard_form(X: Multivector) -> Multivector:
     """The standard form X = X* Ic of a dual-form entity (inverse of 2.31)."""
     multivector(X, "standard_form", "X", nonzero=False)
-    return X * constants_of(X)["Ic"]
+    return X * constants_of(X).Ic
 
 
 def dual_form(X: Multivector) -> Multivector:
     """The dual X* = X Ic^-1 (2.31)."""
     multivector(X, "dual_form", "X", nonzero=False)
-    return X * (-constants_of(X)["Ic"])  # Ic^2 = -1, so Ic^-1 = -Ic
+    return X * (-constants_of(X).Ic)  # Ic^2 = -1, so Ic^-1 = -Ic
 
 
 def _per_item(value, func: str, name: str, batch: tuple, *, low: float | None = None):
@@ -186,7 +188,7 @@ def point_pair_endpoints(PP: Multivector, min_separation: float | None = None):
 
         c = constants_of(B)
         root = sympy.sqrt(sympy.factor(sympy.simplify((B * B).scalar())))
-        inv = (B | c["einf"]).inv()
+        inv = (B | c.einf).inv()
 
         def endpoint(X):  # (2.131) is a vector: the other grades vanish once simplified
             X = X.simplify()
@@ -201,7 +203,7 @@ def point_pair_endpoints(PP: Multivector, min_separation: float | None = None):
             return p if isinstance(p, sympy.MatrixBase) else sympy.Matrix([sympy.nsimplify(float(v)) for v in p])
 
         return endpoint((B - root) * inv), endpoint((B + root) * inv)
-    return _F.pair_points(B, min_separation, "point_pair_endpoints", "PP")
+    return pair_points(B, min_separation, "point_pair_endpoints", "PP")
 
 
 def point_pair_sphere(PP: Multivector) -> Multivector:
@@ -216,9 +218,9 @@ def point_pair_sphere(PP: Multivector) -> Multivector:
     g = grade_of(PP, "point_pair_sphere", (2, 3), "PP")
     B = PP if g == 2 else dual_form(PP)
     if any_sympy(B):
-        S = (B * (B ^ constants_of(B)["einf"]).inv()).grade(1)
+        S = (B * (B ^ constants_of(B).einf).inv()).grade(1)
         return normalize_point(S, "point_pair_sphere")
-    m, h2, _, tol = _F.read_pair(B, "point_pair_sphere", "PP")
+    m, h2, _, tol = read_pair(B, "point_pair_sphere", "PP")
     if np.any(h2 < -(tol + 1e-12)):
         raise checks.degenerate("point_pair_sphere", "PP", "B B < 0, the point pair is imaginary (no real points)")
     return _F.sphere_std(m, _F.dot(m, m) - h2, 1.0, "point_pair_sphere", "PP")
@@ -236,7 +238,7 @@ def sphere(center, radius) -> Multivector:
     pts = _F.points("sphere", "center", center)
     radius = _per_item(radius, "sphere", "radius", ("center", None if pts is None else pts[0]), low=0)
     if pts is None or is_sympy(radius):
-        return up(center) - exact_constants()["einf"] * (radius**2 / 2)
+        return up(center) - exact_constants().einf * (radius**2 / 2)
     r = np.asarray(
         checks.magnitude(radius, "sphere", "radius", limit=COORD_LIMIT, why="its square overflows a float"), dtype=float
     )
@@ -290,8 +292,8 @@ def sphere_center_radius(S: Multivector):
 
         s = normalize_point(s, "sphere_center_radius")
         c = constants_of(s)
-        return euclidean((s ^ c["E"]) * c["E"]), sympy.sqrt(sympy.simplify((s * s).scalar()))
-    p, r2, _, tol = _F.read_sphere(s, "sphere_center_radius", "S")
+        return euclidean((s ^ c.E) * c.E), sympy.sqrt(sympy.simplify((s * s).scalar()))
+    p, r2, _, tol = read_sphere(s, "sphere_center_radius", "S")
     if np.any(r2 < -(tol + 1e-12)):
         raise checks.degenerate("sphere_center_radius", "S", "s^2 < 0, the sphere is imaginary")
     return p, _F.out(np.sqrt(np.maximum(r2, 0.0)))
@@ -315,7 +317,7 @@ def point_sphere_side(x, S: Multivector, atol: float = 1e-9):
         X = up(x) if not isinstance(x, Multivector) else normalize_point(x, "point_sphere_side")
         v = np.asarray((X | normalize_point(s, "point_sphere_side")).scalar(), dtype=float)
     else:
-        p, r2, _, _ = _F.read_sphere(s, "point_sphere_side", "S")
+        p, r2, _, _ = read_sphere(s, "point_sphere_side", "S")
         v = 0.5 * (r2 - _F.dot(xe - p, xe - p))
     out = np.where(np.abs(v) <= atol, 0, np.sign(v)).astype(int)
     return int(out) if out.ndim == 0 else out
@@ -331,7 +333,7 @@ def plane(normal, distance) -> Multivector:
     nv, sym = check_points(normal, "plane", "normal")
     distance = _per_item(distance, "plane", "distance", ("normal", None if sym else nv))
     if sym:
-        return vector(nv) + exact_constants()["einf"] * distance
+        return vector(nv) + exact_constants().einf * distance
     with np.errstate(over="ignore"):
         norm = np.linalg.norm(nv, axis=-1)
     if not np.all(np.isfinite(norm)):  # |normal|^2 overflows: scale it first
@@ -341,7 +343,7 @@ def plane(normal, distance) -> Multivector:
         raise checks.degenerate("plane", "normal", "the normal is the zero vector")
     n = nv / (norm[..., None] if nv.ndim == 2 else norm)
     if is_sympy(distance):
-        return vector(n) + exact_constants()["einf"] * distance
+        return vector(n) + exact_constants().einf * distance
     d = np.asarray(distance, dtype=float)
     return vector(n) + einf * (float(d) if d.ndim == 0 else d)
 
@@ -355,7 +357,7 @@ def plane_from_points(a, b, c) -> Multivector:
     """
     pts = _F.points("plane_from_points", "a, b, c", a, b, c)
     if pts is None:
-        P = exact_constants()["einf"] ^ exact_up(a) ^ exact_up(b) ^ exact_up(c)
+        P = exact_constants().einf ^ exact_up(a) ^ exact_up(b) ^ exact_up(c)
         return require_nonzero(P, "plane_from_points", "a, b, c", "the 3 points are collinear")
     return _F.plane(*pts, "plane_from_points")
 
@@ -378,7 +380,7 @@ def plane_normal_distance(P: Multivector):
         n = euclidean(p)
         norm = sympy.sqrt(sum(v**2 for v in n))
         return n / norm, p[16] / norm
-    n, delta = _F.read_plane(p, "plane_normal_distance", "P")
+    n, delta = read_plane(p, "plane_normal_distance", "P")
     norm = _F.norm(n)
     if np.any(norm <= 1e-300):
         raise checks.degenerate("plane_normal_distance", "P", "the input has no normal (not a plane)")

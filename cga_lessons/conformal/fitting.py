@@ -22,19 +22,29 @@ conformal similarity, which maps spheres to spheres): the same conditioning
 step Hartley's normalisation performs for the 8-point algorithm.
 
 The Euclidean baselines are Kasa's algebraic sphere fit (linear least squares
-of ``|x|^2 = 2 p . x + c``) and the geometric (orthogonal distance) fit.
+of ``|x|^2 = 2 p . x + c``) and the geometric (orthogonal distance) fit.  Every
+fit of one kind of entity returns the same typed result (:class:`SphereFit`,
+:class:`PlaneFit`, :class:`CircleFit`), the baselines' with the entity built
+from their parameters.  RANSAC over these fits is in
+:mod:`cga_lessons.conformal.plane_ransac`.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 
 from cga_lessons import checks
 from cga_lessons import conformal as cga
+from cga_lessons.algebra import Multivector
 
-from .multivector_checks import COORD_LIMIT, COORD_WHY
+from .multivector_checks import COORD_LIMIT, COORD_WHY, multivector
 
 __all__ = [
+    "SphereFit",
+    "PlaneFit",
+    "CircleFit",
     "fit_sphere",
     "fit_plane",
     "fit_circle",
@@ -42,15 +52,77 @@ __all__ = [
     "fit_sphere_geometric",
     "fit_plane_euclidean",
     "fit_circle_euclidean",
-    "ransac_plane",
-    "segment_planes",
 ]
 
-_G = np.diag([1.0, 1.0, 1.0, 1.0, -1.0])
-_BLADES = [1, 2, 4, 8, 16]  # e1 e2 e3 e+ e-
+
+@dataclass(frozen=True)
+class SphereFit:
+    """A sphere fitted to points: ``center`` (3,) and ``radius`` (metres), ``rms`` (the RMS distance of the points
+    from the sphere, metres) and ``blade``, the sphere s in standard form (2.75, normalised ``s . e = -1``, 2.115)."""
+
+    center: np.ndarray
+    radius: float
+    rms: float
+    blade: Multivector
+
+    def __post_init__(self):
+        _checked(self, "SphereFit", center=(3,), radius=0.0, rms=0.0)
 
 
-def _points(X, func: str, at_least: int) -> np.ndarray:
+@dataclass(frozen=True)
+class PlaneFit:
+    """A plane fitted to points: unit ``normal`` (3,) and ``distance`` (``normal . x = distance`` on the plane), ``rms``
+    (the RMS distance of the points from it, metres), ``blade`` (standard form ``n + distance e``, 2.89), for drawing
+    ``center`` (the centroid projected onto the plane) and ``radius`` (the farthest projected point from it), and
+    ``inliers``, the number of points fitted (all of them, or RANSAC's inliers)."""
+
+    normal: np.ndarray
+    distance: float
+    rms: float
+    blade: Multivector
+    center: np.ndarray
+    radius: float
+    inliers: int
+
+    def __post_init__(self):
+        _checked(self, "PlaneFit", normal=(3,), distance=None, rms=0.0, center=(3,), radius=0.0)
+        object.__setattr__(self, "inliers", checks.integer(self.inliers, "PlaneFit", "inliers", low=0))
+
+
+@dataclass(frozen=True)
+class CircleFit:
+    """A circle fitted to points: ``center`` (3,), ``radius`` (metres), unit ``normal`` (3,) of its plane, ``rms``
+    (the RMS distance of the points from it, metres) and ``blade``, the circle in dual form through three of its
+    points (2.80)."""
+
+    center: np.ndarray
+    radius: float
+    normal: np.ndarray
+    rms: float
+    blade: Multivector
+
+    def __post_init__(self):
+        _checked(self, "CircleFit", center=(3,), radius=0.0, normal=(3,), rms=0.0)
+
+
+def _checked(fit, func: str, **fields) -> None:
+    """Check a fit's fields: a shape (a finite array), a lower bound or None (a finite number); and its blade."""
+    for name, spec in fields.items():
+        value = getattr(fit, name)
+        if isinstance(spec, tuple):
+            value = checks.array(value, func, name, spec)
+        else:
+            value = checks.real(value, func, name, low=spec)
+        object.__setattr__(fit, name, value)
+    multivector(fit.blade, func, "blade", single=True, numeric=True)
+
+#: The metric of G(4,1)'s vectors on (e1, e2, e3, e+, e-), and those vectors' blade indices: a fit's linear algebra
+#: works on the 5 coefficients of conformal vectors.
+VECTOR_METRIC = np.diag([1.0, 1.0, 1.0, 1.0, -1.0])
+VECTOR_BLADES = [1, 2, 4, 8, 16]  # e1 e2 e3 e+ e-
+
+
+def checked_points(X, func: str, at_least: int) -> np.ndarray:
     """The points (N, 3) through the checks layer: numbers, finite, not so large that their squares overflow."""
     X = checks.magnitude(checks.rows(X, func, "X", 3), func, "X", limit=COORD_LIMIT, why=COORD_WHY)
     if len(X) < at_least:
@@ -74,8 +146,8 @@ def _conformal_eig(Y):
     planes), scaled to ``s^T G s = 1``, sorted by their residual
     ``lambda = s^T M s``, and the residuals relative to ``trace(M)``.
     """
-    D = cga.up(Y).to_array(_BLADES)  # (N, 5), conformal points (2.62)
-    A = D @ _G  # row i: coefficients of the linear form s -> x_i . s
+    D = cga.up(Y).to_array(VECTOR_BLADES)  # (N, 5), conformal points (2.62)
+    A = D @ VECTOR_METRIC  # row i: coefficients of the linear form s -> x_i . s
     M = A.T @ A
     # M may be singular (noise-free data); a relative ridge of 1e-13 makes it
     # positive definite without moving the answer beyond round-off.  With
@@ -83,17 +155,19 @@ def _conformal_eig(Y):
     # mu = 1/lambda: the best fits are the largest positive mu.
     L = np.linalg.cholesky(M + 1e-13 * np.trace(M) * np.eye(5))
     Li = np.linalg.inv(L)
-    mu, Y_ = np.linalg.eigh(Li @ _G @ Li.T)
+    mu, Y_ = np.linalg.eigh(Li @ VECTOR_METRIC @ Li.T)
     V = Li.T @ Y_[:, mu > 0][:, ::-1]
-    V /= np.sqrt(np.einsum("ij,ik,kj->j", V, _G, V))
+    V /= np.sqrt(np.einsum("ij,ik,kj->j", V, VECTOR_METRIC, V))
     return V, np.einsum("ij,ik,kj->j", V, M, V) / np.trace(M)
 
 
-def _sphere_rms(X, center, radius):
-    return float(np.sqrt(np.mean((np.linalg.norm(X - center, axis=1) - radius) ** 2)))
+def _sphere_result(X, center, radius) -> SphereFit:
+    """The :class:`SphereFit` of points X for a fitted centre and radius."""
+    rms = float(np.sqrt(np.mean((np.linalg.norm(X - center, axis=1) - radius) ** 2)))
+    return SphereFit(center=center, radius=float(radius), rms=rms, blade=cga.sphere(center, radius))
 
 
-def fit_sphere(X) -> dict:
+def fit_sphere(X) -> SphereFit:
     """Least-squares sphere in the conformal model: ``min sum (x_i . s)^2`` with ``s^2 = 1`` (2.71-2.74).
 
     Parameters
@@ -103,27 +177,25 @@ def fit_sphere(X) -> dict:
 
     Returns
     -------
-    dict
-        ``blade`` (the sphere s in standard form, normalised ``s . e = -1``,
-        2.115), ``center`` (3,) and ``radius`` (2.116, 2.73), ``rms`` (RMS
-        distance of the points from the sphere, metres).
+    SphereFit
+        The sphere s in standard form (normalised ``s . e = -1``, 2.115), its
+        ``center`` and ``radius`` (2.116, 2.73) and ``rms``.
     """
-    X = _points(X, "fit_sphere", 4)
+    X = checked_points(X, "fit_sphere", 4)
     c, k, Y = _normalise(X, "fit_sphere")
     V, lam = _conformal_eig(Y)
     if lam[1] <= 1e-12:  # two exact fits: the pencil of spheres through a circle (noise-free: ~1e-18)
         raise checks.degenerate("fit_sphere", "X", "the points lie on a circle: every sphere through it fits them")
-    s = cga.G41.from_array(V[:, 0], _BLADES)
+    s = cga.G41.from_array(V[:, 0], VECTOR_BLADES)
     weight = -(s | cga.einf).scalar()
     if abs(weight) < 1e-9 * np.linalg.norm(V[:, 0]):
         raise checks.degenerate("fit_sphere", "X", "the points lie on a plane (the best 'sphere' has infinite radius)")
     center_y, radius_y = cga.sphere_center_radius(s)  # (2.115), (2.116), (2.73)
     center, radius = c + k * center_y, k * radius_y
-    rms = _sphere_rms(X, center, radius)
-    return {"blade": cga.sphere(center, radius), "center": center, "radius": radius, "rms": rms}
+    return _sphere_result(X, center, radius)
 
 
-def fit_plane(X) -> dict:
+def fit_plane(X) -> PlaneFit:
     """Least-squares plane in the conformal model: ``min sum (x_i . pi)^2`` with ``pi^2 = 1``, pi = n + delta e.
 
     The plane is the sphere problem restricted to vectors without an e0 part
@@ -139,17 +211,16 @@ def fit_plane(X) -> dict:
 
     Returns
     -------
-    dict
-        ``blade`` (standard form ``n + delta e``, 2.89), ``normal`` (3,),
-        ``distance`` (delta: ``n . x = delta`` on the plane), ``rms``; for
-        drawing, ``center`` (the centroid projected onto the plane) and
-        ``radius`` (the farthest projected point from it).
+    PlaneFit
+        ``blade`` (standard form ``n + delta e``, 2.89), ``normal``,
+        ``distance`` (delta: ``n . x = delta`` on the plane), ``rms``, and
+        ``center`` and ``radius`` for drawing.
     """
-    X = _points(X, "fit_plane", 3)
+    X = checked_points(X, "fit_plane", 3)
     c, k, Y = _normalise(X, "fit_plane")
-    D = cga.up(Y).to_array(_BLADES)
+    D = cga.up(Y).to_array(VECTOR_BLADES)
     # x . (n + delta e) = x_E . n - delta  (x . e = -1): columns for (n1, n2, n3, delta)
-    A = np.column_stack([(D @ _G)[:, :3], -np.ones(len(Y))])
+    A = np.column_stack([(D @ VECTOR_METRIC)[:, :3], -np.ones(len(Y))])
     M = A.T @ A
     Mnn, b, m = M[:3, :3], M[:3, 3], M[3, 3]
     reduced = Mnn - np.outer(b, b) / m  # Schur complement: delta = -b . n / m
@@ -159,20 +230,19 @@ def fit_plane(X) -> dict:
     n = V[:, 0]
     delta_y = -b @ n / m
     delta = k * delta_y + c @ n
-    rms = float(np.sqrt(np.mean((X @ n - delta) ** 2)))
+    return _plane_result(X, n, delta, float(np.sqrt(np.mean((X @ n - delta) ** 2))))
+
+
+def _plane_result(X, n, delta, rms: float) -> PlaneFit:
+    """The :class:`PlaneFit` of points X for a fitted plane ``n . x = delta``, with its centre and radius to draw."""
+    c = X.mean(axis=0)
     center = c - (c @ n - delta) * n  # the centroid, projected onto the plane (for drawing)
     radius = float(np.max(np.linalg.norm((X - center) - np.outer((X - center) @ n, n), axis=1)))
-    return {
-        "blade": cga.plane(n, delta),
-        "normal": n,
-        "distance": float(delta),
-        "rms": rms,
-        "center": center,
-        "radius": radius,
-    }
+    return PlaneFit(normal=n, distance=float(delta), rms=rms, blade=cga.plane(n, delta), center=center,
+                    radius=radius, inliers=len(X))  # fmt: skip
 
 
-def fit_circle(X) -> dict:
+def fit_circle(X) -> CircleFit:
     """Least-squares circle: the two smallest eigenvectors of the sphere problem span its pencil; z = s1 ^ s2 (2.79).
 
     Points on a circle satisfy ``x . s = 0`` for every sphere through it (and
@@ -188,23 +258,27 @@ def fit_circle(X) -> dict:
 
     Returns
     -------
-    dict
+    CircleFit
         ``blade`` (the circle z* in dual form, through three of its points),
         ``center``, ``radius``, ``normal``, ``rms``.
     """
-    X = _points(X, "fit_circle", 3)
+    X = checked_points(X, "fit_circle", 3)
     c, k, Y = _normalise(X, "fit_circle")
     sv = np.linalg.svd(Y, compute_uv=False)
     if sv[1] <= 1e-9 * sv[0]:
         raise checks.degenerate("fit_circle", "X", "the points lie on a line (a circle through infinity)")
     V, _ = _conformal_eig(Y)
-    s1, s2 = (cga.G41.from_array(V[:, i], _BLADES) for i in (0, 1))
+    s1, s2 = (cga.G41.from_array(V[:, i], VECTOR_BLADES) for i in (0, 1))
     z = s1 ^ s2  # (2.79)
     try:
         center_y, radius_y, n = cga.circle_center_radius(z)
     except cga.DegenerateGeometryError as exc:
         raise checks.degenerate("fit_circle", "X", f"no finite circle fits; points nearly on a line ({exc})") from None
-    center, radius = c + k * center_y, k * radius_y
+    return _circle_result(X, c + k * center_y, k * radius_y, n)
+
+
+def _circle_result(X, center, radius, n) -> CircleFit:
+    """The :class:`CircleFit` of points X for a fitted circle, its blade through three of its points (2.80)."""
     u = np.cross(n, np.eye(3)[np.argmin(np.abs(n))])
     u /= np.linalg.norm(u)
     v = np.cross(n, u)
@@ -212,50 +286,55 @@ def fit_circle(X) -> dict:
     d_plane = (X - center) @ n
     d_axis = np.linalg.norm((X - center) - np.outer(d_plane, n), axis=1)
     rms = float(np.sqrt(np.mean(d_plane**2 + (d_axis - radius) ** 2)))
-    return {"blade": blade, "center": center, "radius": float(radius), "normal": n, "rms": rms}
+    return CircleFit(center=center, radius=float(radius), normal=n, rms=rms, blade=blade)
 
 
 # ------------------------------------------------------- Euclidean baselines
-def fit_sphere_kasa(X) -> dict:
+def fit_sphere_kasa(X) -> SphereFit:
     """Kasa's algebraic sphere fit: linear least squares of ``|x|^2 = 2 p . x + (rho^2 - |p|^2)``.
 
-    Returns ``{"center", "radius", "rms"}``.  Biased towards small spheres
-    when only a cap of the sphere is seen.
+    Returns a :class:`SphereFit`.  Biased towards small spheres when only a
+    cap of the sphere is seen.
     """
-    X = _points(X, "fit_sphere_kasa", 4)
+    X = checked_points(X, "fit_sphere_kasa", 4)
     c, k, Y = _normalise(X, "fit_sphere_kasa")
     A = np.column_stack([2 * Y, np.ones(len(Y))])
     sol, _, rank, _ = np.linalg.lstsq(A, np.sum(Y * Y, axis=1), rcond=None)
     if rank < 4:
         raise checks.degenerate("fit_sphere_kasa", "X", "the points lie on a plane")
     p = sol[:3]
-    center, radius = c + k * p, k * np.sqrt(sol[3] + p @ p)
-    return {"center": center, "radius": float(radius), "rms": _sphere_rms(X, center, radius)}
+    return _sphere_result(X, c + k * p, k * np.sqrt(sol[3] + p @ p))
 
 
-def fit_sphere_geometric(X, init: dict | None = None, iterations: int = 50) -> dict:
+def fit_sphere_geometric(X, init: SphereFit | dict | None = None, iterations: int = 50) -> SphereFit:
     """Geometric sphere fit: Gauss-Newton on the distances ``|x_i - p| - rho`` (started from Kasa's fit).
 
-    ``init``: a start ``{"center": (3,), "radius": float}`` (default: :func:`fit_sphere_kasa`); ``iterations``:
-    at most this many Gauss-Newton steps.  Returns ``{"center", "radius", "rms"}``.
+    ``init``: a start, a :class:`SphereFit` or ``{"center": (3,), "radius": float}`` (default:
+    :func:`fit_sphere_kasa`); ``iterations``: at most this many Gauss-Newton steps.  Returns a :class:`SphereFit`.
     """
     func = "fit_sphere_geometric"
-    X = _points(X, func, 4)
+    X = checked_points(X, func, 4)
     iterations = checks.integer(iterations, func, "iterations", low=0)
-    if init is None or (isinstance(init, dict) and not init):
-        init = fit_sphere_kasa(X)
-    else:
-        checks.instance(init, func, "init", dict, "a dict with 'center' and 'radius' (or None)")
-        missing = [k for k in ("center", "radius") if k not in init]
-        if missing:
-            raise checks.fail(func, "init", f"has no {' and no '.join(map(repr, missing))}")
-        checks.array(init["center"], func, "init['center']", (3,))
-        checks.real(init["radius"], func, "init['radius']", low=0)
+    center, radius = _start(X, init, func)
     _, k, Y = _normalise(X, func)
     if np.linalg.svd(Y, compute_uv=False)[2] <= 1e-12:
         raise checks.degenerate(func, "X", "the points lie on a plane (the best 'sphere' has infinite radius)")
-    p, r = _gauss_newton(X, np.array(init["center"], float), float(init["radius"]), iterations, func)
-    return {"center": p, "radius": float(r), "rms": _sphere_rms(X, p, r)}
+    return _sphere_result(X, *_gauss_newton(X, center, radius, iterations, func))
+
+
+def _start(X, init, func: str):
+    """The checked start (centre, radius) of :func:`fit_sphere_geometric`: ``init``'s, or Kasa's fit's."""
+    if init is None or (isinstance(init, dict) and not init):
+        init = fit_sphere_kasa(X)
+    if isinstance(init, SphereFit):
+        return np.array(init.center, float), float(init.radius)
+    checks.instance(init, func, "init", dict, "a SphereFit or a dict with 'center' and 'radius' (or None)")
+    missing = [k for k in ("center", "radius") if k not in init]
+    if missing:
+        raise checks.fail(func, "init", f"has no {' and no '.join(map(repr, missing))}")
+    checks.array(init["center"], func, "init['center']", (3,))
+    checks.real(init["radius"], func, "init['radius']", low=0)
+    return np.array(init["center"], float), float(init["radius"])
 
 
 def _gauss_newton(P, q, r, iterations: int, func: str):
@@ -277,33 +356,35 @@ def _gauss_newton(P, q, r, iterations: int, func: str):
     return q, r
 
 
-def fit_plane_euclidean(X) -> dict:
+def fit_plane_euclidean(X) -> PlaneFit:
     """Total-least-squares plane: centroid and the smallest principal direction (SVD).
 
-    Returns ``{"normal", "distance", "rms"}`` with ``n . x = distance`` on the plane.
+    Returns a :class:`PlaneFit` with ``n . x = distance`` on the plane.
     """
-    return _tls_plane(_points(X, "fit_plane_euclidean", 3), "fit_plane_euclidean")
+    X = checked_points(X, "fit_plane_euclidean", 3)
+    n, distance, rms = _tls_plane(X, "fit_plane_euclidean")
+    return _plane_result(X, n, distance, rms)
 
 
-def _tls_plane(X, func: str) -> dict:
+def _tls_plane(X, func: str):
+    """Unit normal n, distance and RMS residual of the total-least-squares plane ``n . x = distance`` of X."""
     c = X.mean(axis=0)
     _, s, vt = np.linalg.svd(X - c, full_matrices=False)
     if s[1] <= 1e-12 * s[0]:
         raise checks.degenerate(func, "X", "the points lie on a line")
     n = vt[2]
-    return {"normal": n, "distance": float(c @ n), "rms": float(s[2] / np.sqrt(len(X)))}
+    return n, float(c @ n), float(s[2] / np.sqrt(len(X)))
 
 
-def fit_circle_euclidean(X, iterations: int = 50) -> dict:
+def fit_circle_euclidean(X, iterations: int = 50) -> CircleFit:
     """Circle by a TLS plane, then a geometric 2D circle fit in that plane (Gauss-Newton from Kasa).
 
-    Returns ``{"center", "radius", "normal", "rms"}``.
+    Returns a :class:`CircleFit`.
     """
     func = "fit_circle_euclidean"
-    X = _points(X, func, 3)
+    X = checked_points(X, func, 3)
     iterations = checks.integer(iterations, func, "iterations", low=0)
-    pl = _tls_plane(X, func)
-    n = pl["normal"]
+    n, _, _ = _tls_plane(X, func)
     c0 = X.mean(axis=0)
     u = np.cross(n, np.eye(3)[np.argmin(np.abs(n))])
     u /= np.linalg.norm(u)
@@ -312,95 +393,4 @@ def fit_circle_euclidean(X, iterations: int = 50) -> dict:
     A = np.column_stack([2 * Q, np.ones(len(Q))])
     sol, *_ = np.linalg.lstsq(A, np.sum(Q * Q, axis=1), rcond=None)
     q, r = _gauss_newton(Q, sol[:2], np.sqrt(sol[2] + sol[:2] @ sol[:2]), iterations, func)
-    center = c0 + q[0] * u + q[1] * v
-    d_plane = (X - center) @ n
-    d_axis = np.linalg.norm((X - center) - np.outer(d_plane, n), axis=1)
-    rms = float(np.sqrt(np.mean(d_plane**2 + (d_axis - r) ** 2)))
-    return {"center": center, "radius": float(r), "normal": n, "rms": rms}
-
-
-# ------------------------------------------------------------------- RANSAC
-def ransac_plane(X, rng: np.random.Generator, threshold: float, iterations: int = 200) -> tuple[dict, np.ndarray]:
-    """RANSAC with conformal planes: hypotheses ``e ^ a ^ b ^ c`` (2.77), refined by :func:`fit_plane`.
-
-    Parameters
-    ----------
-    X : array_like, shape (N, 3)
-    rng : numpy.random.Generator
-    threshold : float
-        Inlier distance (metres), > 0.
-    iterations : int
-        Number of random triples, >= 1.
-
-    Returns
-    -------
-    fit : dict
-        :func:`fit_plane` of the inliers, plus ``"inliers"`` (their count).
-    inliers : ndarray of bool, shape (N,)
-    """
-    func = "ransac_plane"
-    X = _points(X, func, 3)
-    rng, threshold, iterations = _ransac_settings(rng, threshold, iterations, func)
-    return _ransac(X, rng, threshold, iterations, func)
-
-
-def _ransac_settings(rng, threshold, iterations, func: str):
-    rng = checks.generator(rng, func)
-    threshold = checks.real(threshold, func, "threshold", low=0, strict_low=True)
-    return rng, threshold, checks.integer(iterations, func, "iterations", low=1)
-
-
-def _ransac(X, rng, threshold: float, iterations: int, func: str):
-    idx = rng.integers(0, len(X), size=(iterations, 3))
-    a, b, c = X[idx[:, 0]], X[idx[:, 1]], X[idx[:, 2]]
-    area = np.linalg.norm(np.cross(b - a, c - a), axis=1)
-    span = np.maximum(np.linalg.norm(b - a, axis=1), np.linalg.norm(c - a, axis=1))
-    ok = area > 1e-6 * np.maximum(span, 1e-12) ** 2
-    if not np.any(ok):
-        raise checks.degenerate(func, "X", "every sampled triple is collinear")
-    P = cga.plane_from_points(a[ok], b[ok], c[ok])  # a batch of planes (2.77)
-    n, d = cga.plane_normal_distance(P)
-    counts = np.sum(np.abs(X @ n.T - d) < threshold, axis=0)
-    best = int(np.argmax(counts))
-    inliers = np.abs(X @ n[best] - d[best]) < threshold
-    for _ in range(3):  # refine on the inliers, re-select
-        fit = fit_plane(X[inliers])
-        new = np.abs(X @ fit["normal"] - fit["distance"]) < threshold
-        if np.array_equal(new, inliers) or new.sum() < 3:
-            break
-        inliers = new
-    fit = fit_plane(X[inliers])
-    fit["inliers"] = int(inliers.sum())
-    return fit, inliers
-
-
-def segment_planes(X, rng: np.random.Generator, n_planes=3, threshold=0.02, iterations=300, min_inliers=200):
-    """Extract up to ``n_planes`` planes one after another (RANSAC, then remove the inliers).
-
-    ``rng`` a NumPy Generator, ``n_planes`` >= 0, ``threshold`` > 0 (metres), ``iterations`` >= 1 (random triples
-    per plane), ``min_inliers`` >= 0 (a plane with fewer is not kept, and the search stops).
-
-    Returns
-    -------
-    fits : list of dict
-        :func:`ransac_plane` results, largest first.
-    labels : ndarray of int, shape (N,)
-        Index of the plane each point belongs to, -1 for none.
-    """
-    func = "segment_planes"
-    X = _points(X, func, 3)
-    rng, threshold, iterations = _ransac_settings(rng, threshold, iterations, func)
-    n_planes = checks.integer(n_planes, func, "n_planes", low=0)
-    min_inliers = checks.integer(min_inliers, func, "min_inliers", low=0)
-    labels = np.full(len(X), -1)
-    fits = []
-    for i in range(n_planes):
-        free = np.flatnonzero(labels < 0)
-        if len(free) < max(3, min_inliers):
-            break
-        fit, inl = _ransac(X[free], rng, threshold, iterations, func)
-        if fit["inliers"] < min_inliers:
-            break
-        labels[free[inl]] = i
-        fits.append(fit)
-    return fits, labels
+    return _circle_result(X, c0 + q[0] * u + q[1] * v, r, n)

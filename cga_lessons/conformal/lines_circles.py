@@ -25,6 +25,7 @@ from .entities import (
     sphere_center_radius,
     standard_form,
 )
+from .entities_read import read_circle, read_line
 from .model import exact_constants
 from .points import euclidean, normalize_point, up, vector
 
@@ -51,7 +52,7 @@ def line_from_points(a, b) -> Multivector:
     """
     pts = _F.points("line_from_points", "a, b", a, b)
     if pts is None:
-        L = exact_constants()["einf"] ^ exact_up(a) ^ exact_up(b)
+        L = exact_constants().einf ^ exact_up(a) ^ exact_up(b)
         return require_nonzero(L, "line_from_points", "a, b", "the two points coincide")
     return _F.line(*pts, "line_from_points")
 
@@ -73,7 +74,7 @@ def normalize_line(L: Multivector) -> Multivector:
         import sympy
 
         return L / sympy.sqrt((Ld * Ld).scalar())
-    d, _ = _F.read_line(Ld, "normalize_line", "L")
+    d, _ = read_line(Ld, "normalize_line", "L")
     return L / _F.out(_F.norm(d))
 
 
@@ -86,8 +87,8 @@ def line_direction(L: Multivector):
     Ld = as_dual_line(L, "line_direction")
     if any_sympy(Ld):
         Ln = normalize_line(L)
-        return euclidean(as_dual_line(Ln, "line_direction") | constants_of(Ln)["E"])
-    d, _ = _F.read_line(Ld, "line_direction", "L")
+        return euclidean(as_dual_line(Ln, "line_direction") | constants_of(Ln).E)
+    d, _ = read_line(Ld, "line_direction", "L")
     return d / _F.norm(d)[..., None]
 
 
@@ -103,8 +104,8 @@ def line_moment(L: Multivector):
     Ld = as_dual_line(L, "line_moment")
     if any_sympy(Ld):
         Ln = normalize_line(Ld)
-        return -euclidean(constants_of(Ln)["ep"] | standard_form(Ln))
-    d, mu = _F.read_line(Ld, "line_moment", "L")
+        return -euclidean(constants_of(Ln).ep | standard_form(Ln))
+    d, mu = read_line(Ld, "line_moment", "L")
     return mu / _F.norm(d)[..., None]
 
 
@@ -112,11 +113,11 @@ def line_closest_point(L: Multivector):
     """Point of the line closest to the origin, p = -r . M with M = m I_E, Eq. (2.129) (= r x m)."""
     Ld = as_dual_line(L, "line_closest_point")
     if not any_sympy(Ld):
-        d, mu = _F.read_line(Ld, "line_closest_point", "L")
+        d, mu = read_line(Ld, "line_closest_point", "L")
         return np.cross(d, mu) / _F.dot(d, d)[..., None]
     r, m = line_direction(L), line_moment(L)
     c = exact_constants()
-    return -euclidean(vector(list(r)) | (vector(list(m)) * c["IE"])).applyfunc(lambda v: v.simplify())
+    return -euclidean(vector(list(r)) | (vector(list(m)) * c.IE)).applyfunc(lambda v: v.simplify())
 
 
 def point_line_distance(x, L: Multivector):
@@ -133,7 +134,7 @@ def point_line_distance(x, L: Multivector):
     Ld = as_dual_line(L, "point_line_distance")
     xe = euclid_point(x, "point_line_distance")
     if not (xe is None or any_sympy(Ld)):
-        d, mu = _F.read_line(Ld, "point_line_distance", "L")
+        d, mu = read_line(Ld, "point_line_distance", "L")
         nd = _F.norm(d)
         p0 = np.cross(d, mu) / (nd * nd)[..., None]
         return _F.out(_F.norm(np.cross(xe - p0, d / nd[..., None])))
@@ -142,7 +143,7 @@ def point_line_distance(x, L: Multivector):
     Ln = normalize_line(Ld)
     X = up(x) if not isinstance(x, Multivector) else normalize_point(x, "point_line_distance")
     z = Ln | X
-    q = z * (z | constants_of(Ln)["einf"]).inv()
+    q = z * (z | constants_of(Ln).einf).inv()
     return sympy.sqrt(sympy.simplify((q * q).scalar()))
 
 
@@ -165,7 +166,7 @@ def circle_from_points(a, b, c) -> Multivector:
             "a, b, c",
             "the 3 points are collinear or coincide",
         )
-        if not (Z ^ exact_constants()["einf"]).simplify().coeffs:  # z* ^ e = 0: a flat, the points are collinear
+        if not (Z ^ exact_constants().einf).simplify().coeffs:  # z* ^ e = 0: a flat, the points are collinear
             raise checks.degenerate("circle_from_points", "a, b, c", "the 3 points are collinear (a line, no circle)")
         return Z
     return _F.circle(*pts, "circle_from_points")
@@ -179,7 +180,7 @@ def circle_plane(Z: Multivector) -> Multivector:
     :func:`circle_center_radius` does.
     """
     Zd = _circle_dual(Z, "circle_plane")
-    return Zd ^ constants_of(Zd)["einf"]
+    return Zd ^ constants_of(Zd).einf
 
 
 def _circle_dual(Z: Multivector, func: str) -> Multivector:
@@ -187,7 +188,7 @@ def _circle_dual(Z: Multivector, func: str) -> Multivector:
     g = grade_of(Z, func, (2, 3), "Z")
     Zd = Z if g == 3 else dual_form(Z)
     if not any_sympy(Zd):
-        _, r2, _, tol = _F.read_circle(Zd, func, "Z")
+        _, r2, _, tol = read_circle(Zd, func, "Z")
         if np.any(r2 < -(tol + 1e-12)):
             raise checks.degenerate(func, "Z", "rho^2 < 0, the circle is imaginary")
     return Zd
@@ -222,10 +223,10 @@ def circle_center_radius(Z: Multivector):
     Zd = Z if g == 3 else dual_form(Z)
     if any_sympy(Zd):
         z = standard_form(Zd)
-        center, radius = sphere_center_radius(((constants_of(z)["einf"] | z) * z).grade(1))
+        center, radius = sphere_center_radius(((constants_of(z).einf | z) * z).grade(1))
         n, _ = plane_normal_distance(-circle_plane(z))  # z* ^ e = -(e ^ a ^ b ^ c)
         return center, radius, n
-    p, r2, n, tol = _F.read_circle(Zd, "circle_center_radius", "Z")
+    p, r2, n, tol = read_circle(Zd, "circle_center_radius", "Z")
     if np.any(r2 < -(tol + 1e-12)):
         raise checks.degenerate("circle_center_radius", "Z", "rho^2 < 0, the circle is imaginary")
     return p, _F.out(np.sqrt(np.maximum(r2, 0.0))), n

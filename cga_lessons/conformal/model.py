@@ -26,10 +26,10 @@ Import it through the facade: ``from cga_lessons import conformal as cga`` gives
 
 from __future__ import annotations
 
-from cga_lessons.algebra import (
-    Algebra,
-    Multivector,
-)
+from dataclasses import dataclass, fields
+
+from cga_lessons import checks
+from cga_lessons.algebra import Algebra, Multivector, finite_multivector
 
 __all__ = [
     "G41",
@@ -43,6 +43,7 @@ __all__ = [
     "E",
     "IE",
     "Ic",
+    "ModelConstants",
     "exact_constants",
 ]
 
@@ -61,13 +62,48 @@ IE = e1 * e2 * e3
 #: I_c = E I_E = e+-123, pseudoscalar of G(4,1) (2.60)
 Ic = E * IE
 
+
+@dataclass(frozen=True)
+class ModelConstants:
+    """The basis and null vectors of G(4,1) and its pseudoscalars, with float coefficients (:data:`CONSTANTS`) or
+    exact SymPy ones (:func:`exact_constants`): ``e1 e2 e3`` (Euclidean), ``ep`` (e+) and ``em`` (e-) of (2.52),
+    ``einf`` (e) and ``eo`` (e0) of (2.53), ``E = e+ e-`` (2.55, corrected), ``IE = e1 e2 e3`` and ``Ic = E IE``
+    (2.60).  Each is a Multivector of :data:`G41`."""
+
+    e1: Multivector
+    e2: Multivector
+    e3: Multivector
+    ep: Multivector
+    em: Multivector
+    einf: Multivector
+    eo: Multivector
+    E: Multivector
+    IE: Multivector
+    Ic: Multivector
+
+    def __post_init__(self):
+        for f in fields(self):
+            value = checks.instance(getattr(self, f.name), "ModelConstants", f.name, Multivector, "a Multivector")
+            finite_multivector(value, "ModelConstants", f.name)
+            if value.algebra is not G41:
+                raise checks.fail(
+                    "ModelConstants", f.name, f"expected a Multivector of G(4,1), got one of {value.algebra}"
+                )
+
+
+#: The constants with float coefficients (the module's ``e1 ... Ic``), as one :class:`ModelConstants`.
+CONSTANTS = ModelConstants(e1, e2, e3, ep, em, einf, eo, E, IE, Ic)
+
 _EXACT = None
 
 
-def exact_constants() -> dict:
-    """The constants with SymPy rational coefficients (for symbolic work).
+def exact_constants() -> ModelConstants:
+    """The constants with SymPy rational coefficients (for symbolic work), computed once.
 
-    Returns a dict with keys ``e1 e2 e3 ep em einf eo E IE Ic``.
+    >>> from cga_lessons import conformal as cga
+    >>> c = cga.exact_constants()
+    >>> c.eo
+    -1/2 e+ + 1/2 e-
     """
     global _EXACT
     if _EXACT is None:
@@ -80,16 +116,5 @@ def exact_constants() -> dict:
         eo_s = (b[4] - b[3]) * half
         E_s = b[3] * b[4]
         IE_s = b[0] * b[1] * b[2]
-        _EXACT = {
-            "e1": b[0],
-            "e2": b[1],
-            "e3": b[2],
-            "ep": b[3],
-            "em": b[4],
-            "einf": einf_s,
-            "eo": eo_s,
-            "E": E_s,
-            "IE": IE_s,
-            "Ic": E_s * IE_s,
-        }
+        _EXACT = ModelConstants(b[0], b[1], b[2], b[3], b[4], einf_s, eo_s, E_s, IE_s, E_s * IE_s)
     return _EXACT

@@ -58,7 +58,7 @@ def up(x) -> Multivector:
         c = exact_constants()
         v = vector(arr, "up")
         x2 = sum(ci**2 for ci in arr)
-        return v + c["einf"] * (x2 / 2) + c["eo"]
+        return v + c.einf * (x2 / 2) + c.eo
     if arr.ndim == 1:
         a0, a1, a2 = arr.tolist()
         x2 = a0 * a0 + a1 * a1 + a2 * a2  # the order of np.sum: the same bits
@@ -89,7 +89,7 @@ def point_weight(X: Multivector):
 
 
 def _weight(X: Multivector):
-    return -(X | einf).scalar() if not any_sympy(X) else -(X | exact_constants()["einf"]).scalar()
+    return -(X | einf).scalar() if not any_sympy(X) else -(X | exact_constants().einf).scalar()
 
 
 def normalize_point(X: Multivector, func: str = "normalize_point") -> Multivector:
@@ -176,7 +176,7 @@ def read_point(X, func: str, name: str):
         raise checks.fail(func, name, f"a conformal point is a vector (grade 1), got blades {bad}")
     Xn = normalize_point(X, func)
     c = exact_constants()
-    return euclidean(((Xn ^ c["E"]) * c["E"]).simplify())
+    return euclidean(((Xn ^ c.E) * c.E).simplify())
 
 
 #: A weight ``X_- - X_+`` within this many float epsilons of ``|X_-| + |X_+|`` is round-off, not a point: each of

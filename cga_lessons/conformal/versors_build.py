@@ -17,7 +17,7 @@ from cga_lessons import checks
 from cga_lessons.algebra import GeometryError, Multivector, any_sympy, is_sympy
 from cga_lessons.algebra import exp as _exp
 
-from .model import IE, E, einf, exact_constants
+from .model import CONSTANTS, IE, einf, exact_constants
 from .multivector_checks import check_points, multivector, result_finite
 from .points import vector
 
@@ -25,7 +25,7 @@ __all__ = ["translator", "rotor", "rotor_about_line", "motor", "screw"]
 
 
 def _consts(X: Multivector):
-    return exact_constants() if any_sympy(X) else {"einf": einf, "E": E, "IE": IE}
+    return exact_constants() if any_sympy(X) else CONSTANTS
 
 
 # ------------------------------------------------------------- constructors
@@ -74,8 +74,8 @@ def _exact(a):
 def _translator(t, func: str, name: str) -> Multivector:
     tv = vector(t, func, name)
     c = _consts(tv)
-    half = 0.5 if not any_sympy(tv) else exact_constants()["eo"]["e-"]  # 1/2, exact when symbolic
-    return (c["einf"] * tv) * half + 1
+    half = 0.5 if not any_sympy(tv) else exact_constants().eo["e-"]  # 1/2, exact when symbolic
+    return (c.einf * tv) * half + 1
 
 
 def translator(t) -> Multivector:
@@ -120,7 +120,7 @@ def _rotor(axis, angle, func: str, axis_name: str) -> Multivector:
     if sym:
         import sympy
 
-        l = vector(n) * exact_constants()["IE"]
+        l = vector(n) * exact_constants().IE
         return l * (-sympy.sin(angle / 2)) + sympy.cos(angle / 2)
     l = vector(n) * IE
     return l * (-np.sin(angle / 2)) + np.cos(angle / 2)
@@ -147,7 +147,7 @@ def rotor_about_line(L: Multivector, angle) -> Multivector:
     Equal to ``T R ~T`` of (2.104) with T moving the origin onto the line.
     """
     from .entities import standard_form
-    from .entities_frame import read_line
+    from .entities_read import read_line
     from .lines_circles import as_dual_line, normalize_line
 
     func = "rotor_about_line"

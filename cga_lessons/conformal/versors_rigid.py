@@ -26,7 +26,7 @@ import numpy as np
 from cga_lessons import checks
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError, Multivector, motor_tolerance
 
-from .model import G41, IE, E, exact_constants
+from .model import CONSTANTS, G41, IE, E, exact_constants
 from .multivector_checks import multivector
 from .points import euclidean
 
@@ -130,16 +130,16 @@ def decompose_motor(M: Multivector):
     func = "decompose_motor"
     M = _check_mv(M, func, "M")
     sym = _is_symbolic(M)
-    c = exact_constants() if sym else {"E": E, "IE": IE, "em": G41.blade("e-")}
+    c = exact_constants() if sym else CONSTANTS
     if sym:
         odd = [G41.blade_names[b] for b in M.coeffs if G41.grades[b] % 2]
         if odd:
             raise InvalidInputError(f"{func}: M: not an even versor (a motor is even, 2.102); it has odd blades {odd}")
     else:
         _require_motor(M, func, "M")
-    R = ((M ^ c["E"]) * c["E"]).grade(0, 2)  # (2.141)
-    Rp = (c["em"] | M) * c["IE"]  # (2.142)
-    tv = (Rp * c["IE"] * ~R) * 2  # (2.144)
+    R = ((M ^ c.E) * c.E).grade(0, 2)  # (2.141)
+    Rp = (c.em | M) * c.IE  # (2.142)
+    tv = (Rp * c.IE * ~R) * 2  # (2.144)
     if sym:
         return R, euclidean(tv.simplify())
     rigid = None if M.shape else G41.rigid_motion(M)

@@ -65,6 +65,11 @@ FLAT_PTS = np.array([[0.0, 0, 1], [1, 0, 1], [0, 1, 1], [2, 3, 1], [5, 1, 1.0]])
 SAME_PTS = np.zeros((5, 3))
 LINE_PTS = np.array([[0.0, 0, 0], [1, 0, 0], [2, 0, 0], [3, 0, 0], [4, 0, 0]])
 
+def _fields(fit) -> dict:
+    """A fit's result as keyword arguments of its class."""
+    return {k: getattr(fit, k) for k in type(fit).__dataclass_fields__}
+
+
 CASES = [
     # ---------------------------------------------------------------- model
     Case(cga.up, {"x": [1.0, 2.0, 3.0]}, extra={"x": [[1e200, 0.0, 0.0], [1.0 + 1j, 2.0, 3.0], [10**400, 0, 0]]}),
@@ -198,6 +203,31 @@ CASES = [
         },
         extra={"X": [SAME_PTS, LINE_PTS], "threshold": [0.0]},
         strict=True,
+    ),
+    # the fits' results, as the fits build them
+    Case(cga.SphereFit, lambda: _fields(cga.fit_sphere(SPHERE_PTS)), strict=True),
+    Case(cga.PlaneFit, lambda: _fields(cga.fit_plane(PLANE_PTS)), strict=True),
+    Case(cga.CircleFit, lambda: _fields(cga.fit_circle(CIRCLE_PTS)), strict=True),
+    # the least-squares line
+    Case(cga.fit_line, {"X": np.array([[0.0, 0.0, 0.0], [1.0, 1.0, 0.5], [2.0, 2.1, 1.0], [3.0, 2.9, 1.5]])},
+         extra={"X": [np.ones((4, 3)), np.ones((1, 3))]}),
+    Case(cga.LineFit, lambda: _fields(cga.fit_line(np.array([[0.0, 0.0, 0.0], [1.0, 1.0, 0.5], [2.0, 2.1, 1.0]]))),
+         strict=True, kinds={"blade": [SPHERE, POINT, PAIR], "pair": [SPHERE, LINE]}),
+    # an entity's Euclidean parameters
+    Case(
+        cga.PlaneParameters,
+        {"normal": [0.0, 0.0, 1.0], "distance": 1.0, "center": [0.1, 0.2, 1.0]},
+        strict=True,
+        allow={"center": ["None"]},
+    ),
+    Case(cga.SphereParameters, {"center": [0.0, 0.0, 2.0], "radius": 0.25}, strict=True, extra={"radius": [-0.1]}),
+    Case(cga.CircleParameters, {"center": [0.0, 0.0, 2.0], "radius": 0.2, "normal": [0.0, 1.0, 0.0]}, strict=True),
+    Case(
+        cga.LineParameters,
+        {"direction": [1.0, 0.0, 0.0], "point": [0.0, 0.0, 2.0], "length": 0.5},
+        strict=True,
+        allow={"length": ["None"]},
+        extra={"length": [-0.5]},
     ),
 ]
 

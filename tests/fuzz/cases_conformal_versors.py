@@ -1,7 +1,8 @@
 """Fuzz cases of the conformal versors, motors, logarithms, blades and motor estimation (group conformal_versors).
 
 One valid call per public callable of :mod:`cga_lessons.conformal` defined in ``versors``, ``versors_build``,
-``versors_rigid``, ``versor_log``, ``blades``, ``blades_classify``, ``motor_estimation`` and ``object_motors`` (the
+``versors_rigid``, ``versor_log``, ``versor_powers``, ``blades``, ``blades_span``, ``blades_classify``,
+``motor_estimation``, ``object_motors`` and the :class:`ModelConstants` of ``model`` (the
 other modules of the facade are in ``cases_conformal_entities.py``).  ``kinds`` hold entities that a function
 reading one kind of thing must refuse: a rotor reader given a translator or a sphere, a motor reader given a point,
 a line reader given a circle.
@@ -14,6 +15,7 @@ import copy
 import numpy as np
 
 from cga_lessons import conformal as cga
+from cga_lessons.algebra import Algebra
 from fuzz.harness import Case
 
 
@@ -216,6 +218,13 @@ CASES = [
         fresh(X=Z, Y=cga.circle_from_points([1.0, 0.0, 5.0], [0.0, 1.0, 5.0], [-1.0, 0.0, 5.0])),
         name="motor_between (circles)",
         kinds={"Y": [L, S]},
+    ),
+    # ---------------------------------------------------------------- model.py (its constants as one result)
+    Case(
+        cga.ModelConstants,
+        lambda: {f: getattr(cga.exact_constants(), f) for f in cga.ModelConstants.__dataclass_fields__},
+        strict=True,
+        extra={"einf": [Algebra(3).scalar(1.0)]},  # a multivector of another algebra
     ),
 ]
 
