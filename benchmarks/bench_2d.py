@@ -12,7 +12,6 @@ import time
 import numpy as np
 
 from cga_lessons import data_path, mapping2d
-from cga_lessons.mapping2d import laser, lines
 
 
 def extraction_rate(scans, repeat=3):
@@ -21,17 +20,17 @@ def extraction_rate(scans, repeat=3):
     for _ in range(repeat):
         t0 = time.perf_counter()
         for r, a in scans:
-            lines.extract_segments(r, a, max_range=5.0)
+            mapping2d.extract_segments(r, a, max_range=5.0)
         best = min(best, time.perf_counter() - t0)
     return len(scans) / best
 
 
 def run_scene(name, seed, method="plain", n=None, **overrides):
-    scene = laser.load_scene(name)
+    scene = mapping2d.load_scene(name)
     rng = np.random.default_rng(seed)
     truth = scene.trajectory[:n]
-    scans = laser.simulate_scans(scene, truth, rng)
-    odo = laser.simulate_odometry(truth, rng)
+    scans = mapping2d.simulate_scans(scene, truth, rng)
+    odo = mapping2d.simulate_odometry(truth, rng)
     t0 = time.perf_counter()
     res = mapping2d.build_map(scans, odo, method=method, **overrides)
     dt = time.perf_counter() - t0
@@ -42,8 +41,8 @@ def run_scene(name, seed, method="plain", n=None, **overrides):
 
 
 def main(quick=False):
-    office = laser.load_scene("office")
-    scans = laser.simulate_scans(office, office.trajectory[:300], np.random.default_rng(0))
+    office = mapping2d.load_scene("office")
+    scans = mapping2d.simulate_scans(office, office.trajectory[:300], np.random.default_rng(0))
     print(f"segment extraction: {extraction_rate(scans):.0f} scans/s (361 beams, office scene)")
 
     print("\nsynthetic scenes, default noise and drift (plain): odometry RMSE -> corrected RMSE (ratio), map error")
@@ -61,11 +60,11 @@ def main(quick=False):
 
     log = mapping2d.read_carmen_log(data_path("carmen", "intel-corrected.log.gz"))
     n = 300 if quick else len(log)
-    cloud = laser.scans_to_world(log.scans[:n], log.poses[:n], max_range=8.0, step=3)
+    cloud = mapping2d.scans_to_world(log.scans[:n], log.poses[:n], max_range=8.0, step=3)
     print(f"\nIntel Research Lab, {n} scans, readings up to 8 m, odometry from the true poses by OdometryModel();")
     print("map error: distance of the segment ends to the log's points at the true poses")
     for seed in range(4):
-        odo = laser.simulate_odometry(log.poses[:n], np.random.default_rng(seed))
+        odo = mapping2d.simulate_odometry(log.poses[:n], np.random.default_rng(seed))
         po, ho = mapping2d.pose_errors(odo, log.poses[:n])
         for loops in (True, False):
             t0 = time.perf_counter()

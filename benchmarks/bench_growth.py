@@ -167,7 +167,7 @@ def quality(result, truth, odometry, name, limit=None, laps=1):
     rmse, _ = mapping2d.pose_errors(result.poses, truth)
     log = mapping2d.read_carmen_log(data_path("carmen", f"{name}-corrected.log.gz"))
     n = len(log) if limit is None else min(limit, len(log))
-    cloud = laser.scans_to_world(log.scans[:n], log.poses[:n], max_range=MAX_RANGE, step=3)
+    cloud = mapping2d.scans_to_world(log.scans[:n], log.poses[:n], max_range=MAX_RANGE, step=3)
     errors = mapping2d.map_point_errors(result.segments, cloud)
     return odo / max(rmse, 1e-12), rmse, 100 * float(np.median(errors)) if len(errors) else np.inf
 

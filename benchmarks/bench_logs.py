@@ -57,7 +57,7 @@ def load(name: str, limit: int | None):
         log = mapping2d.read_carmen_log(data_path("carmen", f"{name}-corrected.log.gz"))
         n = len(log) if limit is None else min(limit, len(log))
         scans, truth = log.scans[:n], log.poses[:n]
-        cloud = laser.scans_to_world(scans, truth, max_range=MAX_RANGE, step=3)
+        cloud = mapping2d.scans_to_world(scans, truth, max_range=MAX_RANGE, step=3)
         _CACHE[key] = (scans, truth, cloud)
     return _CACHE[key]
 

@@ -25,7 +25,7 @@ from collections.abc import Mapping
 
 from cga_lessons import checks
 
-__all__ = ["stages", "field_stage", "merged"]
+__all__ = ["stages", "field_stage", "check_stages", "merged"]
 
 
 def stages(kind: type) -> dict[str, type]:
@@ -52,6 +52,13 @@ def field_stage(kind: type) -> dict[str, str | None]:
         if len(owners) == 1 and name not in out:
             out[name] = owners[0]
     return out
+
+
+def check_stages(config) -> None:
+    """Refuse a configuration whose stage fields do not hold their stages (for its ``__post_init__``)."""
+    for stage, cls in stages(type(config)).items():
+        article = "an" if cls.__name__[0] in "AEIOU" else "a"
+        checks.instance(getattr(config, stage), type(config).__name__, stage, cls, f"{article} {cls.__name__}")
 
 
 def _stage_value(value, stage: str, cls: type, base, func: str):

@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 import pytest
 
 from cga_lessons import checks
-from cga_lessons.config import field_stage, merged, stages
+from cga_lessons.config import check_stages, field_stage, merged, stages
 from cga_lessons.errors import InvalidInputError
 
 
@@ -37,8 +37,7 @@ class Params:
     verbose: bool = False
 
     def __post_init__(self):
-        checks.instance(self.search, "Params", "search", Search, "a Search")
-        checks.instance(self.check, "Params", "check", Check, "a Check")
+        check_stages(self)
         checks.flag(self.verbose, "Params", "verbose")
 
 
@@ -85,3 +84,8 @@ def test_bad_overrides_name_the_function_and_the_argument(overrides, words):
 def test_a_config_of_the_wrong_kind_is_refused():
     with pytest.raises(InvalidInputError, match="find: params: expected a Params"):
         merged(Search(), {}, "find", Params)
+
+
+def test_a_stage_of_the_wrong_kind_is_refused_when_the_configuration_is_made():
+    with pytest.raises(InvalidInputError, match=r"^Params: check: expected a Check, got Search"):
+        Params(check=Search())

@@ -153,7 +153,7 @@ def test_the_recovered_correction_is_the_inverse_of_the_error(correction, dx, dy
     np.testing.assert_allclose(ex.corrected_pose, ex.pose, atol=1e-9)
     believed = ex.pose + [dx, dy, np.radians(dtheta)]
     error = _pose_matrix(believed) @ np.linalg.inv(_pose_matrix(ex.pose))  # takes the map onto the placed scan
-    C = np.asarray(cga.motor_to_matrix(ex.result["motor"]))
+    C = np.asarray(cga.motor_to_matrix(ex.result.motor))
     np.testing.assert_allclose(C[np.ix_([0, 1, 3], [0, 1, 3])], np.linalg.inv(error), atol=1e-9)
     E = np.asarray(cga.motor_to_matrix(ex.error_motor))
     np.testing.assert_allclose(E[np.ix_([0, 1, 3], [0, 1, 3])], error, atol=1e-9)
@@ -174,8 +174,8 @@ def test_conformal_correction_of_parallel_lines_fixes_only_their_normal():
     local = cmap.segment_point_pair([Segment([1.0, -1.0], [1.0, 1.0]), Segment([3.0, 1.0], [3.0, -1.0])])
     truth, believed = np.array([0.0, 0.0, 0.0]), np.array([0.3, 0.2, 0.0])
     out = conformal_correction(place(local, truth)[0], place(local, believed)[0], believed[:2])
-    np.testing.assert_allclose(out["t"], [-0.3, 0.0], atol=1e-12)
-    assert out["theta"] == pytest.approx(0.0, abs=1e-12)
+    np.testing.assert_allclose(out.t, [-0.3, 0.0], atol=1e-12)
+    assert out.theta == pytest.approx(0.0, abs=1e-12)
 
 
 def test_the_correction_explorer_redraws_in_place(correction):

@@ -6,6 +6,9 @@ import pytest
 from cga_lessons import data_path
 from cga_lessons.algebra import InvalidInputError
 from cga_lessons.mapping2d import (
+    CorrectionParams,
+    CorrespondenceParams,
+    LoopParams,
     MapBuilder,
     MapParams,
     PlainGeometry,
@@ -15,6 +18,7 @@ from cga_lessons.mapping2d import (
     build_map,
     compose,
     correspondences,
+    load_scene,
     map_errors,
     map_point_errors,
     pose_correction,
@@ -22,11 +26,13 @@ from cga_lessons.mapping2d import (
     proximity_matrix,
     read_carmen_log,
     relative,
+    scans_to_world,
+    simulate_odometry,
+    simulate_scans,
     theta_correction,
     translation_correction,
 )
 from cga_lessons.mapping2d.hypotheses import loop_hypotheses
-from cga_lessons.mapping2d.laser import load_scene, scans_to_world, simulate_odometry, simulate_scans
 from cga_lessons.mapping2d.lines import diff_theta, extract_segments
 
 
@@ -63,11 +69,11 @@ def test_correspondence_conflict_rule_keeps_the_closer_angle():
     # two global lines compete for one local line: the one with the smaller angle difference keeps it
     G = _set(([2.0, -1.0], [2.0, 1.0]), ([2.05, -1.0], [1.97, 1.0]))
     L = _set(([2.02, -1.0], [2.02, 1.0]))
-    C, M, dth = correspondences(G, L, (0.0, 0.0), MapParams())
+    C, M, dth = correspondences(G, L, (0.0, 0.0), CorrespondenceParams())
     assert C.tolist() == [0, -1]
     # the other way round when the second is better aligned
     G2 = _set(([2.1, -1.0], [1.95, 1.0]), ([2.03, -1.0], [2.03, 1.0]))
-    assert correspondences(G2, L, (0.0, 0.0), MapParams())[0].tolist() == [-1, 0]
+    assert correspondences(G2, L, (0.0, 0.0), CorrespondenceParams())[0].tolist() == [-1, 0]
 
 
 def test_correspondence_guards_keep_thin_objects_and_faces_apart():
@@ -76,7 +82,7 @@ def test_correspondence_guards_keep_thin_objects_and_faces_apart():
     far_along = _set(([2.0, 3.0], [2.0, 5.0]))  # collinear but 2 m away: spheres do not meet (case 5)
     offset = _set(([2.4, -1.0], [2.4, 1.0]))  # parallel, 40 cm behind: beyond xi_d
     for G in (other_face, far_along, offset):
-        assert correspondences(G, L, (0.0, 0.0), MapParams())[0].tolist() == [-1]
+        assert correspondences(G, L, (0.0, 0.0), CorrespondenceParams())[0].tolist() == [-1]
 
 
 def test_theta_correction_3_8_is_the_mean():
@@ -137,13 +143,14 @@ def test_correct_recovers_a_known_pose_and_gates_a_wrong_pair():
     room = load_scene("room")
     truth = room.trajectory
     res = build_map(simulate_scans(room, truth), truth, loop_closure=False)  # noise-free: the four walls
-    exact = MapParams(registration_xy=0.0, registration_theta=0.0)  # a simulated scan: no registration error
+    exact = MapParams(correction=CorrectionParams(registration_xy=0.0, registration_theta=0.0))  # a simulated scan
     b = MapBuilder(PlainGeometry(), exact, max_range=5.0)
     b.path = [0.0]
     b.add_lines(SegmentSet.from_segments(res.segments), 0)
     ranges, angles = simulate_scans(room, truth[20][None], np.random.default_rng(5))[0]
     L = SegmentSet.from_segments(extract_segments(ranges, angles, max_range=5.0))
-    C, _, _ = correspondences(b.G, b.geo.to_global(L, truth[20], b.mount), truth[20][:2], b.p)
+    Lw = b.geometry.to_global(L, truth[20], b.mount)
+    C, _, _ = correspondences(b.lines, Lw, truth[20][:2], b.params.correspondence)
     assert sorted(C[C >= 0]) == [0, 2, 3]  # three walls seen: two parallel, one across
     # a wrong local line: segment 0 turned by 5 degrees about its centre (clutter against its wall)
     c = 0.5 * (L.start[0] + L.end[0])
@@ -151,7 +158,7 @@ def test_correct_recovers_a_known_pose_and_gates_a_wrong_pair():
     L.start[0], L.end[0] = c + (L.start[0] - c) @ R.T, c + (L.end[0] - c) @ R.T
     predicted = compose(truth[20], [0.04, -0.03, 0.015])
     prior = np.diag([0.05**2, 0.05**2, 0.02**2])
-    idx = np.arange(len(b.G))
+    idx = np.arange(len(b.lines))
     pose, cov, pairs, applied = b.correct(L, predicted, prior, idx)
     assert applied
     err = relative(truth[20], pose)
@@ -159,7 +166,9 @@ def test_correct_recovers_a_known_pose_and_gates_a_wrong_pair():
     assert 0 not in pairs[1] and len(pairs[1]) == 2  # the wrong pair fell out at the gate
     assert np.all(np.linalg.eigvalsh(cov) < np.linalg.eigvalsh(prior).max())
     # without the gate the wrong pair drags the pose off
-    b.p = b.corrector.params = MapParams(gate=1e6, registration_xy=0.0, registration_theta=0.0)
+    ungated = CorrectionParams(gate=1e6, registration_xy=0.0, registration_theta=0.0)
+    b.params = MapParams(correction=ungated)
+    b.corrector.correction = ungated
     pose_ungated, _, _, _ = b.correct(L, predicted, prior, idx)
     assert abs(relative(truth[20], pose_ungated)[2]) > np.radians(1.0)
 
@@ -172,15 +181,15 @@ def test_refit_moves_the_map_with_the_poses():
     for k, (r, a) in enumerate(scans):
         b.path.append(0.2 * k)
         b.fuse(SegmentSet.from_segments(extract_segments(r, a, max_range=5.0)), truth[k], k)
-    sums = b.G.sums.copy()
+    sums = b.lines.sums.copy()
     b.refit(truth)
-    assert np.allclose(b.G.sums, sums)  # all the points each line gathered, no more, no less
-    assert np.median(map_errors(b.G.to_segments(), room.walls)) < 0.01
-    before = b.G
+    assert np.allclose(b.lines.sums, sums)  # all the points each line gathered, no more, no less
+    assert np.median(map_errors(b.lines.to_segments(), room.walls)) < 0.01
+    before = b.lines
     T = np.array([0.3, -0.2, 0.1])  # move every pose rigidly: the map moves with it (3.4)
     b.refit(compose(T, truth))
     moved = PlainGeometry().transform(before, T)
-    assert np.allclose(b.G.start, moved.start, atol=1e-9) and np.allclose(b.G.end, moved.end, atol=1e-9)
+    assert np.allclose(b.lines.start, moved.start, atol=1e-9) and np.allclose(b.lines.end, moved.end, atol=1e-9)
 
 
 # ---------------------------------------------------------------- loop closure
@@ -240,7 +249,8 @@ def test_loop_hypotheses_find_a_known_rigid_motion():
     phi0, t0 = 0.06, np.array([0.45, -0.3])  # the drifted view: the old lines turned and shifted about centre
     R = np.array([[np.cos(phi0), -np.sin(phi0)], [np.sin(phi0), np.cos(phi0)]])
     Q = SegmentSet((O.start - centre) @ R.T + centre + t0, (O.end - centre) @ R.T + centre + t0, O.sums, O.edge)
-    best = loop_hypotheses(PlainGeometry(), Q, O, centre, 0.3, 2.0, MapParams())[0]
+    margin = CorrespondenceParams().overlap_margin
+    best = loop_hypotheses(PlainGeometry(), Q, O, centre, 0.3, 2.0, LoopParams(), margin)[0]
     _, phi, t = best
     assert np.isclose(phi, -phi0, atol=0.02)  # within the vote's resolution, loop_angle_tol
     assert np.allclose(t, -(R.T @ t0), atol=0.1)
@@ -387,7 +397,7 @@ def test_build_map_rejects_bad_input():
 # ---------------------------------------------------------------- the conformal version (3.13-3.21)
 
 from cga_lessons import conformal as cga  # noqa: E402
-from cga_lessons.mapping2d.conformal import (  # noqa: E402
+from cga_lessons.mapping2d import (  # noqa: E402
     ConformalGeometry,
     c2e,
     e2c,
@@ -417,11 +427,11 @@ def test_point_pair_structure_3_14_3_15():
         a, b = rng.uniform(-6, 6, (2, 2))
         seg = Segment(a, b)
         d = point_pair_structure(segment_point_pair(seg))
-        assert np.allclose(d["start"], a) and np.allclose(d["end"], b)  # (2.131)
-        assert np.isclose(d["rho"], seg.rho)  # (3.14)
-        assert np.allclose(d["closest_point"], seg.closest_point)  # (3.15)
-        assert abs(diff_theta(d["theta"], seg.theta, np.pi)) < 1e-9
-        assert np.allclose(d["abc"], seg.abc)
+        assert np.allclose(d.start, a) and np.allclose(d.end, b)  # (2.131)
+        assert np.isclose(d.rho, seg.rho)  # (3.14)
+        assert np.allclose(d.closest_point, seg.closest_point)  # (3.15)
+        assert abs(diff_theta(d.theta, seg.theta, np.pi)) < 1e-9
+        assert np.allclose(d.abc, seg.abc)
 
 
 def test_eq_3_15_erratum_printed_sign_gives_the_antipode():

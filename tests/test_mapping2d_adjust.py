@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d import MapParams, Segment, build_map, compose, map_errors, pose_errors, relative
+from cga_lessons.mapping2d import OdometryPriorParams, Segment, build_map, compose, map_errors, pose_errors, relative
 from cga_lessons.mapping2d.adjust import AdjustParams, adjust_map
 from cga_lessons.mapping2d.corrections import chain_covariance
 from cga_lessons.mapping2d.geometry import SegmentSet
@@ -99,7 +99,7 @@ def test_one_wrong_association_does_not_bend_the_map():
 
 def test_chain_covariance_is_the_spread_of_composed_noisy_steps():
     """Against Monte Carlo: steps drawn from the drift model and composed, their sample covariance."""
-    params = MapParams(odo_heading_bias=0.0)  # the bias is a drift, not a spread: leave it out to compare
+    params = OdometryPriorParams(odo_heading_bias=0.0)  # the bias is a drift, not a spread: leave it out to compare
     rng = np.random.default_rng(3)
     truth = np.array([[0, 0, 0], [1.0, 0.1, 0.3], [1.8, 0.8, 0.9], [2.0, 1.9, 1.4], [1.5, 2.8, 2.2]])
     u, cov = chain_covariance(truth, 0, 4, params)
@@ -173,7 +173,7 @@ def test_the_adjustment_brings_a_real_log_closer_to_its_corrected_poses():
 def test_solve_spd_solves_a_sparse_positive_definite_system_and_reports_a_singular_one():
     from scipy import sparse
 
-    from cga_lessons.mapping2d.adjust import solve_spd
+    from cga_lessons.mapping2d.least_squares import solve_spd
 
     rng = np.random.default_rng(5)
     J = sparse.random(300, 120, density=0.05, random_state=6, format="csr") + sparse.eye(300, 120)

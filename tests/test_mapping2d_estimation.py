@@ -185,11 +185,12 @@ def test_one_false_revisit_does_not_bend_the_map(monkeypatch):
     real = mapping2d_loops.find_loop
     injected = []
 
-    def find_loop(builder, k, poses, L, points, fov, window):
-        found = real(builder, k, poses, L, points, fov, window)
+    def find_loop(builder, k, poses, L, points, fov, window, params):
+        found = real(builder, k, poses, L, points, fov, window, params)
         if k >= 150 and len(injected) < 2:
             wrong = compose(poses[k], [2.5, 0.0, np.radians(25.0)])
-            found = {"pose": wrong, "cov": np.diag([0.01**2, 0.01**2, 0.002**2]), "anchor": 5, "ids": builder.gid[:1]}
+            cov = np.diag([0.01**2, 0.01**2, 0.002**2])
+            found = mapping2d_loops.Revisit(wrong, cov, 5, builder.line_ids[:1])
             injected.append(k)
         return found
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from cga_lessons.mapping2d import MapParams, PlainGeometry, SegmentSet, compose, relative
+from cga_lessons.mapping2d import CorrespondenceParams, MapParams, PlainGeometry, SegmentSet, compose, relative
 from cga_lessons.mapping2d.builder import MapBuilder
 from cga_lessons.mapping2d.graph import PoseGraph
 from cga_lessons.mapping2d.observations import Growing, PathLog
@@ -67,7 +67,7 @@ def _corridor(n_lines, length=2.0):
 def test_queries_look_at_the_neighbourhood_not_at_the_whole_map():
     counts = []
     for n in (50, 500, 2000):  # corridors of 100 m, 1 km and 4 km
-        b = MapBuilder(PlainGeometry(), MapParams(active_path=0.0))
+        b = MapBuilder(PlainGeometry(), MapParams(correspondence=CorrespondenceParams(active_path=0.0)))
         b.INDEX_MIN_LINES = 0  # the index, however small the map
         b.path = [0.0]
         b.add_lines(_corridor(n), 0)

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from cga_lessons.algebra import InvalidInputError
-from cga_lessons.mapping2d import MapParams, PlainGeometry, SegmentSet, compose
+from cga_lessons.mapping2d import CorrespondenceParams, MapParams, PlainGeometry, SegmentSet, compose
 from cga_lessons.mapping2d.builder import MapBuilder
 from cga_lessons.mapping2d.geometry import close_angle_pairs
 from cga_lessons.mapping2d.hypotheses import angle_density
@@ -41,23 +41,23 @@ def _brute_near(G, centre, radius):
 
 def test_near_returns_exactly_the_brute_force_neighbours_as_the_map_changes():
     rng = np.random.default_rng(0)
-    b = MapBuilder(PlainGeometry(), MapParams(active_path=0.0))
+    b = MapBuilder(PlainGeometry(), MapParams(correspondence=CorrespondenceParams(active_path=0.0)))
     b.INDEX_MIN_LINES = 0  # the index, however small the map
     b.path = [0.0]
     b.add_lines(_random_segments(rng, 300), 0)
     for step in range(6):
         for _ in range(20):
             centre, radius = rng.uniform(-25, 25, 2), rng.choice([0.5, 3.0, 8.0, 30.0])
-            assert b.near(centre, radius=radius).tolist() == _brute_near(b.G, centre, radius)
+            assert b.near(centre, radius=radius).tolist() == _brute_near(b.lines, centre, radius)
         # the map changes as it does while mapping: lines grow, lines are added, lines are merged away
-        rows = rng.choice(len(b.G), 30, replace=False)
-        b.G.end[rows] += rng.normal(0, 3.0, (30, 2))
+        rows = rng.choice(len(b.lines), 30, replace=False)
+        b.lines.end[rows] += rng.normal(0, 3.0, (30, 2))
         b._touch(rows)
         b.add_lines(_random_segments(rng, 40), step + 1)
-        keep = np.sort(rng.choice(len(b.G), len(b.G) - 25, replace=False))
-        b.index.remove(np.setdiff1d(b.gid, b.gid[keep]))
-        b._G, b.gid, b.last = b.G.take(keep), b.gid[keep], b.last[keep]
-    assert len(b.index) == len(b.G)
+        keep = np.sort(rng.choice(len(b.lines), len(b.lines) - 25, replace=False))
+        b.index.remove(np.setdiff1d(b.line_ids, b.line_ids[keep]))
+        b._lines, b.line_ids, b.last_seen = b.lines.take(keep), b.line_ids[keep], b.last_seen[keep]
+    assert len(b.index) == len(b.lines)
 
 
 def test_index_query_is_a_superset_of_the_boxes_that_meet_and_checks_its_input():
@@ -98,9 +98,9 @@ def _full_duplicate_pairs(G, p):
 
 def _remove_duplicates_everywhere(b):
     """The duplicate removal over every pair of lines, as the builder did before it had an index."""
-    while len(b.G) > 1:
-        G = b.G
-        a, c = _full_duplicate_pairs(G, b.p)
+    while len(b.lines) > 1:
+        G = b.lines
+        a, c = _full_duplicate_pairs(G, b.params.cleanup)
         if len(a) == 0:
             return
         alive = np.ones(len(G), bool)
@@ -109,7 +109,7 @@ def _remove_duplicates_everywhere(b):
                 b._merge_into(a[i], G.start[c[i]], G.end[c[i]], G.sums[c[i]], G.edge[c[i]])
                 alive[c[i]] = False
         keep = np.flatnonzero(alive)
-        b._G, b.gid, b.last = G.take(keep), b.gid[keep], b.last[keep]
+        b._lines, b.line_ids, b.last_seen = G.take(keep), b.line_ids[keep], b.last_seen[keep]
 
 
 def _noisy_copies(rng, n):
@@ -136,17 +136,17 @@ def test_duplicate_search_of_changed_lines_merges_as_the_search_of_every_pair():
             b.add_lines(S, 0)
         ours.remove_duplicates()
         _remove_duplicates_everywhere(ref)
-        assert np.array_equal(ours.gid, ref.gid) and len(ours.G) < len(S)
-        assert np.array_equal(ours.G.start, ref.G.start) and np.array_equal(ours.G.end, ref.G.end)
+        assert np.array_equal(ours.line_ids, ref.line_ids) and len(ours.lines) < len(S)
+        assert np.array_equal(ours.lines.start, ref.lines.start) and np.array_equal(ours.lines.end, ref.lines.end)
         # then a few new lines: only they are searched, with the same merges as a search of every pair
         extra = _noisy_copies(rng, 15)
         for b in (ours, ref):
             b.add_lines(extra, 1)
         ours.remove_duplicates()
         _remove_duplicates_everywhere(ref)
-        assert np.array_equal(ours.gid, ref.gid)
-        assert np.array_equal(ours.G.start, ref.G.start) and np.array_equal(ours.G.end, ref.G.end)
-        assert len(ours.index) == len(ours.G)
+        assert np.array_equal(ours.line_ids, ref.line_ids)
+        assert np.array_equal(ours.lines.start, ref.lines.start) and np.array_equal(ours.lines.end, ref.lines.end)
+        assert len(ours.index) == len(ours.lines)
 
 
 def test_partial_refit_equals_the_refit_of_every_line():
@@ -167,10 +167,10 @@ def test_partial_refit_equals_the_refit_of_every_line():
         full.path.append(0.2 * k)
         full.fuse(SegmentSet.from_segments(extract_segments(r, a, max_range=5.0)), truth[k], k)
     full.refit(truth)
-    full._unfit.update(full.gid.tolist())  # every line out of date: a refit of all
+    full._unfit.update(full.line_ids.tolist())  # every line out of date: a refit of all
     full.refit_tolerance = (0.0, 0.0)
     full.refit(moved)
-    assert np.array_equal(b.G.start, full.G.start) and np.array_equal(b.G.sums, full.G.sums)
+    assert np.array_equal(b.lines.start, full.lines.start) and np.array_equal(b.lines.sums, full.lines.sums)
     with pytest.raises(InvalidInputError, match="MapBuilder: refit_tolerance"):
         MapBuilder(PlainGeometry(), MapParams(), refit_tolerance=(-1.0, 0.0))
 

@@ -59,7 +59,7 @@ gathered.  Beyond the thesis, as a robotics engineer would:
   observations, so the two copies of a place merge.
 
 The correspondence test is the same for this plain version and the conformal
-one (:mod:`cga_lessons.mapping2d.conformal`, section 3.2): besides ``m <
+one (:mod:`cga_lessons.mapping2d.conformal_geometry`, section 3.2): besides ``m <
 delta`` a pair must overlap (the spheres on the two segments intersect or one
 contains the other, cases 1-2 of 3.19, with a margin), the centre of the
 global segment must lie within ``xi_d`` of the local line (2.130) and their
@@ -70,31 +70,28 @@ same map and poses.
 The pieces live in :mod:`cga_lessons.mapping2d.geometry` (segments,
 correspondence), :mod:`cga_lessons.mapping2d.corrections` (3.6-3.12),
 :mod:`cga_lessons.mapping2d.builder` (correction and fusion),
+:mod:`cga_lessons.mapping2d.run` (the loop over the scans),
 :mod:`cga_lessons.mapping2d.loops` and :mod:`cga_lessons.mapping2d.graph`
 (revisits and the pose graph), :mod:`cga_lessons.mapping2d.params` (the
-thresholds) and :mod:`cga_lessons.mapping2d.eval` (errors against the truth);
-the package's facade, :mod:`cga_lessons.mapping2d`, exports what callers use.
+thresholds, stage by stage), :mod:`cga_lessons.mapping2d.extraction` (the
+extractor's settings) and :mod:`cga_lessons.mapping2d.eval` (errors against the
+truth); the package's facade, :mod:`cga_lessons.mapping2d`, exports what callers
+use.
 """
 
 from __future__ import annotations
 
-from collections import deque
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from cga_lessons import checks
+from cga_lessons import checks, config
 
-from .adjust import adjust_built_map
-from .builder import MapBuilder
-from .corrections import odometry_covariance
-from .geometry import PlainGeometry, SegmentSet
+from .extraction import ExtractionParams, extraction_settings
+from .geometry import PlainGeometry
 from .inputs import pose, reach, scan_list
-from .laser import scan_points_unchecked
-from .lines import extract_unchecked, extraction_defaults, extraction_settings
-from .loops import LoopCloser
 from .params import MapParams
-from .poses import compose_unchecked, relative_unchecked
+from .run import MapRun
 from .segment import Segment
 
 __all__ = [
@@ -189,47 +186,29 @@ def _inputs(scans, odometry, method, params, mount, max_range, extraction, recor
         raise checks.fail(f, "scans, odometry", f"{len(scans)} scans but {len(odometry)} odometry poses")
     checks.magnitude(odometry[:, :2] - odometry[0, :2], f, "odometry")  # the steps' covariances square them
     method = checks.choice(method, f, "method", ("plain", "conformal"))
-    if params is None:
-        params = MapParams()
-    params = checks.instance(params, f, "params", MapParams, "a MapParams (or None)")
-    bad = set(overrides) - set(MapParams.__dataclass_fields__)
-    if bad:
-        raise checks.fail(f, ", ".join(sorted(bad)), f"unknown parameter(s) {sorted(bad)} (see MapParams)")
-    if overrides:
-        params = MapParams(**{**params.__dict__, **overrides})
-    ext = {**extraction_defaults(), "max_range": reach(max_range, f, "max_range")}
-    if extraction is not None:
-        if not isinstance(extraction, dict):
-            raise checks.fail(f, "extraction", f"expected a dict of extract_segments settings, got {extraction!r}")
-        ext.update(extraction_settings(extraction, f, "extraction: "))
-    ext["func"] = f
+    params = config.merged(params, overrides, f, MapParams)
+    ext = _extraction(extraction, reach(max_range, f, "max_range"), f)
     checks.flag(record_history, f, "record_history")
     if progress is not None and not callable(progress):
         raise checks.fail(f, "progress", f"expected a callable progress(k, T) or None, got {progress!r}")
     if method == "plain":
         geometry = PlainGeometry()
     else:
-        from .conformal import ConformalGeometry
+        from .conformal_geometry import ConformalGeometry
 
         geometry = ConformalGeometry()
     mount = checks.magnitude(pose(mount, f, "mount"), f, "mount")
-    return scans, odometry, geometry, params, mount, ext["max_range"], ext
+    return scans, odometry, geometry, params, mount, ext.max_range, ext
 
 
-def _warm_up(corrector, scans, odometry, ext, params):
-    """Learn how good the odometry is from the first scans, each registered on the one before, before any
-    correction (so that the first corrections already use it); returns their segments (laser frame)."""
-    n = min(len(scans), corrector.innovations.min_count + 1) if params.estimate_odometry else 0
-    local = [
-        SegmentSet.from_segments(extract_unchecked(r, a, **ext, names=_names(k))) for k, (r, a) in enumerate(scans[:n])
-    ]
-    for k in range(1, n):
-        if len(local[k]) and len(local[k - 1]):
-            inc = relative_unchecked(odometry[k - 1], odometry[k])
-            corrector.learn_odometry(local[k - 1], local[k], inc, odometry_covariance(inc, params))
-        if params.learn_lag > 1 and k >= params.learn_lag and k % params.learn_lag == 0:
-            corrector.learn_lagged(local[k - params.learn_lag], local[k], odometry, k - params.learn_lag, k)
-    return local
+def _extraction(extraction, max_range: float, f: str) -> ExtractionParams:
+    """The extractor's settings: an :class:`ExtractionParams` (its ``max_range`` at most ``max_range``) or a dict of
+    some of its fields over the defaults with ``max_range`` (the dict may change it)."""
+    if isinstance(extraction, ExtractionParams):
+        return replace(extraction, max_range=min(extraction.max_range, max_range))
+    if extraction is not None and not isinstance(extraction, dict):
+        raise checks.fail(f, "extraction", f"expected an ExtractionParams or a dict of its fields, got {extraction!r}")
+    return replace(ExtractionParams(max_range=max_range), **extraction_settings(extraction or {}, f, "extraction: "))
 
 
 def build_map(
@@ -240,7 +219,7 @@ def build_map(
     params: MapParams | None = None,
     mount=(0.0, 0.0, 0.0),
     max_range: float = 5.0,
-    extraction: dict | None = None,
+    extraction: ExtractionParams | dict | None = None,
     record_history: bool = False,
     progress=None,
     **overrides,
@@ -258,14 +237,21 @@ def build_map(
     method : {"plain", "conformal"}
         Vectors and matrices (3.1) or conformal point pairs and motors (3.2).
     params : MapParams, optional
-        The thresholds; keyword ``overrides`` replace single fields.
+        The thresholds, stage by stage.  Keyword ``overrides`` change them
+        (merged by :func:`cga_lessons.config.merged`): a whole stage
+        (``loops=LoopParams(...)``), a dict of some of a stage's fields
+        (``loops={"loop_every": 2.0}``) or a single field by its name
+        (``gate=4.0``, ``loop_closure=False``).
     mount : array_like, shape (3,)
         Pose of the laser on the robot (the laser-robot motor 3.16).
     max_range : float
         Readings at or beyond this (m) are dropped (the thesis's laser: 5 m);
         also how far old map lines are looked for when closing loops.
-    extraction : dict, optional
-        Keyword arguments for :func:`cga_lessons.mapping2d.lines.extract_segments`.
+    extraction : ExtractionParams or dict, optional
+        The settings of :func:`cga_lessons.mapping2d.extract_segments`: an
+        :class:`~cga_lessons.mapping2d.extraction.ExtractionParams` (its
+        ``max_range`` at most ``max_range``), or a dict of some of its fields
+        over the defaults and ``max_range``.
     record_history : bool
         Keep the map size after every scan in ``MapResult.history``.
     progress : callable, optional
@@ -290,82 +276,24 @@ def build_map(
     shift = np.round(odometry[0, :2] / 1024.0) * 1024.0
     odometry = odometry - np.array([shift[0], shift[1], 0.0])
 
-    b = MapBuilder(geometry, params, mount, max_range)
-    T = len(scans)
-    loops = LoopCloser(params, T)
-    poses = np.zeros((T, 3))
-    predicted = np.zeros((T, 3))
-    n_matches = np.zeros(T, int)
-    corrected = np.zeros(T, bool)
+    run = MapRun(scans, odometry, geometry, params, mount, max_range, ext)
     history = []
-    P = np.zeros((3, 3))
-    local = _warm_up(b.corrector, scans, odometry, ext, params)
-    increments, step_covs = np.zeros((max(T - 1, 0), 3)), np.zeros((max(T - 1, 0), 3, 3))
-    previous = SegmentSet.empty()
-    recent = deque(local[-(params.learn_lag + 1) :], maxlen=params.learn_lag + 1)  # the last scans' segments
-    for k, (ranges, angles) in enumerate(scans):
-        if k == 0:
-            pose = odometry[0].copy()
-            b.path.append(0.0)
-        else:
-            inc = relative_unchecked(odometry[k - 1], odometry[k])  # odometry increment
-            pose = compose_unchecked(poses[k - 1], inc)
-            b.path.append(b.path[-1] + float(np.hypot(inc[0], inc[1])))
-            Q = odometry_covariance(inc, params)
-            d = pose[:2] - poses[k - 1, :2]
-            J = np.array([[1.0, 0.0, -d[1]], [0.0, 1.0, d[0]], [0.0, 0.0, 1.0]])
-            carried = J @ P @ J.T
-        predicted[k] = pose
-        L = (
-            local[k]
-            if k < len(local)
-            else SegmentSet.from_segments(extract_unchecked(ranges, angles, **ext, names=_names(k)))
-        )
-        if k >= len(local) and len(L) and len(previous):
-            b.corrector.learn_odometry(previous, L, inc, Q)  # how good the odometry is, scan against scan
-        previous = L
-        if k >= len(local):
-            recent.append(L)
-            if params.learn_lag > 1 and k % params.learn_lag == 0 and len(recent) == params.learn_lag + 1:
-                b.corrector.learn_lagged(recent[0], L, odometry, k - params.learn_lag, k)
-        if k > 0:
-            P = carried + b.corrector.odometry_scale * Q  # the step scaled by what the data say of the odometry
-            increments[k - 1], step_covs[k - 1] = inc, b.corrector.odometry_scale * Q
-        pts = np.zeros((0, 2))
-        if len(L):
-            pts, _ = scan_points_unchecked(np.where(ranges < max_range, ranges, np.inf), angles)
-        if k > 0 and len(L) and len(b.G):
-            pose, P, pairs, corrected[k] = b.correct(L, pose, P, b.near(pose[:2], k), pts, step=(carried, Q))
-            n_matches[k] = 0 if pairs is None else len(pairs[0])
-        poses[k] = pose
-        if k > 0:
-            loops.add_step(k, poses, P if n_matches[k] else b.corrector.odometry_scale * Q)
-        b.fuse(L, pose, k)
-        closed = loops.search(b, k, poses, L, pts, (angles.min(), angles.max()))
-        if closed is not None:
-            poses[: k + 1], P = closed
-        if params.cleanup_every and (k + 1) % params.cleanup_every == 0:
-            b.remove_duplicates()
+    for k in range(len(scans)):
+        run.step(k)
         if record_history:
-            history.append(len(b.G))
+            history.append(len(run.builder.lines))
         if progress is not None:
-            progress(k + 1, T)
-    b.remove_duplicates()
-    if params.adjust and T > 1:
-        poses = adjust_built_map(b, poses, increments, step_covs).poses
-    return _result(b, shift, poses, predicted, n_matches, corrected, history, loops.graph.loops)
+            progress(k + 1, len(scans))
+    return _result(run, run.finish(), shift, history)
 
 
-def _names(k: int) -> tuple:
-    return f"scans[{k}] ranges", f"scans[{k}] angles"
-
-
-def _result(b, shift, poses, predicted, n_matches, corrected, history, loops) -> MapResult:
-    """The map and poses moved back by ``shift`` (the multiple of 1024 m taken off the odometry)."""
+def _result(run: MapRun, poses, shift, history) -> MapResult:
+    """The map and poses of ``run`` moved back by ``shift`` (the multiple of 1024 m taken off the odometry)."""
     checks.finite_result(poses, "build_map", "scans, odometry")
-    segments = b.G.to_segments()
+    builder, predicted, loops = run.builder, run.predicted, run.loops.graph.loops
+    segments = builder.lines.to_segments()
     if np.any(shift):
         back = np.array([shift[0], shift[1], 0.0])
         poses, predicted = poses + back, predicted + back
         segments = [s.transformed(back) for s in segments]
-    return MapResult(segments, poses, predicted, n_matches, corrected, b.geo.name, history, loops)
+    return MapResult(segments, poses, predicted, run.n_matches, run.corrected, builder.geometry.name, history, loops)

@@ -1,6 +1,6 @@
 """The incremental line-map builder behind :func:`cga_lessons.mapping2d.build_map` (sections 3.1.2-3.1.4).
 
-:class:`MapBuilder` keeps the global map ``G`` (a :class:`SegmentSet`) and,
+:class:`MapBuilder` keeps the thesis's global map ``G`` (:attr:`MapBuilder.lines`, a :class:`SegmentSet`) and,
 for every map line, which scans saw it (its *observations*: the local segment
 and the scan it came from).  For each scan it
 
@@ -35,13 +35,14 @@ import numpy as np
 from cga_lessons import checks
 
 from .correction import ScanCorrector
+from .fusion import fuse_segment
 from .geometry import PlainGeometry, SegmentSet, correspondences_unchecked
 from .index import SegmentIndex, duplicate_pairs, sphere_boxes
 from .inputs import pose, reach
 from .observations import Growing, Observations, PathLog, refit_lines
 from .params import MapParams
-from .poses import compose_unchecked, wrap_unchecked
-from .segment import line_from_sums
+from .poses import wrap_unchecked
+from .support import scan_support, segment_distances
 
 __all__ = ["MapBuilder"]
 
@@ -92,8 +93,9 @@ class MapBuilder:
     def __init__(self, geometry, params, mount=(0.0, 0.0, 0.0), max_range=np.inf, *, index_cell=None,
                  refit_tolerance=None):  # fmt: skip
         f = "MapBuilder"
-        self.geo = checks.instance(geometry, f, "geometry", PlainGeometry, "a PlainGeometry or a ConformalGeometry")
-        self.p = checks.instance(params, f, "params", MapParams, "a MapParams")
+        what = "a PlainGeometry or a ConformalGeometry"
+        self.geometry = checks.instance(geometry, f, "geometry", PlainGeometry, what)
+        self.params = checks.instance(params, f, "params", MapParams, "a MapParams")
         self.mount = pose(mount, f, "mount")
         self.max_range = reach(max_range, f, "max_range")
         tol = self.REFIT_TOLERANCE if refit_tolerance is None else refit_tolerance
@@ -102,30 +104,32 @@ class MapBuilder:
             raise checks.fail(f, "refit_tolerance", f"must be two numbers >= 0 (m, rad), got {self.refit_tolerance}")
         cell = None if index_cell is None else checks.real(index_cell, f, "index_cell", low=0.0, strict_low=True)
         self.index = SegmentIndex() if cell is None else SegmentIndex(cell)
-        self._G = SegmentSet.empty()
-        self.gid = np.zeros(0, int)  # a stable id per map line, ascending along the rows
-        self.last = np.zeros(0, int)  # the last scan that saw it
+        self._lines = SegmentSet.empty()
+        self.line_ids = np.zeros(0, int)  # a stable id per map line, ascending along the rows
+        self.last_seen = np.zeros(0, int)  # the last scan that saw it
         self._next_id = 0
         self._root = Growing((), int)  # line id -> id of the line it was merged into (itself while in the map)
-        self.obs = Observations()  # per scan: its local segments (laser frame), and the line each went into
+        self.observed = Observations()  # per scan: its local segments (laser frame), and the line each went into
         self._placed = Growing((3,))  # per scan: the pose with which its observations were last placed
         self._dirty: set[int] = set()  # lines changed since the last duplicate search
         self._unfit: set[int] = set()  # lines fused or merged since the last refit
         self.path = []  # distance travelled up to each scan (m)
-        self.corrector = ScanCorrector(geometry, params, self.mount)
+        self.corrector = ScanCorrector(
+            geometry, params.correspondence, params.correction, params.odometry_prior, self.mount
+        )
 
     # ------------------------------------------------------------------ the map and its index
 
     @property
-    def G(self) -> SegmentSet:
-        """The map lines (global frame), one row per id of :attr:`gid`."""
-        return self._G
+    def lines(self) -> SegmentSet:
+        """The map lines (global frame), one row per id of :attr:`line_ids`."""
+        return self._lines
 
-    @G.setter
-    def G(self, segs: SegmentSet):
-        if len(segs) != len(self.gid):
-            raise checks.fail("MapBuilder.G", "segs", f"{len(segs)} segments for {len(self.gid)} line ids")
-        self._G = segs
+    @lines.setter
+    def lines(self, segs: SegmentSet):
+        if len(segs) != len(self.line_ids):
+            raise checks.fail("MapBuilder.lines", "segs", f"{len(segs)} segments for {len(self.line_ids)} line ids")
+        self._lines = segs
         self.index.clear()
         self._touch(np.arange(len(segs)))
 
@@ -140,21 +144,21 @@ class MapBuilder:
 
     def _rows(self, ids) -> np.ndarray:
         """Rows of the lines ``ids`` (current ids, ascending in, ascending out)."""
-        return np.searchsorted(self.gid, np.asarray(ids, int))
+        return np.searchsorted(self.line_ids, np.asarray(ids, int))
 
     def rows_of(self, ids) -> np.ndarray:
         """Rows (ascending, unique) of those of the line ids ``ids`` that are in the map."""
         ids = np.unique(np.asarray(ids, int))
-        rows = np.minimum(np.searchsorted(self.gid, ids), max(len(self.gid) - 1, 0))
-        return rows[self.gid[rows] == ids] if len(self.gid) else np.zeros(0, int)
+        rows = np.minimum(np.searchsorted(self.line_ids, ids), max(len(self.line_ids) - 1, 0))
+        return rows[self.line_ids[rows] == ids] if len(self.line_ids) else np.zeros(0, int)
 
     def _touch(self, rows, fitted=False):
         """Lines ``rows`` changed: re-index them; the duplicate search (and, unless ``fitted``, the refit) sees them."""
         rows = np.asarray(rows, int)
         if len(rows) == 0:
             return
-        ids = self.gid[rows]
-        self.index.update(ids, *sphere_boxes(self._G.start[rows], self._G.end[rows], self.BOX_PAD))
+        ids = self.line_ids[rows]
+        self.index.update(ids, *sphere_boxes(self._lines.start[rows], self._lines.end[rows], self.BOX_PAD))
         self._dirty.update(ids.tolist())
         if not fitted:
             self._unfit.update(ids.tolist())
@@ -175,26 +179,21 @@ class MapBuilder:
 
     def observers(self, lines):
         """The scans that observed the map lines ``lines`` (indices) and how many of them each saw: two arrays."""
-        return self.obs.scan_counts(self.gid[lines])
+        return self.observed.scan_counts(self.line_ids[lines])
 
     def segment_distance(self, centre, idx=None):
         """Distance (m) from ``centre`` to each map segment (or to those in ``idx``)."""
-        G = self._G if idx is None else self._G.take(idx)
-        if len(G) == 0:
-            return np.zeros(0)
-        v = G.end - G.start
-        t = np.clip(np.einsum("ij,ij->i", centre - G.start, v) / np.einsum("ij,ij->i", v, v), 0, 1)
-        return np.hypot(*(G.start + t[:, None] * v - centre).T)
+        return segment_distances(centre, self._lines if idx is None else self._lines.take(idx))
 
     def active(self, k, rows=None):
         """Mask of the map lines (or of ``rows``) seen within the last ``active_path`` metres of travel before scan
         ``k``."""
-        n = len(self._G) if rows is None else len(rows)
-        if self.p.active_path <= 0 or len(self.path) == 0:
+        n = len(self._lines) if rows is None else len(rows)
+        if self.params.correspondence.active_path <= 0 or len(self.path) == 0:
             return np.ones(n, bool)
         path = self.path.array
-        last = self.last if rows is None else self.last[rows]
-        return path[min(k, len(path) - 1)] - path[last] <= self.p.active_path
+        last = self.last_seen if rows is None else self.last_seen[rows]
+        return path[min(k, len(path) - 1)] - path[last] <= self.params.correspondence.active_path
 
     def near(self, centre, k=None, radius=None, active=True):
         """Indices of map lines within ``radius`` (default ``neighbourhood``) of ``centre``, ascending.
@@ -204,12 +203,12 @@ class MapBuilder:
         lines whose boxes meet the square of side ``2 radius`` about
         ``centre``; their distances are then computed exactly.
         """
-        if len(self._G) == 0:
+        if len(self._lines) == 0:
             return np.zeros(0, int)
-        radius = self.p.neighbourhood if radius is None else radius
+        radius = self.params.correspondence.neighbourhood if radius is None else radius
         centre = np.asarray(centre, float)
-        if len(self._G) < self.INDEX_MIN_LINES:
-            rows = np.arange(len(self._G))
+        if len(self._lines) < self.INDEX_MIN_LINES:
+            rows = np.arange(len(self._lines))
         else:
             reach = radius + self.BOX_PAD
             rows = self._rows(self.index.query(centre - reach, centre + reach))
@@ -219,25 +218,9 @@ class MapBuilder:
         return rows[ok]
 
     def support(self, points, pose, idx):
-        """How well the scan's points (laser frame) at ``pose`` lie on the map segments ``idx``.
-
-        Each point within ``D = support_distance`` of a segment counts
-        ``1 - (d / D)^2`` (``d`` its distance): a point on the line counts one,
-        the score falls smoothly to zero at ``D``, so of two poses the better
-        aligned scores higher even when both put every point within ``D``.
-        """
-        if len(points) == 0 or len(idx) == 0:
-            return 0.0
-        lp = compose_unchecked(pose, self.mount)
-        c, s_ = np.cos(lp[2]), np.sin(lp[2])
-        q = points @ np.array([[c, s_], [-s_, c]]) + lp[:2]
-        a, v = self._G.start[idx], self._G.end[idx] - self._G.start[idx]
-        rx, ry = q[:, 0, None] - a[None, :, 0], q[:, 1, None] - a[None, :, 1]  # (points, lines)
-        t = np.clip((rx * v[:, 0] + ry * v[:, 1]) / (v[:, 0] ** 2 + v[:, 1] ** 2), 0.0, 1.0)
-        rx -= t * v[:, 0]
-        ry -= t * v[:, 1]
-        d2 = (rx * rx + ry * ry).min(axis=1)  # squared distance to the nearest segment
-        return float(np.sum(np.maximum(0.0, 1.0 - d2 / self.p.support_distance**2)))
+        """How well the scan's points (laser frame) at ``pose`` lie on the map segments ``idx``
+        (:func:`~cga_lessons.mapping2d.support.scan_support` with ``support_distance``)."""
+        return scan_support(points, pose, self.mount, self._lines, idx, self.params.correction.support_distance)
 
     # ------------------------------------------------------------------ correction (3.6-3.12)
 
@@ -267,7 +250,7 @@ class MapBuilder:
         """
         predicted = np.array(pose, float)
         gate_cov = None if step is None else step[0] + max(self.corrector.odometry_scale, 1.0) * step[1]
-        reg = self.corrector.register(self._G.take(idx), L, predicted, prior_cov, widen, gate_cov)
+        reg = self.corrector.register(self._lines.take(idx), L, predicted, prior_cov, widen, gate_cov)
         if reg is None:
             return predicted, np.asarray(prior_cov, float), None, False
         pairs = (idx[reg.gi], reg.li)
@@ -275,7 +258,7 @@ class MapBuilder:
             return reg.pose, reg.cov, pairs, True
         carried, step_cov = step if step is not None else (np.asarray(prior_cov, float), np.zeros((3, 3)))
         new, cov, applied = self.corrector.decide(reg, predicted, carried, step_cov)
-        if applied and points is not None and self.p.support_distance > 0:
+        if applied and points is not None and self.params.correction.support_distance > 0:
             margin = 0.01 * len(points)  # refused only if clearly worse than the prediction
             if self.support(points, predicted, idx) > self.support(points, new, idx) + margin:
                 return predicted, np.asarray(prior_cov, float), pairs, False
@@ -288,10 +271,10 @@ class MapBuilder:
         ids = np.arange(self._next_id, self._next_id + len(segs))
         self._next_id += len(segs)
         self._root.extend(ids)
-        self._G = SegmentSet.concat([self._G, segs])
-        self.gid = np.concatenate([self.gid, ids])
-        self.last = np.concatenate([self.last, np.full(len(segs), k, int)])
-        self._touch(np.arange(len(self._G) - len(segs), len(self._G)))
+        self._lines = SegmentSet.concat([self._lines, segs])
+        self.line_ids = np.concatenate([self.line_ids, ids])
+        self.last_seen = np.concatenate([self.last_seen, np.full(len(segs), k, int)])
+        self._touch(np.arange(len(self._lines) - len(segs), len(self._lines)))
         return ids
 
     def fuse(self, L, pose, k):
@@ -301,62 +284,29 @@ class MapBuilder:
         near the robot are merged (3.20-3.21); local lines without a partner
         become new map lines.
         """
-        Lw = self.geo.to_global(L, pose, self.mount)
+        Lw = self.geometry.to_global(L, pose, self.mount)
         idx = self.near(pose[:2], k)
-        C, _, _ = correspondences_unchecked(self._G.take(idx), Lw, pose[:2], self.p, self.geo)
+        C, _, _ = correspondences_unchecked(self._lines.take(idx), Lw, pose[:2], self.params.correspondence,
+                                           self.geometry)
         gl = np.flatnonzero(C >= 0)
         pairs = (idx[gl], C[gl])
         ids = np.full(len(L), -1, int)
         for g, j in zip(*pairs):
             self._merge_into(g, Lw.start[j], Lw.end[j], Lw.sums[j], Lw.edge[j])
-            self.last[g] = k
-            ids[j] = self.gid[g]
+            self.last_seen[g] = k
+            ids[j] = self.line_ids[g]
         self._touch(pairs[0])
         new = np.flatnonzero(ids < 0)
         if len(new):
             ids[new] = self.add_lines(Lw.take(new), k)
-        self.obs.add(L, k, ids)
+        self.observed.add(L, k, ids)
         if k >= len(self._placed):
             self._placed.extend(np.zeros((k + 1 - len(self._placed), 3)))
         self._placed.view[k] = pose
 
     def _merge_into(self, g, ls, le, lsums, ledge):
-        """Fuse one segment into map line ``g`` (sections 3.1.4, 3.2.4).
-
-        The ends follow (3.20)-(3.21): the longer segment's ends, pushed out by
-        any end of the shorter outside its sphere (2.118).  Ends that are real
-        edges take precedence: an edge seen again is averaged with the map's
-        (so the map's edge is not the most extreme of its noisy sightings), a
-        map edge is not pushed out by an end that is not an edge, and an edge
-        seen near a map end that was not one replaces it.  The line is
-        refitted from all the points gathered.
-        """
-        G, geo = self._G, self.geo
-        s, e, replaced, g_longer, same = geo.fuse_ends(G.start[g], G.end[g], ls, le)
-        if (e - s) @ (G.end[g] - G.start[g]) < 0:  # back to the global segment's sense
-            s, e = e, s
-        union = [s, e]
-        gends, gcount = [G.start[g], G.end[g]], G.edge[g]
-        ledge = np.asarray(ledge)
-        lends, lcount = ([ls, le], ledge) if same else ([le, ls], ledge[::-1])
-        ends, counts = [None, None], np.zeros(2, int)
-        for k in range(2):
-            close = geo.distance(gends[k], lends[k]) < self.p.edge_match
-            if gcount[k] and lcount[k] and close:
-                n = gcount[k] + lcount[k]
-                ends[k], counts[k] = (gcount[k] * gends[k] + lcount[k] * lends[k]) / n, n
-            elif gcount[k]:
-                ends[k], counts[k] = gends[k], gcount[k]
-            elif lcount[k] and close:
-                ends[k], counts[k] = lends[k], lcount[k]
-            else:
-                ends[k], counts[k] = union[k], 0
-        sums = G.sums[g] + lsums
-        c, d = line_from_sums(sums, ends[1] - ends[0])
-        G.start[g] = c + d * ((ends[0] - c) @ d)
-        G.end[g] = c + d * ((ends[1] - c) @ d)
-        G.sums[g] = sums
-        G.edge[g] = counts
+        """Fuse one segment into map line ``g`` (3.20-3.21: :func:`~cga_lessons.mapping2d.fusion.fuse_segment`)."""
+        fuse_segment(self._lines, g, self.geometry, ls, le, lsums, ledge, self.params.correspondence.edge_match)
 
     def remove_duplicates(self):
         """Final check: merge map lines that are the same line seen twice (section 3.1.4).
@@ -372,29 +322,31 @@ class MapBuilder:
         merges, of a test of every pair.
         """
         changed = np.array(sorted(self._dirty), int)
-        while len(changed) and len(self._G) > 1:
-            index = self.index if len(self._G) >= self.INDEX_MIN_LINES else None
-            a, b = duplicate_pairs(self._G, self.gid, index, self._rows(changed), self.geo, self.p, self.BOX_PAD)
+        while len(changed) and len(self._lines) > 1:
+            index = self.index if len(self._lines) >= self.INDEX_MIN_LINES else None
+            rows = self._rows(changed)
+            a, b = duplicate_pairs(self._lines, self.line_ids, index, rows, self.geometry, self.params.cleanup,
+                                   self.BOX_PAD)
             if len(a) == 0:
                 break
-            G = self._G
+            G = self._lines
             alive = np.ones(len(G), bool)
             into = []
             for i in np.lexsort((b, a, -G.take(a).length)):
                 if alive[a[i]] and alive[b[i]]:
                     self._merge_into(a[i], G.start[b[i]], G.end[b[i]], G.sums[b[i]], G.edge[b[i]])
-                    self.last[a[i]] = max(self.last[a[i]], self.last[b[i]])
-                    self._root.view[self.gid[b[i]]] = self.gid[a[i]]
-                    self.obs.merge(self.gid[a[i]], self.gid[b[i]])
+                    self.last_seen[a[i]] = max(self.last_seen[a[i]], self.last_seen[b[i]])
+                    self._root.view[self.line_ids[b[i]]] = self.line_ids[a[i]]
+                    self.observed.merge(self.line_ids[a[i]], self.line_ids[b[i]])
                     alive[b[i]] = False
                     into.append(a[i])
-            gone = self.gid[~alive]
+            gone = self.line_ids[~alive]
             self.index.remove(gone)
             self._dirty.difference_update(gone.tolist())
             self._unfit.difference_update(gone.tolist())
-            changed = np.unique(self.gid[into])
+            changed = np.unique(self.line_ids[into])
             keep = np.flatnonzero(alive)
-            self._G, self.gid, self.last = G.take(keep), self.gid[keep], self.last[keep]
+            self._lines, self.line_ids, self.last_seen = G.take(keep), self.line_ids[keep], self.last_seen[keep]
             self._touch(self._rows(changed))
         self._dirty.clear()
 
@@ -402,7 +354,7 @@ class MapBuilder:
 
     def observations(self):
         """All observations: (local segments (m rows, laser frame), scan index (m,), current line id (m,))."""
-        return self.obs.all(), self.obs.scan.view.copy(), self.resolve(self.obs.line.view)
+        return self.observed.all(), self.observed.scan.view.copy(), self.resolve(self.observed.line.view)
 
     def refit(self, poses, first=0):
         """Rebuild the map lines from their observations placed with ``poses`` (T, 3).
@@ -420,7 +372,7 @@ class MapBuilder:
         compared).
         """
         poses = np.asarray(poses, float)
-        if len(self.obs) == 0 or len(self._G) == 0:
+        if len(self.observed) == 0 or len(self._lines) == 0:
             return
         n = min(len(poses), len(self._placed))
         first = max(0, min(int(first), n))
@@ -429,18 +381,19 @@ class MapBuilder:
         turn = np.abs(wrap_unchecked(d[:, 2]))
         tol_xy, tol_th = self.refit_tolerance
         moved = first + np.flatnonzero((np.hypot(d[:, 0], d[:, 1]) > tol_xy) | (turn > tol_th))
-        lines = np.union1d(self.obs.lines_of_scans(moved, self.resolve), np.array(sorted(self._unfit), int))
+        lines = np.union1d(self.observed.lines_of_scans(moved, self.resolve), np.array(sorted(self._unfit), int))
         self._placed.view[moved] = poses[moved]
         self._unfit.clear()
         if len(lines) == 0:
             return
         rows = self._rows(lines)
-        obs = self.obs.rows_of_lines(lines)
-        W = self.geo.to_global_rows(self.obs.take(obs), poses[self.obs.scan.view[obs]], self.mount)
-        line_of = np.searchsorted(lines, self.resolve(self.obs.line.view[obs]))
-        new = refit_lines(self.geo, self.mount, self._G.take(rows), line_of, W, self.p.edge_match)
-        G = self._G
-        self._G = SegmentSet.trusted(G.start.copy(), G.end.copy(), G.sums.copy(), G.edge.copy())
-        self._G.start[rows], self._G.end[rows], self._G.sums[rows], self._G.edge[rows] = (
+        obs = self.observed.rows_of_lines(lines)
+        W = self.geometry.to_global_rows(self.observed.take(obs), poses[self.observed.scan.view[obs]], self.mount)
+        line_of = np.searchsorted(lines, self.resolve(self.observed.line.view[obs]))
+        edge_match = self.params.correspondence.edge_match
+        new = refit_lines(self.geometry, self.mount, self._lines.take(rows), line_of, W, edge_match)
+        G = self._lines
+        self._lines = SegmentSet.trusted(G.start.copy(), G.end.copy(), G.sums.copy(), G.edge.copy())
+        self._lines.start[rows], self._lines.end[rows], self._lines.sums[rows], self._lines.edge[rows] = (
             new.start, new.end, new.sums, new.edge)  # fmt: skip
         self._touch(rows, fitted=True)

@@ -68,20 +68,27 @@ class ScanCorrector:
     Parameters
     ----------
     geometry : PlainGeometry or ConformalGeometry
-    params : MapParams
+    correspondence : CorrespondenceParams
+        Which segments correspond (3.5, 3.19).
+    correction : CorrectionParams
+        The estimate, its test and what is learnt.
+    odometry_prior : OdometryPriorParams
+        The odometry's drift model (for :meth:`learn_lagged`).
     mount : ndarray, shape (3,)
         Laser pose on the robot.
     """
 
-    def __init__(self, geometry, params, mount=(0.0, 0.0, 0.0)):
-        self.geo = geometry
-        self.params = params
+    def __init__(self, geometry, correspondence, correction, odometry_prior, mount=(0.0, 0.0, 0.0)):
+        self.geometry = geometry
+        self.correspondence = correspondence
+        self.correction = correction
+        self.odometry_prior = odometry_prior
         self.mount = np.asarray(mount, float).reshape(3)
         self.noise = 0.01  # range noise (m) until a scan says otherwise
         self.factor = 1.0  # running a posteriori variance factor of the corrections
-        self.floors = NoiseFloors((params.angle_floor, params.offset_floor, params.edge_sigma))
+        self.floors = NoiseFloors((correction.angle_floor, correction.offset_floor, correction.edge_sigma))
         self.innovations = InnovationModel()  # how good the odometry and the registration really are
-        self.registration_ref = np.diag([params.registration_xy**2] * 2 + [params.registration_theta**2])
+        self.registration_ref = np.diag([correction.registration_xy**2] * 2 + [correction.registration_theta**2])
 
     @property
     def registration_cov(self):
@@ -91,12 +98,12 @@ class ScanCorrector:
     @property
     def odometry_scale(self):
         """How much of its drift model the odometry shows, as learnt so far (a variance ratio)."""
-        return self.innovations.q if self.params.estimate_odometry else 1.0
+        return self.innovations.q if self.correction.estimate_odometry else 1.0
 
     def range_noise(self, L):
         """The range noise (m) for scan segments ``L``: ``range_noise`` if set, else estimated from ``L`` itself."""
-        if self.params.range_noise is not None:
-            return self.params.range_noise
+        if self.correction.range_noise is not None:
+            return self.correction.range_noise
         est = scan_range_noise(L)
         if est is not None:
             self.noise = est
@@ -104,11 +111,11 @@ class ScanCorrector:
 
     def _pair_terms(self, Gn, Lw, gi, li, centre, noise):
         """Angle and centroid-offset measurements of corresponding pairs, with variances and normals."""
-        p = self.params
+        p = self.correction
         G2, L2 = Gn.take(gi), Lw.take(li)
-        _, tg = self.geo.hough(G2, centre)
-        _, tl = self.geo.hough(L2, centre)
-        dth = diff_theta_unchecked(tg, tl, p.theta_xi)
+        _, tg = self.geometry.hough(G2, centre)
+        _, tl = self.geometry.hough(L2, centre)
+        dth = diff_theta_unchecked(tg, tl, self.correspondence.theta_xi)
         ng = np.column_stack([np.cos(tg), np.sin(tg)])
         lever = L2.centroid - centre
         offset = np.einsum("ij,ij->i", ng, G2.centroid - L2.centroid)
@@ -137,7 +144,7 @@ class ScanCorrector:
         lends = np.stack([ls, le], axis=1).reshape(-1, 2)
         ok = (Lw.edge[li].reshape(-1) > 0) & (gflags.reshape(-1) > 0)
         if ok.any():
-            ok[ok] = self.geo.distance_rows(gends[ok], lends[ok]) < self.params.edge_match
+            ok[ok] = self.geometry.distance_rows(gends[ok], lends[ok]) < self.correspondence.edge_match
         if not ok.any():
             return None
         d = np.repeat(dl, 2, axis=0)[ok]
@@ -156,7 +163,7 @@ class ScanCorrector:
         s_to = h @ cov[:, 2]
         det = s_tt * s_oo - s_to**2
         d2 = (dth**2 * s_oo - 2 * dth * off * s_to + off**2 * s_tt) / det
-        return d2 < self.params.gate**2
+        return d2 < self.correction.gate**2
 
     def _angle_consensus(self, dth, vt, weight, ok):
         """Mask of the largest set (by total ``weight``) of pairs whose angle differences agree.
@@ -165,7 +172,7 @@ class ScanCorrector:
         standard deviations or ``consensus_angle``, whichever is larger; each
         pair in ``ok`` proposes the set of those that agree with it.
         """
-        tol = np.maximum(self.params.gate * np.sqrt(vt[:, None] + vt[None, :]), self.params.consensus_angle)
+        tol = np.maximum(self.correction.gate * np.sqrt(vt[:, None] + vt[None, :]), self.correction.consensus_angle)
         agree = (np.abs(dth[:, None] - dth[None, :]) <= tol) & ok[None, :]
         score = np.where(ok, agree @ weight, -1.0)
         return agree[int(np.argmax(score))]
@@ -179,15 +186,15 @@ class ScanCorrector:
             meas.with_floors(floors),
             prior_cov,
             back,
-            level=self.params.significance,
-            kernel=self.params.robust_kernel,
+            level=self.correction.significance,
+            kernel=self.correction.robust_kernel,
             prior_factor=self.factor,
             model_cov=self.registration_cov,
         )
 
     def _move(self, pose, delta):
         """``pose`` moved by the correction ``delta``, each component bounded (T_xi of 3.12, theta_max)."""
-        p = self.params
+        p = self.correction
         d = np.array(delta, float)
         d[:2] = np.clip(d[:2], -p.t_xi, p.t_xi)
         d[2] = np.clip(d[2], -p.theta_max, p.theta_max)
@@ -216,7 +223,7 @@ class ScanCorrector:
         Registration or None
             None when no pair corresponds.
         """
-        p = self.params
+        p = self.correction
         predicted = np.array(predicted, float)
         pose, cov = predicted.copy(), np.asarray(prior_cov, float)
         if len(ref) == 0 or len(L) == 0:
@@ -225,8 +232,8 @@ class ScanCorrector:
         floors = self.floors.variances
         found = None
         for it in range(p.n_iterations):
-            Lw = self.geo.to_global(L, pose, self.mount)
-            C, _, _ = correspondences_unchecked(ref, Lw, pose[:2], p, self.geo)
+            Lw = self.geometry.to_global(L, pose, self.mount)
+            C, _, _ = correspondences_unchecked(ref, Lw, pose[:2], self.correspondence, self.geometry)
             gi = np.flatnonzero(C >= 0)
             if len(gi) == 0:
                 break
@@ -267,9 +274,9 @@ class ScanCorrector:
         if est.dof >= 1:
             self.factor = 0.9 * self.factor + 0.1 * est.variance_factor
             inlier = est.weights >= 1.0
-            if self.params.estimate_floors:
+            if self.correction.estimate_floors:
                 self.floors.add(meas.kind[inlier], meas.var[inlier], est.residuals[inlier])
-        if est.rank > 0 and not est.valid and self.innovations.learning and self.params.estimate_odometry:
+        if est.rank > 0 and not est.valid and self.innovations.learning and self.correction.estimate_odometry:
             wide = carried + max(self.odometry_scale, 1.0) * step_cov
             again = self._estimate(meas, self.floors.variances, predicted, reg.pose, wide)
             if again.valid:
@@ -289,7 +296,7 @@ class ScanCorrector:
         """
         if not (len(earlier) and len(L)):
             return None
-        inc, cov = chain_covariance(odometry, first, last, self.params)
+        inc, cov = chain_covariance(odometry, first, last, self.odometry_prior)
         return self.learn_odometry(earlier, L, inc, cov)
 
     def learn_odometry(self, previous: SegmentSet, L: SegmentSet, increment, step_cov):
@@ -301,9 +308,9 @@ class ScanCorrector:
         :class:`~cga_lessons.mapping2d.noise.InnovationModel`.  Returns the
         registration (or None).
         """
-        if not self.params.estimate_odometry:
+        if not self.correction.estimate_odometry:
             return None
-        ref = self.geo.to_global(previous, np.zeros(3), self.mount)
+        ref = self.geometry.to_global(previous, np.zeros(3), self.mount)
         reg = self.register(ref, L, increment, step_cov)
         if reg is None or reg.estimate.rank == 0:
             return reg

@@ -280,7 +280,8 @@ def line_variances_unchecked(segs: SegmentSet, centre, range_noise, angle_floor=
 
 
 def odometry_covariance(increment, params) -> np.ndarray:
-    """Covariance (3, 3) of one odometry step ``(dx, dy, dtheta)`` under the stated drift model.
+    """Covariance (3, 3) of one odometry step ``(dx, dy, dtheta)`` under the stated drift model ``params`` (an
+    :class:`~cga_lessons.mapping2d.params.OdometryPriorParams`).
 
     With ``d`` the step's length: position variance ``odo_sigma_xy^2 d`` per
     axis, heading variance ``odo_sigma_heading^2 d + odo_sigma_turn^2 |dtheta|
@@ -292,12 +293,13 @@ def odometry_covariance(increment, params) -> np.ndarray:
 
 @functools.lru_cache(maxsize=8)
 def _drift_model(params) -> OdometryModel:
-    """The drift model of a (frozen, hashable) :class:`~cga_lessons.mapping2d.params.MapParams`."""
+    """The drift model of a (frozen, hashable) :class:`~cga_lessons.mapping2d.params.OdometryPriorParams`."""
     return OdometryModel(params.odo_sigma_xy, params.odo_sigma_heading, params.odo_sigma_turn, params.odo_heading_bias)
 
 
 def chain_covariance(odometry, first, last, params) -> tuple[np.ndarray, np.ndarray]:
-    """The odometry's increment from pose ``first`` to pose ``last`` and its covariance under the drift model.
+    """The odometry's increment from pose ``first`` to pose ``last`` and its covariance under the drift model
+    ``params`` (an :class:`~cga_lessons.mapping2d.params.OdometryPriorParams`).
 
     The steps' covariances (:func:`odometry_covariance`) are carried through the composition
     ``u = u_1 o u_2 o ...``: with ``u' = u o s``, ``cov(u') = J_u cov(u) J_u' + J_s cov(s) J_s'`` (the

@@ -281,31 +281,40 @@ def estimate_correction(
     if len(meas) == 0 or not np.all(meas.var > 0):
         raise InvalidInputError("estimate_correction: need at least one measurement, each with a variance > 0")
     A, b, w, s2, dof, res = _solve_robust(meas, kernel, iterations, prior_factor)
-    P_inv = np.linalg.inv(prior_cov)
     lo, hi = _eigen_extremes(A)
     if lo > 1e-8 * hi > 0.0:
-        # the lines fix every direction (the usual case): the same estimate in the standard basis, no
-        # eigen-decomposition (the innovation's law is the same in any orthonormal basis)
-        rank, V = 3, np.eye(3)
-        A_inv = np.linalg.inv(A)
-        y = A_inv @ b
-        S = A_inv + model_cov
-        g = y - p
-        nis = float(g @ np.linalg.solve(S + prior_cov, g))
-        S_inv = np.linalg.inv(S)
-        cov = np.linalg.inv(S_inv + P_inv)
-        delta = cov @ (S_inv @ y + P_inv @ p)
-        threshold = _chi2_quantile(level, 3)
-        return Correction(delta, cov, nis <= threshold, nis, threshold, 3, V, g, S, s2, dof, w, res)
-    # the measurement-only estimate in the directions the lines fix (eigenvectors V of A), with covariance
-    # diag(1 / lambda) plus the registration's own error V' model_cov V
+        return _full_rank(A, b, p, prior_cov, model_cov, level, (s2, dof, w, res))
+    return _partial_rank(A, b, p, prior_cov, model_cov, level, (s2, dof, w, res))
+
+
+def _full_rank(A, b, p, prior_cov, model_cov, level, rest) -> Correction:
+    """:func:`estimate_correction` when the lines fix every direction (the usual case): the estimate in the standard
+    basis, no eigen-decomposition (the innovation's law is the same in any orthonormal basis).  ``rest``: the
+    robust solve's ``(s2, dof, weights, residuals)``."""
+    P_inv = np.linalg.inv(prior_cov)
+    V = np.eye(3)
+    A_inv = np.linalg.inv(A)
+    y = A_inv @ b
+    S = A_inv + model_cov
+    g = y - p
+    nis = float(g @ np.linalg.solve(S + prior_cov, g))
+    S_inv = np.linalg.inv(S)
+    cov = np.linalg.inv(S_inv + P_inv)
+    delta = cov @ (S_inv @ y + P_inv @ p)
+    threshold = _chi2_quantile(level, 3)
+    return Correction(delta, cov, nis <= threshold, nis, threshold, 3, V, g, S, *rest)
+
+
+def _partial_rank(A, b, p, prior_cov, model_cov, level, rest) -> Correction:
+    """:func:`estimate_correction` in the directions the lines fix (eigenvectors V of A), with covariance
+    diag(1 / lambda) plus the registration's own error V' model_cov V; the rest is left to the prior."""
+    P_inv = np.linalg.inv(prior_cov)
     vals, vecs = np.linalg.eigh(A)
     keep = vals > 1e-9 * max(vals[-1], 1e-300)
     V, lam = vecs[:, keep], vals[keep]
     rank = int(keep.sum())
     if rank == 0:
-        return Correction(np.zeros(3), prior_cov, False, 0.0, 0.0, 0, V, np.zeros(0), np.zeros((0, 0)), s2, dof, w,
-                          res)  # fmt: skip
+        return Correction(np.zeros(3), prior_cov, False, 0.0, 0.0, 0, V, np.zeros(0), np.zeros((0, 0)), *rest)
     y = (V.T @ b) / lam
     S = np.diag(1.0 / lam) + V.T @ model_cov @ V
     g = y - V.T @ p  # the innovation
@@ -314,4 +323,4 @@ def estimate_correction(
     S_inv = np.linalg.inv(S)
     cov = np.linalg.inv(V @ S_inv @ V.T + P_inv)
     delta = cov @ (V @ S_inv @ y + P_inv @ p)
-    return Correction(delta, cov, nis <= threshold, nis, threshold, rank, V, g, S, s2, dof, w, res)
+    return Correction(delta, cov, nis <= threshold, nis, threshold, rank, V, g, S, *rest)

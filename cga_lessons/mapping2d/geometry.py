@@ -2,7 +2,7 @@
 
 Segments as arrays (:class:`SegmentSet`), their rigid motion (3.4) and Hough
 coordinates (3.3) with vectors and matrices (:class:`PlainGeometry`; the
-conformal counterpart is :class:`cga_lessons.mapping2d.conformal.ConformalGeometry`),
+conformal counterpart is :class:`cga_lessons.mapping2d.conformal_geometry.ConformalGeometry`),
 the proximity matrix ``M`` and the correspondence vector ``C`` (3.5 and the
 guards of 3.19).  The corrections (3.6-3.12) are in
 :mod:`cga_lessons.mapping2d.corrections`, the map builder that uses both in
@@ -19,7 +19,7 @@ import numpy as np
 from cga_lessons import checks
 
 from .lines import diff_theta_unchecked
-from .params import MapParams
+from .params import CorrespondenceParams
 from .poses import compose_unchecked
 from .segment import TWO_PI, Segment, make_segment
 
@@ -165,7 +165,7 @@ def _rotations(theta):
 class PlainGeometry:
     """The geometric operations of the map builder with vectors and matrices (section 3.1).
 
-    :class:`cga_lessons.mapping2d.conformal.ConformalGeometry` offers the same
+    :class:`cga_lessons.mapping2d.conformal_geometry.ConformalGeometry` offers the same
     operations computed with conformal entities (section 3.2).
     """
 
@@ -319,7 +319,7 @@ def proximity_unchecked(G: SegmentSet, L: SegmentSet, centre, geometry, theta_xi
     return np.sqrt(dth**2 + drho**2), dth, drho
 
 
-def correspondences(G: SegmentSet, L: SegmentSet, centre, params, geometry=None):
+def correspondences(G: SegmentSet, L: SegmentSet, centre, params=None, geometry=None):
     """The correspondence vector ``C`` of section 3.1.2 (with the guards of 3.19).
 
     Parameters
@@ -328,8 +328,8 @@ def correspondences(G: SegmentSet, L: SegmentSet, centre, params, geometry=None)
         The global map and the local map ``L'`` (both in the global frame).
     centre : array_like, shape (2,)
         The robot's position, from which ``rho`` is measured.
-    params : MapParams
-        ``delta``, ``theta_xi``, ``overlap_margin``, ``xi_d`` and ``xi_m`` are used.
+    params : CorrespondenceParams, optional
+        ``delta``, ``theta_xi``, ``overlap_margin``, ``xi_d`` and ``xi_m`` are used (default: the defaults).
     geometry : PlainGeometry or ConformalGeometry, optional
 
     Returns
@@ -347,13 +347,15 @@ def correspondences(G: SegmentSet, L: SegmentSet, centre, params, geometry=None)
     """
     f = "correspondences"
     G, L, centre, geometry = _inputs(f, G, L, centre, geometry)
-    params = checks.instance(params, f, "params", MapParams, "a MapParams")
+    if params is None:
+        params = CorrespondenceParams()
+    params = checks.instance(params, f, "params", CorrespondenceParams, "a CorrespondenceParams (or None)")
     with np.errstate(over="ignore", invalid="ignore"):
         C, M, dth = correspondences_unchecked(G, L, centre, params, geometry)
     return C, checks.finite_result(M, f, "G, L, centre"), dth
 
 
-def correspondences_unchecked(G: SegmentSet, L: SegmentSet, centre, params, geometry):
+def correspondences_unchecked(G: SegmentSet, L: SegmentSet, centre, params: CorrespondenceParams, geometry):
     """:func:`correspondences` of checked arguments (the map builder's inner loop)."""
     C = np.full(len(G), -1, int)
     if len(G) == 0 or len(L) == 0:

@@ -17,7 +17,7 @@ from .poses import wrap_unchecked
 __all__ = ["loop_hypotheses", "angle_density", "EXACT_DENSITY_MAX"]
 
 
-def loop_hypotheses(geometry, Q, O, centre, max_angle, max_shift, params, n_rotations=3):
+def loop_hypotheses(geometry, Q, O, centre, max_angle, max_shift, params, overlap_margin, n_rotations=3):
     """Rigid motions (about ``centre``) that lay the query lines ``Q`` on the old lines ``O``.
 
     Rotations come from the angle differences (3.5) of line pairs within
@@ -26,7 +26,8 @@ def loop_hypotheses(geometry, Q, O, centre, max_angle, max_shift, params, n_rota
     angle gives ``n_O . t = rho_O - rho_Q`` (3.11); two non-parallel pairs fix
     ``t``; a translation within ``max_shift`` is scored by the total length of
     query lines it lays within ``loop_shift_tol`` of an old line they overlap
-    (3.19, spheres enlarged by ``overlap_margin``).
+    (3.19, spheres enlarged by ``overlap_margin``, m).  ``params`` is a
+    :class:`~cga_lessons.mapping2d.params.LoopParams`.
 
     Returns
     -------
@@ -85,7 +86,7 @@ def loop_hypotheses(geometry, Q, O, centre, max_angle, max_shift, params, n_rota
         res = np.abs(t @ n.T - b[None, :])  # (hyp, pairs)
         moved = mq_rot[None, :, :] + t[:, None, :]
         gap = np.hypot(*(moved - mo[oj][None]).transpose(2, 0, 1))
-        fits = (res < p.loop_shift_tol) & (gap <= 0.5 * (lq[qi] + lo[oj])[None, :] + p.overlap_margin)
+        fits = (res < p.loop_shift_tol) & (gap <= 0.5 * (lq[qi] + lo[oj])[None, :] + overlap_margin)
         # each query line counts once (its length), if any of its partners fits
         order = np.argsort(qi, kind="stable")
         uq, first = np.unique(qi[order], return_index=True)

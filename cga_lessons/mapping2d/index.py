@@ -189,6 +189,9 @@ def duplicate_pairs(G, gid, index: SegmentIndex, rows, geometry, params, pad: fl
         lines; quadratic in the lines of one direction).
     rows : array of int
         The rows whose pairs are wanted.
+    geometry : PlainGeometry or ConformalGeometry
+    params : CleanupParams
+        ``dup_angle`` and ``dup_distance``.
     pad : float
         The query boxes are enlarged by this (m), as the registered boxes are.
 

@@ -26,7 +26,7 @@ import numpy as np
 
 from cga_lessons import checks
 
-from .inputs import numbers, pose, reach, scan, scan_list
+from .inputs import numbers, pose, reach
 from .poses import compose_unchecked, relative_unchecked
 
 __all__ = [
@@ -35,8 +35,6 @@ __all__ = [
     "beam_angles",
     "simulate_scan",
     "simulate_scans",
-    "scan_points",
-    "scans_to_world",
     "OdometryModel",
     "simulate_odometry",
 ]
@@ -260,60 +258,6 @@ def simulate_scans(
     rng = checks.generator(rng, f, "rng", optional=True)
     settings = _settings(f, n_beams, fov, max_range, range_noise, mount)
     return [_simulate(walls, p, rng, *settings) for p in poses]
-
-
-def scan_points(ranges, angles):
-    """Cartesian points of the returning beams in the laser frame.
-
-    Returns
-    -------
-    points : ndarray, shape (k, 2)
-    index : ndarray of int, shape (k,)
-        Beam index of each point (beams with no return, inf or NaN, are dropped).
-    """
-    r, a = scan(ranges, angles, "scan_points")
-    return scan_points_unchecked(r, a)
-
-
-def scan_points_unchecked(r, a):
-    """:func:`scan_points` of checked arrays."""
-    ok = np.isfinite(r) & (r > 0)
-    idx = np.flatnonzero(ok)
-    return np.stack([r[ok] * np.cos(a[ok]), r[ok] * np.sin(a[ok])], axis=1), idx
-
-
-def scans_to_world(scans, poses, max_range: float = np.inf, mount=(0.0, 0.0, 0.0), step: int = 1) -> np.ndarray:
-    """All the points of a sequence of scans placed in the world with the given robot poses.
-
-    Parameters
-    ----------
-    scans : sequence of (ranges, angles)
-    poses : array_like, shape (T, 3)
-    max_range : float
-        Readings at or beyond this (m) are left out.
-    mount : array_like, shape (3,)
-        The laser's pose on the robot.
-    step : int
-        Use every ``step``-th scan.
-
-    Returns
-    -------
-    ndarray, shape (k, 2)
-    """
-    f = "scans_to_world"
-    scans = scan_list(scans, f)
-    poses = checks.batch(poses, f, "poses", (3,))[0]
-    checks.same_length(f, scans=scans, poses=poses)
-    max_range = reach(max_range, f, "max_range")
-    mount = pose(mount, f, "mount")
-    step = checks.integer(step, f, "step", low=1)
-    out = []
-    for (r, a), where in list(zip(scans, poses))[::step]:
-        pts, _ = scan_points_unchecked(np.where(r < max_range, r, np.inf), a)
-        lp = compose_unchecked(where, mount)
-        c, s = np.cos(lp[2]), np.sin(lp[2])
-        out.append(pts @ np.array([[c, s], [-s, c]]) + lp[:2])
-    return checks.finite_result(np.concatenate(out) if out else np.zeros((0, 2)), f, "scans, poses")
 
 
 # --------------------------------------------------------------------------- odometry

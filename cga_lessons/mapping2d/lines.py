@@ -25,13 +25,12 @@ faces of a thin wall apart, and it is what the thesis's remark
 
 from __future__ import annotations
 
-import inspect
-
 import numpy as np
 
 from cga_lessons import checks
 
-from .inputs import broadcast, numbers, reach, scan
+from .extraction import ExtractionParams, extraction_settings
+from .inputs import broadcast, numbers, scan
 from .segment import TWO_PI, Segment, fit_points, make_segment, point_sums
 
 __all__ = [
@@ -229,18 +228,21 @@ def _edge_end(c, d, end, beam, step, ranges, angles, max_range, tol, look=4):
     return False, end
 
 
+_DEFAULT = ExtractionParams()  # extract_segments' defaults are its fields
+
+
 def extract_segments(
     ranges,
     angles,
     *,
-    xi: float = 0.03,
-    phi_xi: float = np.radians(5.0),
-    min_points: int = 6,
-    min_length: float = 0.15,
-    max_gap: float = 0.20,
-    jump_ratio: float = 5.0,
-    max_range: float = np.inf,
-    edge_tolerance: float = 0.15,
+    xi: float = _DEFAULT.xi,
+    phi_xi: float = _DEFAULT.phi_xi,
+    min_points: int = _DEFAULT.min_points,
+    min_length: float = _DEFAULT.min_length,
+    max_gap: float = _DEFAULT.max_gap,
+    jump_ratio: float = _DEFAULT.jump_ratio,
+    max_range: float = _DEFAULT.max_range,
+    edge_tolerance: float = _DEFAULT.edge_tolerance,
 ) -> list[Segment]:
     """Line segments of one laser scan (section 3.1.1: Eqs. 3.1-3.3 and the merge step).
 
@@ -250,26 +252,11 @@ def extract_segments(
         Metres; ``inf`` or NaN where a beam returned nothing.
     angles : array_like, shape (n,)
         Beam angles in the laser frame (radians), increasing (counter-clockwise).
-    xi : float
-        The thesis's ``xi``: largest distance (m) of a point from its line; a
-        group whose farthest point is at least this far is split (3.2).
-    phi_xi : float
-        The thesis's ``phi_xi``: neighbouring lines whose inclinations differ
-        by less than this (radians) are merged.
-    min_points : int
-        Fewest points a segment needs (fewer: a chair leg, a stray return).
-    min_length : float
-        Shortest segment kept (m).
-    max_gap : float
-        Neighbouring points further apart than this (m) always start a new run.
-    jump_ratio : float
-        ... or further apart than ``jump_ratio`` times the beam spacing at their
-        range (``r * dphi``), which allows grazing walls but cuts at range jumps.
-    max_range : float
-        Readings at or beyond this (m) count as no return; also the range
-        within which the sensor would have seen a wall that continued (edge test).
-    edge_tolerance : float
-        A neighbour beam landing this far (m) behind the line marks a real edge.
+    xi, phi_xi, min_points, min_length, max_gap, jump_ratio, max_range, edge_tolerance
+        The extraction's settings: their meaning (the thesis's ``xi`` of 3.2
+        and ``phi_xi``, the run breaks, the reach) and their defaults are
+        those of :class:`~cga_lessons.mapping2d.ExtractionParams`, where they
+        are written once.
 
     Returns
     -------
@@ -285,56 +272,17 @@ def extract_segments(
     r, a = scan(ranges, angles, f, increasing=True)
     settings = {"xi": xi, "phi_xi": phi_xi, "min_points": min_points, "min_length": min_length, "max_gap": max_gap,
                 "jump_ratio": jump_ratio, "max_range": max_range, "edge_tolerance": edge_tolerance}  # fmt: skip
-    return extract_unchecked(r, a, **extraction_settings(settings, f))
-
-
-EXTRACTION = ("xi", "phi_xi", "min_points", "min_length", "max_gap", "jump_ratio", "max_range", "edge_tolerance")
-
-
-def extraction_settings(settings: dict, func: str, prefix: str = "") -> dict:
-    """The checked settings of :func:`extract_segments` (names from :data:`EXTRACTION`); an unknown name or a bad
-    value is an error of ``func``'s argument ``prefix + name``."""
-    out = {}
-    for name, value in settings.items():
-        arg = prefix + str(name)
-        if name in ("xi", "phi_xi", "max_gap"):
-            out[name] = checks.real(value, func, arg, low=0.0, strict_low=True)
-        elif name in ("min_length", "jump_ratio", "edge_tolerance"):
-            out[name] = checks.real(value, func, arg, low=0.0)
-        elif name == "min_points":
-            out[name] = checks.integer(value, func, arg, low=2)
-        elif name == "max_range":
-            out[name] = reach(value, func, arg)
-        else:
-            raise checks.fail(func, arg, f"unknown setting; the settings are {', '.join(EXTRACTION)}")
-    return out
-
-
-def extraction_defaults() -> dict:
-    """The default settings of :func:`extract_segments`, read off its signature (the one place they are written)."""
-    params = inspect.signature(extract_segments).parameters
-    return {name: params[name].default for name in EXTRACTION}
+    return extract_unchecked(r, a, ExtractionParams(**extraction_settings(settings, f)))
 
 
 def extract_unchecked(
-    r,
-    a,
-    *,
-    xi: float,
-    phi_xi: float,
-    min_points: int,
-    min_length: float,
-    max_gap: float,
-    jump_ratio: float,
-    max_range: float,
-    edge_tolerance: float,
-    func: str = "extract_segments",
-    names: tuple = ("ranges", "angles"),
+    r, a, settings: ExtractionParams, *, func: str = "extract_segments", names: tuple = ("ranges", "angles")
 ):
     """:func:`extract_segments` of checked arguments (a scan from :func:`~cga_lessons.mapping2d.inputs.scan` with
-    ``increasing=True``, every setting checked by :func:`extraction_settings`, the others from
-    :func:`extraction_defaults`); ``func`` and ``names`` name the caller and its arguments in the error of a scan
-    whose readings overflow."""
+    ``increasing=True`` and its :class:`~cga_lessons.mapping2d.extraction.ExtractionParams`); ``func`` and ``names``
+    name the caller and its arguments in the error of a scan whose readings overflow."""
+    xi, phi_xi, min_points, min_length = settings.xi, settings.phi_xi, settings.min_points, settings.min_length
+    max_range, edge_tolerance = settings.max_range, settings.edge_tolerance
     r = r.copy()
     r[~np.isfinite(r) | (r <= 0) | (r >= max_range)] = np.inf
     ok = np.isfinite(r)
@@ -348,7 +296,7 @@ def extract_unchecked(
 
     groups = []
     moments = _prefix_moments(pts)
-    for i0, i1 in _runs(pts, index, r, dphi, max_gap, jump_ratio):
+    for i0, i1 in _runs(pts, index, r, dphi, settings.max_gap, settings.jump_ratio):
         pieces = [(i0 + p, i0 + q) for p, q in _split(pts[i0 : i1 + 1], xi)]
         groups.append(_merge(moments, pieces, xi, phi_xi, min_points))
 

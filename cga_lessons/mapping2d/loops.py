@@ -30,6 +30,8 @@ steps, built from the thesis's own pieces, close the loop:
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from .graph import PoseGraph, chain_uncertainty, relative_pose_unchecked
@@ -37,6 +39,7 @@ from .hypotheses import loop_hypotheses
 from .poses import compose_unchecked, wrap_unchecked
 
 __all__ = [
+    "Revisit",
     "visible_lines",
     "anchor_scan",
     "find_loop",
@@ -45,6 +48,16 @@ __all__ = [
     "corrections_agree",
     "LoopCloser",
 ]
+
+
+class Revisit(NamedTuple):
+    """A revisit found by :func:`find_loop`: the scan's ``pose`` (3,) on the old map and its ``cov`` (3, 3), the
+    earlier scan it is tied to (``anchor``, :func:`anchor_scan`) and the ``ids`` of the matched old lines."""
+
+    pose: np.ndarray
+    cov: np.ndarray
+    anchor: int
+    ids: np.ndarray
 
 
 def _distinct(h, others, shift, angle):
@@ -58,8 +71,8 @@ def visible_lines(builder, pose, fov, idx):
         return idx
     b = builder
     lp = compose_unchecked(pose, b.mount)
-    G = b.G.take(idx)
-    rho, _ = b.geo.hough(G, lp[:2])
+    G = b.lines.take(idx)
+    rho, _ = b.geometry.hough(G, lp[:2])
     ok = rho > 0
     seen = np.zeros(len(idx), bool)
     for f in (0.0, 0.5, 1.0):
@@ -69,9 +82,9 @@ def visible_lines(builder, pose, fov, idx):
     return idx[ok & seen]
 
 
-def _verify(b, k, poses, points, old, results):
-    """Accept the best refined hypothesis if the scan lies on the old lines, unambiguously; else None."""
-    p = b.p
+def _verify(b, k, poses, points, results, p):
+    """Accept the best refined hypothesis if the scan lies on the old lines, unambiguously (by the
+    :class:`~cga_lessons.mapping2d.params.LoopParams` ``p``); else None."""
     if not results:
         return None
     results.sort(key=lambda r: -r[0])
@@ -87,7 +100,7 @@ def _verify(b, k, poses, points, old, results):
         if far and other[0] > p.loop_ambiguity * sup:
             return None  # another place fits almost as well
     lines = pairs[0]
-    return {"pose": q, "cov": cov, "anchor": anchor_scan(b, lines, q, poses[:k]), "ids": b.gid[lines]}
+    return Revisit(q, cov, anchor_scan(b, lines, q, poses[:k]), b.line_ids[lines])
 
 
 def anchor_scan(builder, lines, pose, poses):
@@ -100,7 +113,7 @@ def anchor_scan(builder, lines, pose, poses):
     return int(best[np.argmin(d)])
 
 
-def find_loop(builder, k, poses, L, points, fov, window):
+def find_loop(builder, k, poses, L, points, fov, window, params):
     """Look for a revisit of scan ``k`` to old parts of the map; verify it.
 
     The old lines the laser could see from ``pose`` are first tried at the
@@ -138,15 +151,14 @@ def find_loop(builder, k, poses, L, points, fov, window):
         poses allows between scan ``j`` and scan ``k``; the search window is
         three times that (within ``loop_max_shift`` and ``loop_max_angle``),
         with ``j`` the scan that last saw the longest old line in view.
+    params : LoopParams
 
     Returns
     -------
-    dict or None
-        ``pose`` (the corrected pose on the old map), ``cov``, ``anchor`` (the
-        earlier scan it is tied to, :func:`anchor_scan`) and ``ids`` (the ids
-        of the matched old lines), or None when no revisit is found.
+    Revisit or None
+        None when no revisit is found.
     """
-    b, p = builder, builder.p
+    b, p = builder, params
     pose = poses[k]
     if len(L) < 2 or len(points) == 0:
         return None
@@ -156,28 +168,30 @@ def find_loop(builder, k, poses, L, points, fov, window):
     hyp_cov = np.diag([p.loop_shift_tol**2, p.loop_shift_tol**2, p.loop_angle_tol**2])
     q, cov, pairs, _ = b.correct(L, pose, hyp_cov, old, widen=False, test=False)
     if pairs is not None:
-        found = _verify(b, k, poses, points, old, [(b.support(points, q, old), q, cov, pairs)])
+        found = _verify(b, k, poses, points, [(b.support(points, q, old), q, cov, pairs)], p)
         if found is not None:
             return found
     recent = b.near(pose[:2], k, radius=b.max_range, active=True)
-    sigma_xy, sigma_theta = window(int(b.last[old[np.argmax(b.G.length[old])]]))
+    sigma_xy, sigma_theta = window(int(b.last_seen[old[np.argmax(b.lines.length[old])]]))
     max_angle = min(p.loop_max_angle, 3.0 * sigma_theta + p.loop_angle_tol)
     max_shift = min(p.loop_max_shift, 3.0 * sigma_xy + p.loop_shift_tol)
     wide = max_shift > b.max_range  # the revisit may lie out of the drifted pose's view: old lines of the window
     cand = b.near(pose[:2], k, radius=b.max_range + max_shift, active=False) if wide else old
-    hypotheses = loop_hypotheses(b.geo, b.G.take(recent), b.G.take(cand), pose[:2], max_angle, max_shift, p)
-    results = _refined_hypotheses(b, k, pose, hypotheses, L, points, fov, old if not wide else None, hyp_cov)
-    found = _verify(b, k, poses, points, old, results)
+    margin = b.params.correspondence.overlap_margin
+    hypotheses = loop_hypotheses(
+        b.geometry, b.lines.take(recent), b.lines.take(cand), pose[:2], max_angle, max_shift, p, margin
+    )
+    results = _refined_hypotheses(b, k, pose, hypotheses, L, points, fov, old if not wide else None, hyp_cov, p)
+    found = _verify(b, k, poses, points, results, p)
     if found is not None and results[0][0] < b.support(points, pose, old):
         return None
     return found
 
 
-def _refined_hypotheses(b, k, pose, hypotheses, L, points, fov, old, hyp_cov) -> list:
+def _refined_hypotheses(b, k, pose, hypotheses, L, points, fov, old, hyp_cov, p) -> list:
     """The first two clearly different loop ``hypotheses`` of scan ``k`` (at ``pose``), each refined by the ordinary
     correction against the old lines (``old``, or when None those visible from the hypothesis): a list of
-    ``(support, pose, cov, pairs)`` for :func:`_verify`."""
-    p = b.p
+    ``(support, pose, cov, pairs)`` for :func:`_verify`; ``p`` the :class:`~cga_lessons.mapping2d.params.LoopParams`."""
     tried, results = [], []
     for h in hypotheses:
         if not _distinct(h, tried, 2 * p.loop_shift_tol, 2 * p.loop_angle_tol):
@@ -197,33 +211,36 @@ def _refined_hypotheses(b, k, pose, hypotheses, L, points, fov, old, hyp_cov) ->
     return results
 
 
-def apply_loop(builder, graph, poses, k, loops):
+def apply_loop(builder, graph, poses, k, loops, params, robust):
     """Add verified revisits to the pose graph; relax the graph and refit the map if they move the poses.
 
     Parameters
     ----------
-    loops : list of (int, dict)
+    loops : list of (int, Revisit)
         ``(scan, loop)`` pairs, ``loop`` as returned by :func:`find_loop`.
+    params : LoopParams
+    robust : float
+        Scale (standard deviations) of the robust weight of the pose graph's loop edges.
 
     Returns
     -------
     ndarray, shape (k + 1, 3)
         The poses up to scan ``k``.
     """
-    p = builder.p
+    p = params
     moved = False
     for s, loop in loops:
-        j = loop["anchor"]
-        z = relative_pose_unchecked(poses[j], loop["pose"])
-        cov = loop["cov"] + np.diag([p.graph_sigma_xy**2, p.graph_sigma_xy**2, p.graph_sigma_theta**2])
+        j = loop.anchor
+        z = relative_pose_unchecked(poses[j], loop.pose)
+        cov = loop.cov + np.diag([p.graph_sigma_xy**2, p.graph_sigma_xy**2, p.graph_sigma_theta**2])
         graph.add(j, s, z, cov, loop=True)
-        builder.last[builder.rows_of(builder.resolve(loop["ids"]))] = k  # the old lines are seen again
-        d = relative_pose_unchecked(poses[s], loop["pose"])
+        builder.last_seen[builder.rows_of(builder.resolve(loop.ids))] = k  # the old lines are seen again
+        d = relative_pose_unchecked(poses[s], loop.pose)
         moved |= bool(np.hypot(*d[:2]) > 0.5 * p.loop_shift_tol or abs(d[2]) > 0.5 * p.loop_angle_tol)
     if not moved:
         return poses[: k + 1]  # already in place: the edges wait for the next relaxation
-    first = min(loop["anchor"] for _, loop in loops)
-    new = graph.optimize(poses[: k + 1], robust=p.gate, first_free=first)
+    first = min(loop.anchor for _, loop in loops)
+    new = graph.optimize(poses[: k + 1], robust=robust, first_free=first)
     builder.refit(new)
     builder.remove_duplicates()
     return new
@@ -248,10 +265,19 @@ class LoopCloser:
     and accepts one when the next search finds the same correction of the
     chain (a lone match in a repetitive building is not trusted); then the
     graph is relaxed and the map refitted (:func:`apply_loop`).
+
+    Parameters
+    ----------
+    params : LoopParams
+    n_scans : int
+    robust : float
+        Scale (standard deviations) of the robust weight of the loop edges in the pose graph (the correction's
+        ``gate``).
     """
 
-    def __init__(self, params, n_scans):
-        self.p = params
+    def __init__(self, params, n_scans, robust):
+        self.params = params
+        self.robust = robust
         self.graph = PoseGraph()
         self.var_xy = np.zeros(n_scans)
         self.var_theta = np.zeros(n_scans)
@@ -276,9 +302,9 @@ class LoopCloser:
         the pose graph against any other (its robust cost alone cannot refuse
         a wrong revisit that the chain's floors make look possible).
         """
-        d = relative_pose_unchecked(poses[k], loop["pose"])
-        sigma_xy, sigma_theta = window(loop["anchor"])
-        cov = loop["cov"]
+        d = relative_pose_unchecked(poses[k], loop.pose)
+        sigma_xy, sigma_theta = window(loop.anchor)
+        cov = loop.cov
         chi2 = (d[0] ** 2 + d[1] ** 2) / (sigma_xy**2 + max(cov[0, 0], cov[1, 1])) + d[2] ** 2 / (
             sigma_theta**2 + cov[2, 2]
         )
@@ -286,7 +312,7 @@ class LoopCloser:
 
     def search(self, builder, k, poses, L, points, fov):
         """Search for a revisit at scan ``k``; returns the relaxed poses[:k+1] and the pose covariance, or None."""
-        p = self.p
+        p = self.params
         path = builder.path[-1]
         if not p.loop_closure or len(L) < 2 or path < self.next_search:
             return None
@@ -295,7 +321,7 @@ class LoopCloser:
         def window(j):
             return chain_uncertainty(poses, self.var_xy, self.var_theta, j, k)
 
-        loop = find_loop(builder, k, poses, L, points, fov, window)
+        loop = find_loop(builder, k, poses, L, points, fov, window, p)
         if loop is None:
             if self.pending is not None and path - self.pending[3] > p.loop_every:
                 self.pending = None
@@ -304,11 +330,11 @@ class LoopCloser:
             return None
         if not self.plausible(loop, poses, k, window):
             return None  # farther than the chain can have drifted: a place that only looks alike
-        fix = chain_correction(loop["pose"], poses[k])
+        fix = chain_correction(loop.pose, poses[k])
         if self.pending is None or not corrections_agree(self.pending[2], fix, p):
             self.pending = (k, loop, fix, path)
             self.next_search = path  # confirm at the next scan
             return None
-        new = apply_loop(builder, self.graph, poses, k, [self.pending[:2], (k, loop)])
+        new = apply_loop(builder, self.graph, poses, k, [self.pending[:2], (k, loop)], p, self.robust)
         self.pending = None
-        return new, loop["cov"]
+        return new, loop.cov

@@ -1,15 +1,33 @@
-"""The thresholds of the 2D line-map builder (:func:`cga_lessons.mapping2d.build_map`), with the thesis's meaning."""
+"""The thresholds of the 2D line-map builder (:func:`cga_lessons.mapping2d.build_map`), stage by stage, with the
+thesis's meaning.
+
+:class:`MapParams` is made of five stages, each a small frozen dataclass that checks its own fields and is read by
+the code of its stage only: :class:`CorrespondenceParams` (which map lines a scan's lines correspond to, 3.5, 3.19),
+:class:`CorrectionParams` (the pose correction 3.6-3.12 as an estimate, and what it learns of the sensor),
+:class:`OdometryPriorParams` (the odometry's drift model: the prediction's covariance), :class:`LoopParams` (revisits
+and the pose graph) and :class:`CleanupParams` (duplicate removal and the final adjustment).  Every field name is
+unique across the stages, so ``build_map(..., gate=4.0)`` names one field; overrides are merged by
+:func:`cga_lessons.config.merged`.
+"""
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 
 from cga_lessons import checks
+from cga_lessons.config import check_stages
 
-__all__ = ["MapParams"]
+__all__ = [
+    "CorrespondenceParams",
+    "CorrectionParams",
+    "OdometryPriorParams",
+    "LoopParams",
+    "CleanupParams",
+    "MapParams",
+]
 
 # The fields that are whole numbers (with their least value), flags, fractions in [0, 1], angles in [0, pi],
 # and those that may be infinite (no bound); every other field is a real number >= 0.
@@ -20,12 +38,32 @@ _NO_BOUND = {"loop_max_shift"}
 _SIGNED = {"odo_heading_bias"}  # a drift either way
 
 
-@dataclass(frozen=True)
-class MapParams:
-    """Every threshold of the map builder, with the thesis's meaning.
+def _check_fields(stage) -> None:
+    """Check every field of a stage by its kind (the sets above); errors name the stage's class."""
+    f = type(stage).__name__
+    for fld in fields(stage):
+        name, value = fld.name, getattr(stage, fld.name)
+        if name in _COUNTS:
+            checks.integer(value, f, name, low=_COUNTS[name])
+        elif name in _FLAGS:
+            checks.flag(value, f, name)
+        elif name in _FRACTIONS:
+            strict = name == "significance"  # a quantile: neither 0 nor 1
+            checks.real(value, f, name, low=0.0, high=1.0, strict_low=strict, strict_high=strict)
+        elif name == "range_noise":
+            if value is not None:
+                checks.real(value, f, name, low=0.0, strict_low=True)
+        elif name in _SIGNED:
+            checks.real(value, f, name)
+        elif name == "loop_max_angle":
+            checks.real(value, f, name, low=0.0, high=math.pi)
+        elif not (name in _NO_BOUND and isinstance(value, (float, np.floating)) and value == math.inf):
+            checks.real(value, f, name, low=0.0)
 
-    One set of defaults serves the synthetic scenes and real logs; only the
-    sensor's reach (``max_range`` of :func:`~cga_lessons.mapping2d.build_map`) differs.
+
+@dataclass(frozen=True)
+class CorrespondenceParams:
+    """Which map lines a scan's lines correspond to (3.5, with the guards of 3.19), and which map lines are looked at.
 
     Attributes
     ----------
@@ -45,6 +83,35 @@ class MapParams:
     overlap_margin : float
         The segments' spheres (2.134) are enlarged by this (m) before the
         intersection test (a continuation across a small gap still matches).
+    edge_match : float
+        Two segment ends that are real edges correspond if this close (m).
+    neighbourhood : float
+        Only map segments within this distance (m) of the robot are matched.
+    active_path : float
+        Only map lines seen within this many metres of travel are matched
+        (the local map); older ones are left to loop closure (0: all lines).
+    """
+
+    delta: float = 0.3
+    theta_xi: float = 0.3
+    xi_d: float = 0.3
+    xi_m: float = 0.25
+    overlap_margin: float = 0.3
+    edge_match: float = 0.3
+    neighbourhood: float = 8.0
+    active_path: float = 20.0
+
+    def __post_init__(self):
+        _check_fields(self)
+
+
+@dataclass(frozen=True)
+class CorrectionParams:
+    """The correction of a scan's pose against the map (3.6-3.12) as a robust estimate with a prior, and what the
+    corrector learns of the sensor and the odometry while the map is built.
+
+    Attributes
+    ----------
     t_xi : float
         ``T_xi``: bound (m) on each component of a position correction (3.12).
     theta_max : float
@@ -64,14 +131,14 @@ class MapParams:
         within this quantile of the chi-square law
         (:func:`~cga_lessons.mapping2d.estimation.estimate_correction`): 0.999
         refuses a right correction once in a thousand scans.
-    robust_kernel : float
-        Huber constant (in scaled standard deviations) of the robust least
-        squares of each correction.
     estimate_odometry : bool
         Learn how good the odometry is, relative to its drift model, from the
         registration of each scan on the one before
         (:class:`~cga_lessons.mapping2d.noise.InnovationModel`); False: the
         model's covariance as stated.
+    robust_kernel : float
+        Huber constant (in scaled standard deviations) of the robust least
+        squares of each correction.
     registration_xy, registration_theta : float
         Shape (m, rad) of the registration error common to all the lines of a
         scan, whose scale the same model learns: the robust spread of the
@@ -93,28 +160,69 @@ class MapParams:
         Two correspondences agree on the heading when their angle differences
         are within this (radians; or ``gate`` standard deviations, if more);
         only the largest agreeing set (weighted by length) is used.
-    odo_sigma_xy, odo_sigma_heading, odo_sigma_turn, odo_heading_bias : float
-        The odometry's drift model (as :class:`cga_lessons.mapping2d.laser.OdometryModel`):
-        m per sqrt(m), rad per sqrt(m), rad per sqrt(rad) turned, rad per m.
-        It gives the prediction's covariance.
-    edge_match : float
-        Two segment ends that are real edges correspond if this close (m).
     edge_sigma : float
         Standard deviation (m) of a real edge's position along its line.
-    dup_angle, dup_distance : float
-        Final check: map lines closer than these (radians, m) that overlap are
-        duplicates and are merged.
-    cleanup_every : int
-        Run the duplicate removal every so many scans (and at the end).
     support_distance : float
         Each of the scan's points within this distance ``D`` (m) of a map
         segment scores ``1 - (d / D)^2``; a correction is refused when the
         prediction scores more by over 1 % of the points (0 disables the check).
-    neighbourhood : float
-        Only map segments within this distance (m) of the robot are matched.
-    active_path : float
-        Only map lines seen within this many metres of travel are matched
-        (the local map); older ones are left to loop closure (0: all lines).
+    learn_lag : int
+        Besides each scan on the one before, every ``learn_lag``-th scan is
+        registered on the scan ``learn_lag`` before it to learn how good the
+        odometry is (its error grows with the steps, the registration's does
+        not).  Four: scans a few metres apart still share most of their
+        walls on the bundled logs (steps of about a metre); 1 turns it off.
+    """
+
+    t_xi: float = 0.3
+    theta_max: float = 0.2
+    n_iterations: int = 3
+    range_noise: float | None = None
+    significance: float = 0.999
+    estimate_odometry: bool = True
+    robust_kernel: float = 2.0
+    registration_xy: float = 0.025
+    registration_theta: float = 0.009
+    angle_floor: float = 0.0
+    offset_floor: float = 0.003
+    estimate_floors: bool = True
+    gate: float = 3.0
+    consensus_angle: float = 0.02
+    edge_sigma: float = 0.03
+    support_distance: float = 0.05
+    learn_lag: int = 4
+
+    def __post_init__(self):
+        _check_fields(self)
+
+
+@dataclass(frozen=True)
+class OdometryPriorParams:
+    """The odometry's drift model, which gives the prediction's covariance (as
+    :class:`cga_lessons.mapping2d.laser.OdometryModel`).
+
+    Attributes
+    ----------
+    odo_sigma_xy, odo_sigma_heading, odo_sigma_turn, odo_heading_bias : float
+        m per sqrt(m), rad per sqrt(m), rad per sqrt(rad) turned, rad per m
+        (the bias a drift either way: it may be negative).
+    """
+
+    odo_sigma_xy: float = 0.02
+    odo_sigma_heading: float = 0.01
+    odo_sigma_turn: float = 0.03
+    odo_heading_bias: float = 0.005
+
+    def __post_init__(self):
+        _check_fields(self)
+
+
+@dataclass(frozen=True)
+class LoopParams:
+    """Loop closure: the search for revisits of old parts of the map, and the pose graph that relaxes the poses.
+
+    Attributes
+    ----------
     loop_closure : bool
         Look for revisits of old parts of the map and relax the poses.
     loop_every : float
@@ -133,7 +241,7 @@ class MapParams:
         Fewest old lines a revisit must match.
     loop_min_support : float
         Fraction of the scan's points that must lie on the old lines (by the
-        score of ``support_distance``).
+        score of :attr:`CorrectionParams.support_distance`).
     loop_max_sigma : float
         Largest standard deviation (m) of the revisit's position in any
         direction (parallel corridor walls alone do not close a loop).
@@ -143,49 +251,8 @@ class MapParams:
     graph_sigma_xy, graph_sigma_theta : float
         Model error (m, rad) added to each corrected step and revisit in the
         pose graph.
-    learn_lag : int
-        Besides each scan on the one before, every ``learn_lag``-th scan is
-        registered on the scan ``learn_lag`` before it to learn how good the
-        odometry is (its error grows with the steps, the registration's does
-        not).  Four: scans a few metres apart still share most of their
-        walls on the bundled logs (steps of about a metre); 1 turns it off.
-    adjust : bool
-        When the last scan is in, estimate all poses and lines together from
-        every observation and odometry step
-        (:func:`~cga_lessons.mapping2d.adjust.adjust_map`).
     """
 
-    delta: float = 0.3
-    theta_xi: float = 0.3
-    xi_d: float = 0.3
-    xi_m: float = 0.25
-    overlap_margin: float = 0.3
-    t_xi: float = 0.3
-    theta_max: float = 0.2
-    n_iterations: int = 3
-    range_noise: float | None = None
-    significance: float = 0.999
-    estimate_odometry: bool = True
-    robust_kernel: float = 2.0
-    registration_xy: float = 0.025
-    registration_theta: float = 0.009
-    angle_floor: float = 0.0
-    offset_floor: float = 0.003
-    estimate_floors: bool = True
-    gate: float = 3.0
-    consensus_angle: float = 0.02
-    odo_sigma_xy: float = 0.02
-    odo_sigma_heading: float = 0.01
-    odo_sigma_turn: float = 0.03
-    odo_heading_bias: float = 0.005
-    edge_match: float = 0.3
-    edge_sigma: float = 0.03
-    dup_angle: float = 0.05
-    dup_distance: float = 0.08
-    cleanup_every: int = 25
-    support_distance: float = 0.05
-    neighbourhood: float = 8.0
-    active_path: float = 20.0
     loop_closure: bool = True
     loop_every: float = 1.0
     loop_angle_tol: float = 0.02
@@ -198,26 +265,68 @@ class MapParams:
     loop_ambiguity: float = 0.8
     graph_sigma_xy: float = 0.01
     graph_sigma_theta: float = 0.005
-    adjust: bool = True
-    learn_lag: int = 4
 
     def __post_init__(self):
-        f = "MapParams"
-        for field in fields(self):
-            name, value = field.name, getattr(self, field.name)
-            if name in _COUNTS:
-                checks.integer(value, f, name, low=_COUNTS[name])
-            elif name in _FLAGS:
-                checks.flag(value, f, name)
-            elif name in _FRACTIONS:
-                strict = name == "significance"  # a quantile: neither 0 nor 1
-                checks.real(value, f, name, low=0.0, high=1.0, strict_low=strict, strict_high=strict)
-            elif name == "range_noise":
-                if value is not None:
-                    checks.real(value, f, name, low=0.0, strict_low=True)
-            elif name in _SIGNED:
-                checks.real(value, f, name)
-            elif name == "loop_max_angle":
-                checks.real(value, f, name, low=0.0, high=math.pi)
-            elif not (name in _NO_BOUND and isinstance(value, (float, np.floating)) and value == math.inf):
-                checks.real(value, f, name, low=0.0)
+        _check_fields(self)
+
+
+@dataclass(frozen=True)
+class CleanupParams:
+    """The map's clean-up (duplicate lines merged) and the final adjustment.
+
+    Attributes
+    ----------
+    dup_angle, dup_distance : float
+        Map lines closer than these (radians, m) that overlap are duplicates
+        and are merged.
+    cleanup_every : int
+        Run the duplicate removal every so many scans (and at the end; 0: only
+        at the end).
+    adjust : bool
+        When the last scan is in, estimate all poses and lines together from
+        every observation and odometry step
+        (:func:`~cga_lessons.mapping2d.adjust.adjust_map`).
+    """
+
+    dup_angle: float = 0.05
+    dup_distance: float = 0.08
+    cleanup_every: int = 25
+    adjust: bool = True
+
+    def __post_init__(self):
+        _check_fields(self)
+
+
+@dataclass(frozen=True)
+class MapParams:
+    """Every threshold of the map builder, stage by stage, with the thesis's meaning.
+
+    One set of defaults serves the synthetic scenes and real logs; only the
+    sensor's reach (``max_range`` of :func:`~cga_lessons.mapping2d.build_map`) differs.
+    :func:`~cga_lessons.mapping2d.build_map` takes overrides as a whole stage
+    (``loops=LoopParams(loop_every=2.0)``), a dict of some of a stage's fields
+    (``loops={"loop_every": 2.0}``) or a single field by its name
+    (``loop_every=2.0``): field names are unique across the stages.
+
+    Attributes
+    ----------
+    correspondence : CorrespondenceParams
+        Which map lines correspond to a scan's lines (3.5, 3.19), and which are looked at.
+    correction : CorrectionParams
+        The pose correction (3.6-3.12) as a robust estimate, and what it learns of the sensor.
+    odometry_prior : OdometryPriorParams
+        The odometry's drift model (the prediction's covariance).
+    loops : LoopParams
+        Loop closure: revisits and the pose graph.
+    cleanup : CleanupParams
+        Duplicate removal and the final adjustment.
+    """
+
+    correspondence: CorrespondenceParams = field(default_factory=CorrespondenceParams)
+    correction: CorrectionParams = field(default_factory=CorrectionParams)
+    odometry_prior: OdometryPriorParams = field(default_factory=OdometryPriorParams)
+    loops: LoopParams = field(default_factory=LoopParams)
+    cleanup: CleanupParams = field(default_factory=CleanupParams)
+
+    def __post_init__(self):
+        check_stages(self)

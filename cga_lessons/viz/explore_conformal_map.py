@@ -21,12 +21,14 @@ sliders for a live session.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import matplotlib.pyplot as plt
 import numpy as np
 
 from cga_lessons import conformal as cga
 from cga_lessons import mapping2d
-from cga_lessons.algebra import Multivector
+from cga_lessons.algebra import Multivector, finite_multivector
 from cga_lessons.checks import fail, real, relabel
 from cga_lessons.mapping2d import SegmentSet, theta_correction, translation_correction
 
@@ -35,7 +37,15 @@ from .inputs import SQUARED, SQUARED_WHY, coord, point_pairs, vector
 from .inputs import scene as as_scene
 from .laser import draw_scene
 
-__all__ = ["CorrectionExplorer", "place", "ends", "line_members", "rotor_about", "conformal_correction"]
+__all__ = [
+    "CorrectionExplorer",
+    "place",
+    "ends",
+    "line_members",
+    "rotor_about",
+    "ConformalCorrection",
+    "conformal_correction",
+]
 
 
 def place(PP: Multivector, pose) -> tuple[Multivector, Multivector]:
@@ -83,13 +93,48 @@ def _rotor_about(c: np.ndarray, angle: float) -> Multivector:
     return mapping2d.robot_motor([c[0], c[1], angle]) * cga.translator([-c[0], -c[1], 0.0])
 
 
-def conformal_correction(PP_map: Multivector, PP_scan: Multivector, centre, theta_xi: float = np.radians(30)) -> dict:
+@dataclass(frozen=True)
+class ConformalCorrection:
+    """The result of :func:`conformal_correction`.
+
+    Attributes
+    ----------
+    theta : float
+        The heading correction (3.8), radians.
+    t : ndarray, shape (2,)
+        The position correction (3.9-3.12), m.
+    rotor : Multivector
+        The turn by ``theta`` about the centre, ``R_centre(theta)``.
+    motor : Multivector
+        The whole correction ``T(t) R_centre(theta)``.
+    turned, corrected : Multivector
+        The scan's point pairs after the turn alone and after the whole correction (3.18).
+    """
+
+    theta: float
+    t: np.ndarray
+    rotor: Multivector
+    motor: Multivector
+    turned: Multivector
+    corrected: Multivector
+
+    def __post_init__(self):
+        f = "ConformalCorrection"
+        object.__setattr__(self, "theta", real(self.theta, f, "theta"))
+        object.__setattr__(self, "t", vector(self.t, f, "t", (2,)))
+        for name in ("rotor", "motor", "turned", "corrected"):
+            finite_multivector(getattr(self, name), f, name)
+
+
+def conformal_correction(
+    PP_map: Multivector, PP_scan: Multivector, centre, theta_xi: float = np.radians(30)
+) -> ConformalCorrection:
     """The correction of section 3.1.3 for corresponding point pairs (the i-th of each), as a motor.
 
     ``theta_corr`` (3.8) is the mean ``diffTheta`` (3.5, gate ``theta_xi``) of the lines seen from ``centre``; the
     scan is turned by it about ``centre``, and ``t`` (3.9-3.12) solves ``n . t = rho_G - rho_L'`` by least squares.
-    Returns ``{"theta", "t", "rotor", "motor", "turned", "corrected"}``: the motor ``T(t) R_centre(theta)`` and the
-    scan's point pairs after the turn alone and after the whole correction (3.18).
+    Returns the motor ``T(t) R_centre(theta)`` and the scan's point pairs after the turn alone and after the whole
+    correction (3.18), as a :class:`ConformalCorrection`.
     """
     func = "conformal_correction"
     PP_map, PP_scan = point_pairs(PP_map, func, "PP_map"), point_pairs(PP_scan, func, "PP_scan")
@@ -107,8 +152,8 @@ def conformal_correction(PP_map: Multivector, PP_scan: Multivector, centre, thet
     with relabel(func, "PP_scan"):
         t = np.asarray(translation_correction(rho_g, rho_l, th_l), float)  # (3.12)
     C = cga.translator([t[0], t[1], 0.0]) * R
-    return {"theta": float(theta), "t": t, "rotor": R, "motor": C, "turned": turned,
-            "corrected": (C * PP_scan * ~C).grade(2)}  # fmt: skip
+    corrected = (C * PP_scan * ~C).grade(2)
+    return ConformalCorrection(theta=float(theta), t=t, rotor=R, motor=C, turned=turned, corrected=corrected)
 
 
 def _check(value, func: str, name: str) -> float:
@@ -199,18 +244,18 @@ class CorrectionExplorer:
         self.error_motor = self.believed_motor * ~self.true_motor  # moves the map onto the misplaced scan
         centre = self.believed[:2]
         self.result = conformal_correction(self.map, self.placed, centre, np.radians(self.theta_xi_deg))
-        self.correction = np.array([*self.result["t"], self.result["theta"]])
+        self.correction = np.array([*self.result.t, self.result.theta])
         self.corrected_pose = self.believed + self.correction  # (3.6), (3.7)
         self.corrected_pose[2] = mapping2d.wrap_angle(self.corrected_pose[2])
         self._draw(centre)
 
     def _draw(self, centre) -> None:
-        for line, PP in ((self._placed, self.placed), (self._turned, self.result["turned"]),
-                         (self._fixed, self.result["corrected"])):  # fmt: skip
+        for line, PP in ((self._placed, self.placed), (self._turned, self.result.turned),
+                         (self._fixed, self.result.corrected)):  # fmt: skip
             line.set_data(*_polyline(*ends(PP)))
         self._believed.set_data(*_robot(self.believed).T)
-        hough = ((self._h_map, self.map), (self._h_placed, self.placed), (self._h_turned, self.result["turned"]),
-                 (self._h_fixed, self.result["corrected"]))  # fmt: skip
+        hough = ((self._h_map, self.map), (self._h_placed, self.placed), (self._h_turned, self.result.turned),
+                 (self._h_fixed, self.result.corrected))  # fmt: skip
         ref = np.degrees(line_members(self.map, centre)[1])
         for line, PP in hough:
             rho, theta = line_members(PP, centre)
@@ -228,7 +273,7 @@ class CorrectionExplorer:
         self.ax.set_title(f"pose error dx {dx:+.2f} m, dy {dy:+.2f} m, dtheta {dth:+.1f} deg\n"
                           f"corrected pose ({x:.2f} m, {y:.2f} m, {np.degrees(h):.1f} deg) "
                           f"{'=' if off < 1e-9 else '!='} the true pose", fontsize=10)  # fmt: skip
-        t, th = self.result["t"], np.degrees(self.result["theta"])
+        t, th = self.result.t, np.degrees(self.result.theta)
         self.ax_hough.set_title(f"theta_corr (3.8) = {th:+.1f} deg, t (3.12) = ({t[0]:+.2f}, {t[1]:+.2f}) m\n"
                                 "correcting motor C = T(t) R(theta_corr) = ~E", fontsize=10)  # fmt: skip
         self.fig.tight_layout()

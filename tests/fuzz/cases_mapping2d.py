@@ -18,6 +18,9 @@ import numpy as np
 from cga_lessons import conformal as cga
 from cga_lessons import mapping2d as m2
 from cga_lessons.mapping2d import (
+    CorrespondenceParams,
+    ExtractionParams,
+    LoopParams,
     MapBuilder,
     MapParams,
     OdometryModel,
@@ -98,6 +101,24 @@ BENCH_ROWS = [
 ]
 BENCH = _DIR / "bench.json"
 BENCH.write_text(json.dumps({"meta": {"date": "today"}, "rows": BENCH_ROWS}))
+
+
+def _fields(result) -> dict:
+    """A typed result as keyword arguments of its class."""
+    return {k: getattr(result, k) for k in type(result).__dataclass_fields__}
+
+
+def _viz_correction_class():
+    from cga_lessons.viz.explore_conformal_map import ConformalCorrection
+
+    return ConformalCorrection
+
+
+def _conformal_correction():
+    from cga_lessons.viz import explore_conformal_map as ecm
+
+    local = m2.segment_point_pair([SEG_A, SEG_B])
+    return _fields(ecm.conformal_correction(ecm.place(local, [0.0, 0.0, 0.0])[0], local, [0.5, 0.5]))
 
 
 def _fresh_path(stem: str):
@@ -262,9 +283,15 @@ CASES = [
     ),
     Case(
         m2.correspondences,
-        {"G": G_SET, "L": L_SET, "centre": [0.5, 0.5], "params": MapParams(), "geometry": m2.ConformalGeometry()},
-        kinds={"G": SET_KINDS, "L": SET_KINDS, "params": [PlainGeometry()], "geometry": GEOMETRY_KINDS},
-        allow={"geometry": ["None"]},
+        {
+            "G": G_SET,
+            "L": L_SET,
+            "centre": [0.5, 0.5],
+            "params": CorrespondenceParams(),
+            "geometry": m2.ConformalGeometry(),
+        },
+        kinds={"G": SET_KINDS, "L": SET_KINDS, "params": [PlainGeometry(), MapParams()], "geometry": GEOMETRY_KINDS},
+        allow={"params": ["None"], "geometry": ["None"]},
         strict=True,
     ),
     # ------------------------------------------------------------------ corrections
@@ -339,6 +366,7 @@ CASES = [
     Case(m2.segment_point_pair, {"segments": SEG_A}, kinds={"segments": [G_SET, POINTS]}),
     Case(m2.segment_point_pair, {"segments": SEGS}, name="segment_point_pair (list)"),
     Case(m2.point_pair_structure, {"PP": PAIR}, kinds={"PP": [SPHERE, POINT, LINE, CIRCLE]}),
+    Case(m2.PointPairStructure, lambda: _fields(m2.point_pair_structure(PAIR)), strict=True),
     Case(m2.robot_motor, {"pose": [1.0, 2.0, 0.5]}),
     Case(m2.laser_motor, {"pose": [1.0, 2.0, 0.5], "mount": (0.1, 0.0, 0.2), "printed": False}, strict=True),
     Case(
@@ -405,7 +433,7 @@ CASES = [
             "scans": SCANS,
             "odometry": TRAJ,
             "method": "plain",
-            "params": MapParams(loop_closure=False),
+            "params": MapParams(loops=LoopParams(loop_closure=False)),
             "mount": (0.0, 0.0, 0.0),
             "max_range": 5.0,
             "extraction": {"min_points": 4},
@@ -418,6 +446,12 @@ CASES = [
         strict=True,
     ),
     Case(m2.build_map, {"scans": SCANS[:2], "odometry": TRAJ[:2], "method": "conformal"}, name="build_map (conformal)"),
+    Case(
+        m2.build_map,
+        {"scans": SCANS, "odometry": TRAJ, "extraction": ExtractionParams(min_points=4), "loop_closure": False},
+        name="build_map (ExtractionParams, a flat override)",
+        kinds={"extraction": [MapParams()]},
+    ),
     Case(
         m2.MapResult,
         {
@@ -434,5 +468,8 @@ CASES = [
         strict=True,
     ),
 ]
+
+# viz.explore_conformal_map's typed result (the explorer's correction of notebook 06; its place is cases_viz.py)
+CASES.append(Case(_viz_correction_class(), _conformal_correction, strict=True))
 
 EXEMPT: dict[str, str] = {}
