@@ -102,10 +102,10 @@ def hall_scene():
 
 def line(name, s):
     print(
-        f"  {name:<24} n={s['n']:4d}  success {s['success']:4d} ({100 * s['success_rate']:5.1f} %)  "
-        f"confidently wrong {s['confidently_wrong']:2d}  ambiguous {s['ambiguous']:4d} "
-        f"(witness {s['indistinguishable']:4d})  failed {s['failed']:3d}  "
-        f"success w/o witness {100 * s['success_rate_distinguishable']:5.1f} %  {s['median_ms']:5.1f} ms"
+        f"  {name:<24} n={s.n:4d}  success {s.success:4d} ({100 * s.success_rate:5.1f} %)  "
+        f"confidently wrong {s.confidently_wrong:2d}  ambiguous {s.ambiguous:4d} "
+        f"(witness {s.indistinguishable:4d})  failed {s.failed:3d}  "
+        f"success w/o witness {100 * s.success_rate_distinguishable:5.1f} %  {s.median_ms:5.1f} ms"
     )
 
 

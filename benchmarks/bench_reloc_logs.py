@@ -77,7 +77,7 @@ def task(args):
             log, held - (RUN - 1), length=RUN, stride=1, odometry=odo, max_range=reach, **kw
         )
     s = ev.summary()
-    counts = (s["n"], s["success"], s["ambiguous"], s["confidently_wrong"], s["failed"])
+    counts = (s.n, s.success, s.ambiguous, s.confidently_wrong, s.failed)
     return (name, seed, *counts, float(np.mean(ev.seconds)), time.perf_counter() - t0, reach)
 
 
@@ -87,7 +87,8 @@ def main(logs=None, seeds=(0, 1, 2, 3), sparse=False, before=False, processes=2,
     ``before``: the method without the coverage grid and the deficit rule, for comparison.
     ``out``: a JSON file to write the table to (notebook 09 shows it).
     ``max_range``: one reach (m) for every log; None: each log's own (``returns_reach``).
-    ``options``: parameters of the relocalization (:class:`cga_lessons.relocalization.RelocParams` fields) to try.
+    ``options``: parameters of the relocalization (fields of a stage of
+    :class:`cga_lessons.relocalization.RelocParams`) to try.
     """
     logs = list(logs or LOGS)
     jobs = [(n, None, sparse, before, max_range, options) for n in logs]

@@ -6,6 +6,8 @@ ground-truth poses, the simulator's own ray casting, and mapping2d's least
 squares (3.12).
 """
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -14,7 +16,16 @@ from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
 from cga_lessons.mapping2d import Segment, compose, read_carmen_log, wrap_angle
 from cga_lessons.mapping2d.laser import load_scene, simulate_scan
 from cga_lessons.mapping2d.lines import diff_theta, extract_segments
-from cga_lessons.relocalization import ReferenceMap, prepare_map, relocalize
+from cga_lessons.relocalization import (
+    Evaluation,
+    ReferenceMap,
+    Relocalization,
+    RelocCheck,
+    RelocParams,
+    RelocSearch,
+    prepare_map,
+    relocalize,
+)
 from cga_lessons.relocalization.eval import evaluate_log, evaluate_poses, random_free_poses
 from cga_lessons.relocalization.geometry import MapLines, Observation, ScanLines, first_hits, pose_error
 from cga_lessons.relocalization.hough import (
@@ -27,6 +38,7 @@ from cga_lessons.relocalization.hough import (
     vote_matrix,
     vote_matrix_indexed,
 )
+from cga_lessons.relocalization.params import noise_scaled, resolve_params
 from cga_lessons.relocalization.search import pose_hypotheses, propose_rotations
 from cga_lessons.relocalization.thesis import (
     correspondences_from_votes,
@@ -143,12 +155,12 @@ def test_thesis_steps_6_to_10_find_a_rotation_about_the_laser():
     pose = np.array([0.0, 0.0, 0.35])
     scan = _to_laser(walls, pose)
     out = thesis_relocalization(walls, scan, xi_theta=0.02, xi_rho=0.05)
-    assert out["C"].tolist() == [0, 1, 2, 3]
-    assert np.allclose(out["pose"], pose, atol=1e-9)
-    assert np.allclose(out["placed"], walls, atol=1e-9)  # rotor (2.96) and translator (2.100) on the point pairs
+    assert out.C.tolist() == [0, 1, 2, 3]
+    assert np.allclose(out.pose, pose, atol=1e-9)
+    assert np.allclose(out.placed, walls, atol=1e-9)  # rotor (2.96) and translator (2.100) on the point pairs
     # step 7 alone, and step 9 reusing the least squares (3.12) of mapping2d
-    assert np.isclose(mean_angle(out["M_h"], out["L_h"], out["C"]), 0.35)
-    t = translation_from_lines(out["M_h"], hough_set(out["rotated"]), out["C"])
+    assert np.isclose(mean_angle(out.M_h, out.L_h, out.C), 0.35)
+    t = translation_from_lines(out.M_h, hough_set(out.rotated), out.C)
     assert np.allclose(t, 0.0, atol=1e-9)
 
 
@@ -236,9 +248,9 @@ def test_relocalize_random_poses_in_an_irregular_hall(hall):
     rng = np.random.default_rng(7)
     ev = evaluate_poses(hall, hall.walls, random_free_poses(hall, 40, rng), rng)
     s = ev.summary()
-    assert s["confidently_wrong"] == 0
-    assert s["success_rate_distinguishable"] >= 0.95
-    assert s["success_rate"] >= 0.85
+    assert s.confidently_wrong == 0
+    assert s.success_rate_distinguishable >= 0.95
+    assert s.success_rate >= 0.85
     assert np.all(ev.position_error[ev.success] < 0.03) and np.all(ev.heading_error[ev.success] < np.radians(0.5))
 
 
@@ -248,10 +260,10 @@ def test_relocalize_office_never_confidently_wrong():
     rng = np.random.default_rng(1)
     ev = evaluate_poses(scene, scene.walls, random_free_poses(scene, 30, rng), rng)
     s = ev.summary()
-    assert s["confidently_wrong"] == 0
-    assert s["success"] + s["indistinguishable"] >= 0.85 * s["n"]
+    assert s.confidently_wrong == 0
+    assert s.success + s.indistinguishable >= 0.85 * s.n
     # an ambiguous answer carries the truth among its tied candidates
-    amb = [i for i in range(s["n"]) if ev.status[i] == "ambiguous"]
+    amb = [i for i in range(s.n) if ev.status[i] == "ambiguous"]
     near_truth = [any(pose_error(c.pose, ev.truth[i])[0] < 0.1 for c in ev.results[i].candidates[:8]) for i in amb]
     assert np.mean(near_truth) >= 0.9
 
@@ -358,7 +370,7 @@ def test_relocalize_intel_log_against_the_rest_of_it():
     ev, segs = evaluate_log(log, test, exclude=2, map_step=3)
     s = ev.summary()
     assert len(segs) > 100
-    assert s["success"] >= 6
+    assert s.success >= 6
     assert np.median(ev.position_error[ev.status == "ok"]) < 0.1
     # the map lies in the frame of the logged poses: at the truth most of a scan lies on it
     obs = Observation.from_scan(*log.scans[test[0]], 8.0)
@@ -371,3 +383,71 @@ def test_pose_error_and_compose_agree():
     d = compose(a, [0.5, 0.0, 0.0])
     assert pose_error(d, a) == pytest.approx((0.5, 0.0))
     assert pose_error(a, b)[1] == pytest.approx(0.7)
+
+
+# --------------------------------------------------------------------------- stages and typed results
+
+
+def test_the_thresholds_are_two_stages_with_unique_field_names():
+    """Each threshold lives in one stage (search or check), so a single name overrides it: the three ways of
+    overriding (a name, a dict of a stage's fields, a whole stage) give one configuration."""
+    search = {f.name for f in dataclasses.fields(RelocSearch)}
+    check = {f.name for f in dataclasses.fields(RelocCheck)}
+    assert not search & check and len(search | check) == 23
+    assert {"xi_theta", "slide_below", "n_screen"} <= search and {"min_score", "n_verify", "deficit_ratio"} <= check
+    a = resolve_params(None, {"xi_theta": 0.1, "min_score": 0.4})
+    b = resolve_params(None, {"search": {"xi_theta": 0.1}, "check": RelocCheck(min_score=0.4)})
+    assert a == b == RelocParams(search=RelocSearch(xi_theta=0.1), check=RelocCheck(min_score=0.4))
+    assert RelocParams().check.distinct_heading == pytest.approx(np.radians(4.0))
+    with pytest.raises(InvalidInputError, match="RelocParams: check: expected a RelocCheck"):
+        RelocParams(check=RelocSearch())
+    with pytest.raises(InvalidInputError, match="RelocSearch: n_rotations: must be a whole number"):
+        RelocSearch(n_rotations=2.5)
+
+
+def test_noise_grows_the_distance_thresholds_of_both_stages():
+    p = noise_scaled(RelocParams(), 0.03)
+    assert p.search.line_tolerance == pytest.approx(0.15) and p.check.inlier_distance == pytest.approx(0.12)
+    assert p.check.ray_margin == pytest.approx(0.15) and p.search.xi_theta == RelocParams().search.xi_theta
+    assert noise_scaled(RelocParams(), 0.001) == RelocParams()  # below the thresholds' own 1 cm: unchanged
+
+
+def test_overrides_by_name_and_by_stage_relocalize_alike():
+    room = load_scene("room")
+    scan = simulate_scan(room, np.array([2.0, 1.5, 0.4]), np.random.default_rng(0))
+    by_name = relocalize(room.walls, scan=scan, n_rotations=4, ambiguity_ratio=0.9)
+    by_stage = relocalize(room.walls, scan=scan, search={"n_rotations": 4}, check={"ambiguity_ratio": 0.9})
+    assert np.array_equal(by_name.pose, by_stage.pose) and by_name.score == by_stage.score
+    assert len(by_name.rotations) <= 8  # four proposals, two rotations each
+
+
+def test_a_relocalization_is_built_by_keyword_and_its_ambiguity_is_its_status():
+    with pytest.raises(TypeError):
+        Relocalization(None, -np.inf, "failed")
+    failed = Relocalization(pose=None, score=-np.inf, status="failed")
+    ok = Relocalization(pose=np.zeros(3), score=0.9, status="ok")
+    assert failed.ambiguous and not ok.ambiguous
+    assert Relocalization(pose=np.zeros(3), score=0.9, status="ambiguous").ambiguous
+
+
+def test_the_summary_of_an_evaluation_counts_its_poses():
+    n = 4
+    ev = Evaluation(
+        truth=np.zeros((n, 3)),
+        pose=np.array([[0.0, 0.0, 0.0], [0.05, 0, 0], [1.0, 0, 0], [np.nan] * 3]),
+        status=np.array(["ok", "ambiguous", "ok", "failed"]),
+        position_error=np.array([0.0, 0.05, 1.0, np.inf]),
+        heading_error=np.array([0.0, 0.0, 0.0, np.inf]),
+        n_lines=np.array([5, 4, 3, 1]),
+        score=np.array([0.9, 0.8, 0.7, -np.inf]),
+        witness=np.array([np.nan, 0.99, np.nan, np.nan]),
+        seconds=np.array([0.01, 0.02, 0.03, 0.04]),
+    )
+    s = ev.summary()
+    assert (s.n, s.success, s.confidently_wrong, s.ambiguous, s.indistinguishable, s.failed) == (4, 1, 1, 1, 1, 1)
+    assert s.success_rate == 0.25 and s.success_rate_distinguishable == pytest.approx(1 / 3)
+    assert s.median_ms == pytest.approx(25.0)
+    empty = ev.take(np.zeros(n, bool)).summary()
+    assert empty.n == 0 and np.isnan(empty.success_rate) and np.isnan(empty.median_ms)
+    with pytest.raises(InvalidInputError, match="EvaluationSummary: success_rate"):
+        dataclasses.replace(s, success_rate=np.nan)  # NaN only when nothing was counted

@@ -81,9 +81,9 @@ def test_a_beam_without_return_through_a_wall_counts_half():
 
 def test_min_score_zero_and_the_tie_bar():
     p = RelocParams()
-    assert p.min_score == 0.0 and p.slide_below == np.inf
+    assert p.check.min_score == 0.0 and p.search.slide_below == np.inf
     # a best scoring 0.4 (it contradicts less than it explains) must leave its rivals below 2 * 0.4 - 1
-    assert tie_bar(0.4, p) == pytest.approx(-0.2)
+    assert tie_bar(0.4, p.check) == pytest.approx(-0.2)
 
 
 # --------------------------------------------------------------------------- simulated scenes, the simulator's truth

@@ -8,7 +8,7 @@ from cga_lessons import data_path
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
 from cga_lessons.mapping2d import CarmenLog, read_carmen_log
 from cga_lessons.mapping2d.laser import simulate_odometry
-from cga_lessons.relocalization import RelocParams, prepare_map, relocalize
+from cga_lessons.relocalization import RelocCheck, prepare_map, relocalize
 from cga_lessons.relocalization import verify as verify
 from cga_lessons.relocalization.candidates import tie_bar
 from cga_lessons.relocalization.coverage import FREE, UNKNOWN, WALL, build_coverage, map_noise
@@ -41,7 +41,7 @@ def test_a_beam_without_return_sweeps_free_to_max_range():
     along_y = cov.classify([[1.01, 2.01 + d] for d in (0.5, 3.9, 4.2)]).tolist()  # 30 m: beyond max_range
     assert along_x == along_y == [FREE, FREE, UNKNOWN]
     f = cov.fractions()
-    assert f["wall"] == 0.0 and sum(f.values()) == pytest.approx(1.0)
+    assert f.wall == 0.0 and f.unknown + f.free + f.wall == pytest.approx(1.0)
 
 
 def test_map_noise_recovers_the_spread_of_points_about_their_wall():
@@ -108,10 +108,10 @@ def test_a_point_in_space_the_map_saw_free_counts_against(square_room):
 
 
 def test_tie_bar_closed_form():
-    p = RelocParams()
+    p = RelocCheck()
     assert tie_bar(0.99, p) == pytest.approx(0.98 * 0.99)  # a complete map: the ratio decides
     assert tie_bar(0.9, p) == pytest.approx(0.8)  # a deficit of 10 %: a rival failing on 20 % ties
-    assert tie_bar(0.9, RelocParams(deficit_ratio=0.0)) == pytest.approx(0.882)
+    assert tie_bar(0.9, RelocCheck(deficit_ratio=0.0)) == pytest.approx(0.882)
 
 
 # --------------------------------------------------------------------------- the line map of a log
@@ -177,14 +177,14 @@ def test_held_out_intel_scans_are_located_or_doubted_never_confidently_wrong(int
     test = np.arange(3, len(intel_slice), 7)
     ev, segs = evaluate_log(intel_slice, test, exclude=0, map_step=1)
     s = ev.summary()
-    assert s["n"] == 40 and s["success"] >= 27 and s["confidently_wrong"] == 0
+    assert s.n == 40 and s.success >= 27 and s.confidently_wrong == 0
     assert np.median(ev.position_error[ev.success]) < 0.05
     # the corridor at scan 129: poses along the corridor tie, the truth among them (the check below: without
     # coverage and deficit rule the answer is confident, 0.4 m along it)
     k = int(np.flatnonzero(test == 129)[0])
     r = ev.results[k]
     assert r.status == "ambiguous"
-    tied = [c for c in r.candidates if c.score >= tie_bar(r.score, RelocParams())]
+    tied = [c for c in r.candidates if c.score >= tie_bar(r.score, RelocCheck())]
     assert min(pose_error(c.pose, intel_slice.poses[129])[0] for c in tied) < 0.1
 
 
@@ -205,7 +205,7 @@ def test_runs_of_three_with_simulated_odometry(intel_slice):
     # measured with the log's reach (14.4 m): 12 of 14 located, and two confident just outside the tolerances
     # (10.5 cm; 0.9 cm and 2.3 degrees); with an 8 m reach 12 located and those two ambiguous (the second 6 degrees
     # off); without coverage and deficit rule: 9 located, 1 confidently wrong
-    assert s["n"] == len(starts) == 14 and np.all(n_scans == 3) and s["success"] >= 12
+    assert s.n == len(starts) == 14 and np.all(n_scans == 3) and s.success >= 12
     wrong = (ev.status == "ok") & ~ev.success
     assert wrong.sum() <= 2
     assert np.all(ev.position_error[wrong] < 0.2) and np.all(ev.heading_error[wrong] < np.radians(4))  # not gross

@@ -52,8 +52,8 @@ def test_look_around_resolves_poses_one_scan_cannot(office):
     assert len(hard) >= 3  # about one pose in twelve is ambiguous from one 180-degree scan
     ev, n = evaluate_look_around(office, office.walls, np.array(hard), np.random.default_rng(12), witness=False)
     s = ev.summary()
-    assert s["confidently_wrong"] == 0 and np.all(n == 4)
-    assert s["success"] >= len(hard) - 1
+    assert s.confidently_wrong == 0 and np.all(n == 4)
+    assert s.success >= len(hard) - 1
     assert np.all(ev.position_error[ev.success] < 0.05) and np.all(ev.heading_error[ev.success] < np.radians(1))
 
 

@@ -10,6 +10,8 @@ and widgets are in :mod:`cga_lessons.viz`).  This facade exports the names in ``
   the hypotheses: candidates screened, verified, ranked and decided
 * :mod:`~cga_lessons.relocalization.chain`: Chains of poses, one per scan, fitted to their scans and to the odometry
   between them at once.  (Beyond chapter 5.)
+* :mod:`~cga_lessons.relocalization.chain_evidence`: What the scans taken so far say about a chain of poses: its
+  beam counts per scan, the direction they fix least, the chain slid along it, and the decision
 * :mod:`~cga_lessons.relocalization.coverage`: What a map knows: the space its own scans swept free and the places
   they hit, as a coverage grid
 * :mod:`~cga_lessons.relocalization.eval`: Measuring the relocalization: random poses in a scene, and held-out scans
@@ -40,8 +42,8 @@ and widgets are in :mod:`cga_lessons.viz`).  This facade exports the names in ``
   global proposal of the particle filter
 * :mod:`~cga_lessons.relocalization.odometry`: Does a chain of relocalized poses move as the odometry says?  (Beyond
   chapter 5.)
-* :mod:`~cga_lessons.relocalization.params`: The thresholds of :func:`~cga_lessons.relocalization.relocalize`, each
-  field checked where it is set
+* :mod:`~cga_lessons.relocalization.params`: The thresholds of :func:`~cga_lessons.relocalization.relocalize`, by
+  stage, each field checked where it is set
 * :mod:`~cga_lessons.relocalization.relocalizer`: Relocalization in a known line map (thesis chapter 5, Eqs.
   5.1-5.6), made to work
 * :mod:`~cga_lessons.relocalization.sampling`: Resampling a particle set: low-variance resampling to a size chosen
@@ -58,8 +60,9 @@ and widgets are in :mod:`cga_lessons.viz`).  This facade exports the names in ``
 
 from .beam import BeamModel
 from .candidates import Candidate
+from .coverage import CoverageFractions
 from .eval import evaluate_log, evaluate_poses, held_out_map_indices, random_free_poses, reference_from_log
-from .evaluation import HEADING_TOLERANCE, POSITION_TOLERANCE, Evaluation, scan_agreement
+from .evaluation import HEADING_TOLERANCE, POSITION_TOLERANCE, Evaluation, EvaluationSummary, scan_agreement
 from .geometry import ReferenceMap, estimate_range_noise, pose_error, prepare_map, transform_points
 from .hough import (
     hough_comparison,
@@ -74,17 +77,25 @@ from .inputs import as_segment_array
 from .lookaround import evaluate_look_around, look_around
 from .mcl import MCLEstimate, MonteCarloLocalizer
 from .mcl_config import MCLConfig
-from .params import RelocParams
+from .params import RelocCheck, RelocParams, RelocSearch
 from .relocalizer import Relocalization, combined_noise, relocalize
 from .sampling import kld_bound
 from .sequence import Relocalizer, relocalize_sequence
-from .thesis import correspondences_from_votes, rotate_entities, thesis_relocalization, translate_entities
+from .thesis import (
+    ThesisRelocalization,
+    correspondences_from_votes,
+    rotate_entities,
+    thesis_relocalization,
+    translate_entities,
+)
 
 __all__ = [
     "MonteCarloLocalizer",
     "MCLConfig",
     "MCLEstimate",
     "RelocParams",
+    "RelocSearch",
+    "RelocCheck",
     "Candidate",
     "Relocalization",
     "ReferenceMap",
@@ -102,6 +113,9 @@ __all__ = [
     "transform_points",
     "BeamModel",
     "Evaluation",
+    "EvaluationSummary",
+    "CoverageFractions",
+    "ThesisRelocalization",
     "Relocalizer",
     "correspondences_from_votes",
     "evaluate_log",

@@ -51,9 +51,10 @@ CHAIN_GATES = (0.3, 0.15, 0.08, 0.05)
 STILL_VARIANCE = 1e-6
 
 
-@dataclass
+@dataclass(kw_only=True)
 class SequenceRelocalization:
-    """The state of a :class:`~cga_lessons.relocalization.sequence.Relocalizer` after its latest scan.
+    """The state of a :class:`~cga_lessons.relocalization.sequence.Relocalizer` after its latest scan (built by
+    keyword).
 
     Attributes
     ----------
@@ -61,7 +62,6 @@ class SequenceRelocalization:
         The laser's pose in the map frame at the latest scan (the best chain).
     score : float
         The best chain's score over all its scans.
-    ambiguous : bool
     status : str
         ``"ok"``, ``"ambiguous"`` or ``"failed"``.
     candidates : list of Candidate
@@ -73,17 +73,23 @@ class SequenceRelocalization:
     message : str
     single : list of Relocalization
         Each scan relocalized on its own.
+    ambiguous : bool
+        Read from ``status``: the pose must not be trusted unless ``status`` is ``"ok"``.
     """
 
     pose: np.ndarray | None
     score: float
-    ambiguous: bool
     status: str
     candidates: list = field(default_factory=list)
     trajectory: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
     n_scans: int = 0
     message: str = ""
     single: list = field(default_factory=list, repr=False)
+
+    @property
+    def ambiguous(self) -> bool:
+        """The pose must not be trusted: ``status`` is ``"ambiguous"`` or ``"failed"``."""
+        return self.status != "ok"
 
 
 @dataclass

@@ -32,6 +32,7 @@ from cga_lessons import checks
 from .inputs import check_scans_at_poses, grid_shape
 
 __all__ = [
+    "CoverageFractions",
     "UNKNOWN",
     "FREE",
     "WALL",
@@ -46,6 +47,21 @@ __all__ = [
 UNKNOWN, FREE, WALL = 0, 1, 2
 #: :func:`build_coverage`'s cell size and clearance (m), explained there.
 GRID_RESOLUTION, GRID_CLEARANCE = 0.05, 0.1
+
+
+@dataclass(frozen=True)
+class CoverageFractions:
+    """The share of a coverage grid's cells in each state (:meth:`Coverage.fractions`): ``unknown`` (no mapping
+    scan looked there), ``free`` (swept by a beam) and ``wall`` (hit); each in ``[0, 1]``, together 1."""
+
+    unknown: float
+    free: float
+    wall: float
+
+    def __post_init__(self):
+        for name in ("unknown", "free", "wall"):
+            value = checks.real(getattr(self, name), "CoverageFractions", name, low=0.0, high=1.0)
+            object.__setattr__(self, name, value)
 
 
 @dataclass
@@ -89,10 +105,10 @@ class Coverage:
         row, col, inside = self.cells(points)
         return np.where(inside, self.state[row, col], UNKNOWN)
 
-    def fractions(self) -> dict:
-        """Share of the grid's cells in each state (``unknown``, ``free``, ``wall``)."""
+    def fractions(self) -> CoverageFractions:
+        """Share of the grid's cells in each state (:class:`CoverageFractions`)."""
         n = self.state.size
-        return {name: float(np.sum(self.state == k)) / n for k, name in enumerate(("unknown", "free", "wall"))}
+        return CoverageFractions(*(float(np.sum(self.state == k)) / n for k in (UNKNOWN, FREE, WALL)))
 
 
 def build_coverage(

@@ -26,6 +26,7 @@ __all__ = [
     "scan_agreement",
     "agreement",
     "Evaluation",
+    "EvaluationSummary",
     "check_evaluation",
     "record_results",
 ]
@@ -137,23 +138,71 @@ class Evaluation:
         """Ambiguous with a witness: a clearly different pose whose scan agrees on at least ``agreement`` of beams."""
         return (self.status == "ambiguous") & (np.nan_to_num(self.witness, nan=0.0) >= agreement)
 
-    def summary(self, agreement: float = 0.98) -> dict:
-        """Counts and rates: ``n``, ``success``, ``confidently_wrong``, ``ambiguous``, ``indistinguishable``,
-        ``failed``, ``success_rate``, ``success_rate_distinguishable`` and ``median_ms``."""
+    def summary(self, agreement: float = 0.98) -> EvaluationSummary:
+        """The counts and rates of the evaluation (:class:`EvaluationSummary`); ``agreement``: the scan agreement
+        that makes an ambiguous result's witness (:meth:`indistinguishable`)."""
         n = len(self.status)
         ind = int(self.indistinguishable(agreement).sum())
         ok = int(self.success.sum())
-        return {
-            "n": n,
-            "success": ok,
-            "confidently_wrong": int(self.confidently_wrong.sum()),
-            "ambiguous": int((self.status == "ambiguous").sum()),
-            "indistinguishable": ind,
-            "failed": int((self.status == "failed").sum()),
-            "success_rate": ok / n if n else float("nan"),
-            "success_rate_distinguishable": ok / (n - ind) if n > ind else float("nan"),
-            "median_ms": float(np.median(self.seconds) * 1000) if n else float("nan"),
+        return EvaluationSummary(
+            n=n,
+            success=ok,
+            confidently_wrong=int(self.confidently_wrong.sum()),
+            ambiguous=int((self.status == "ambiguous").sum()),
+            indistinguishable=ind,
+            failed=int((self.status == "failed").sum()),
+            success_rate=ok / n if n else float("nan"),
+            success_rate_distinguishable=ok / (n - ind) if n > ind else float("nan"),
+            median_ms=float(np.median(self.seconds) * 1000) if n else float("nan"),
+        )
+
+
+@dataclass(frozen=True)
+class EvaluationSummary:
+    """The counts and rates of an :class:`Evaluation` (:meth:`Evaluation.summary`).
+
+    Attributes
+    ----------
+    n : int
+        Poses evaluated.
+    success, confidently_wrong, ambiguous, indistinguishable, failed : int
+        How many were confident and right, confident and wrong, ambiguous, ambiguous with a witness (no method
+        could tell the tied poses apart), and failed.
+    success_rate : float
+        ``success / n`` (NaN for no pose, and only then).
+    success_rate_distinguishable : float
+        ``success / (n - indistinguishable)`` (NaN when every pose is indistinguishable, and only then).
+    median_ms : float
+        Median time of one relocalization (ms; NaN for no pose, and only then).
+    """
+
+    n: int
+    success: int
+    confidently_wrong: int
+    ambiguous: int
+    indistinguishable: int
+    failed: int
+    success_rate: float
+    success_rate_distinguishable: float
+    median_ms: float
+
+    def __post_init__(self):
+        f = "EvaluationSummary"
+        n = checks.integer(self.n, f, "n", low=0)
+        object.__setattr__(self, "n", n)
+        for name in ("success", "confidently_wrong", "ambiguous", "indistinguishable", "failed"):
+            object.__setattr__(self, name, checks.integer(getattr(self, name), f, name, low=0, high=n))
+        # a rate is NaN exactly when it counts nothing
+        none = {
+            "success_rate": n == 0,
+            "success_rate_distinguishable": n == self.indistinguishable,
+            "median_ms": n == 0,
         }
+        for name, high in (("success_rate", 1.0), ("success_rate_distinguishable", 1.0), ("median_ms", None)):
+            value = getattr(self, name)
+            if none[name] and isinstance(value, (float, np.floating)) and np.isnan(value):
+                continue
+            object.__setattr__(self, name, checks.real(value, f, name, low=0.0, high=high))
 
 
 def record_results(results, truths, walls, scan_kw, witness, ratio):

@@ -77,7 +77,7 @@ class Proposal:
 def propose(mcl, scan, inject: bool = True) -> Proposal:
     """Relocalize ``scan`` by chapter 5 and, if ``inject``, draw particles of ``mcl`` around its answer."""
     from .candidates import tie_bar
-    from .params import RelocParams
+    from .params import RelocCheck
     from .relocalizer import relocalize
 
     cfg = mcl.config
@@ -86,7 +86,7 @@ def propose(mcl, scan, inject: bool = True) -> Proposal:
     if r.status == "ok":
         centres = [r.pose]
     elif r.status == "ambiguous" and cfg.proposal_candidates > 0:
-        bar = tie_bar(r.score, RelocParams())
+        bar = tie_bar(r.score, RelocCheck())
         tied = [c.pose for c in r.candidates if c.score >= bar]
         complete = len(tied) <= cfg.proposal_candidates
         centres = tied[: cfg.proposal_candidates]

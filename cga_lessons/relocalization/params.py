@@ -1,24 +1,32 @@
-"""The thresholds of :func:`~cga_lessons.relocalization.relocalize`, each field checked where it is set.
+"""The thresholds of :func:`~cga_lessons.relocalization.relocalize`, by stage, each field checked where it is set.
 
-:class:`RelocParams` holds them; :func:`resolve_params` replaces single fields
-by keyword overrides, checked in the name of the function the user called;
-:func:`noise_scaled` grows the distance thresholds with a scan's noise.
+:class:`RelocParams` holds two stages: :class:`RelocSearch` (the pose
+hypotheses and their screening) and :class:`RelocCheck` (verification and the
+decision); :func:`resolve_params` merges a user's overrides into them (through
+:func:`cga_lessons.config.merged`), checked in the name of the function the
+user called; :func:`noise_scaled` grows the distance thresholds with a scan's
+noise.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import inspect
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from cga_lessons import checks
+from cga_lessons import checks, config
+from cga_lessons.config import check_stages
 from cga_lessons.mapping2d import extract_segments
 
 __all__ = [
     "STATUSES",
+    "RelocSearch",
+    "RelocCheck",
     "RelocParams",
     "check_param",
+    "check_fields",
     "check_score",
     "resolve_params",
     "check_extraction",
@@ -31,8 +39,10 @@ STATUSES = ("ok", "ambiguous", "failed")
 
 
 @dataclass(frozen=True)
-class RelocParams:
-    """Every threshold of :func:`relocalize`.
+class RelocSearch:
+    """The search stage of :func:`~cga_lessons.relocalization.relocalize`: the hypotheses (votes, rotations,
+    anchor pairs, slides), their quick score and their screening (read by
+    :mod:`~cga_lessons.relocalization.search` and :func:`~cga_lessons.relocalization.candidates.screen_hypotheses`).
 
     Attributes
     ----------
@@ -78,6 +88,36 @@ class RelocParams:
         screened against a subset of the beams.
     screen_beams : int
         About this many returned beams are used in the screening.
+    """
+
+    xi_theta: float = np.radians(3.0)
+    xi_rho: float = 0.2
+    n_rotations: int = 8
+    parallel_tol: float = np.radians(4.0)
+    n_anchor_pairs: int = 4
+    min_anchor_angle: float = np.radians(30.0)
+    overlap_margin: float = 0.3
+    min_overlap: float = 0.5
+    line_tolerance: float = 0.1
+    slide_step: float = 0.2
+    slide_below: float = np.inf
+    rotation_vote_ratio: float = 0.25
+    quick_ratio: float = 0.8
+    n_screen: int = 600
+    screen_beams: int = 24
+
+    def __post_init__(self):
+        check_fields(self)
+
+
+@dataclass(frozen=True)
+class RelocCheck:
+    """The check stage of :func:`~cga_lessons.relocalization.relocalize`: how the screened hypotheses are
+    verified against the whole scan, and when the answer is ok, ambiguous or failed (read by
+    :mod:`~cga_lessons.relocalization.candidates`, and by the sequence's chains).
+
+    Attributes
+    ----------
     n_verify : int
         Clearly different hypotheses refined and checked against the whole
         scan: all within 90 % of the best screening score (up to four times
@@ -116,21 +156,6 @@ class RelocParams:
         more confidently wrong.
     """
 
-    xi_theta: float = np.radians(3.0)
-    xi_rho: float = 0.2
-    n_rotations: int = 8
-    parallel_tol: float = np.radians(4.0)
-    n_anchor_pairs: int = 4
-    min_anchor_angle: float = np.radians(30.0)
-    overlap_margin: float = 0.3
-    min_overlap: float = 0.5
-    line_tolerance: float = 0.1
-    slide_step: float = 0.2
-    slide_below: float = np.inf
-    rotation_vote_ratio: float = 0.25
-    quick_ratio: float = 0.8
-    n_screen: int = 600
-    screen_beams: int = 24
     n_verify: int = 12
     inlier_distance: float = 0.06
     ray_margin: float = 0.08
@@ -141,8 +166,25 @@ class RelocParams:
     min_score: float = 0.0
 
     def __post_init__(self):
-        for name in RelocParams.__dataclass_fields__:
-            object.__setattr__(self, name, check_param(name, getattr(self, name), "RelocParams"))
+        check_fields(self)
+
+
+@dataclass(frozen=True)
+class RelocParams:
+    """Every threshold of :func:`~cga_lessons.relocalization.relocalize`, by stage: ``search``
+    (:class:`RelocSearch`) makes and screens the pose hypotheses, ``check`` (:class:`RelocCheck`) verifies them
+    and decides.
+
+    Each field name belongs to one stage only, so a single threshold may be given by its name
+    (``relocalize(..., xi_theta=0.1)``), a stage as a whole or as a dict of some of its fields
+    (``relocalize(..., check={"min_score": 0.4})``); :func:`cga_lessons.config.merged` merges them.
+    """
+
+    search: RelocSearch = field(default_factory=RelocSearch)
+    check: RelocCheck = field(default_factory=RelocCheck)
+
+    def __post_init__(self):
+        check_stages(self)
 
 
 #: The ranges of RelocParams' real fields (keywords of :func:`cga_lessons.checks.real`).
@@ -171,14 +213,20 @@ _PARAM_COUNTS = ("n_rotations", "n_anchor_pairs", "n_screen", "screen_beams", "n
 
 
 def check_param(name: str, value, func: str):
-    """One field of :class:`RelocParams` checked in the name of ``func``: its counts are whole numbers >= 1,
-    its thresholds finite numbers in their ranges, distances (m) within
+    """One field of a stage of :class:`RelocParams` checked in the name of ``func``: its counts are whole numbers
+    >= 1, its thresholds finite numbers in their ranges, distances (m) within
     :data:`~cga_lessons.checks.MAX_MAGNITUDE` (``slide_below`` may be ``inf``: always slide)."""
     if name in _PARAM_COUNTS:
         return checks.integer(value, func, name, low=1)
     if name == "slide_below" and isinstance(value, (float, np.floating)) and value == np.inf:
         return float(value)
     return checks.real(value, func, name, **_PARAM_RANGES[name])
+
+
+def check_fields(stage) -> None:
+    """Check (and convert) every field of a stage (:class:`RelocSearch`, :class:`RelocCheck`) in its own name."""
+    for f in dataclasses.fields(stage):
+        object.__setattr__(stage, f.name, check_param(f.name, getattr(stage, f.name), type(stage).__name__))
 
 
 def check_score(value, func: str, name: str = "score", *, failed: bool = False) -> float:
@@ -189,30 +237,26 @@ def check_score(value, func: str, name: str = "score", *, failed: bool = False) 
 
 
 def noise_scaled(params: RelocParams, noise: float) -> RelocParams:
-    """The thresholds that are distances grown with the noise (they are set for about 1 cm).
+    """The thresholds that are distances grown with the noise (they are set for about 1 cm): the search's
+    ``line_tolerance``, the check's ``inlier_distance`` and ``ray_margin``.
 
     ``noise``: the scan's range noise, or :func:`combined_noise` with the map's blur.
     """
+    search, check = params.search, params.check
     return replace(
         params,
-        inlier_distance=max(params.inlier_distance, 4 * noise),
-        ray_margin=max(params.ray_margin, 5 * noise),
-        line_tolerance=max(params.line_tolerance, 5 * noise),
+        search=replace(search, line_tolerance=max(search.line_tolerance, 5 * noise)),
+        check=replace(
+            check, inlier_distance=max(check.inlier_distance, 4 * noise), ray_margin=max(check.ray_margin, 5 * noise)
+        ),
     )
 
 
 def resolve_params(params: RelocParams | None, overrides: dict, func: str = "relocalize") -> RelocParams:
-    """``params`` (default :class:`RelocParams`) with single fields replaced by ``overrides``, checked in the
-    name of ``func``; unknown names raise."""
-    if params is None:
-        params = RelocParams()
-    checks.instance(params, func, "params", RelocParams, "a RelocParams or None")
-    bad = sorted(set(overrides) - set(RelocParams.__dataclass_fields__))
-    if bad:
-        raise checks.fail(func, ", ".join(bad), "unknown parameter (not a field of RelocParams)")
-    if not overrides:
-        return params
-    return replace(params, **{k: check_param(k, v, func) for k, v in overrides.items()})
+    """``params`` (default :class:`RelocParams`) with ``overrides`` merged in by :func:`cga_lessons.config.merged`
+    (single fields by name, a stage, or a dict of a stage's fields), checked in the name of ``func``; unknown
+    names raise."""
+    return config.merged(params, overrides, func, RelocParams)
 
 
 def check_extraction(extraction, func: str) -> dict:
@@ -228,13 +272,9 @@ def check_extraction(extraction, func: str) -> dict:
 
 
 def check_relocalize_kw(kw: dict, func: str) -> dict:
-    """Keywords for :func:`~cga_lessons.relocalization.relocalize` (``params``, ``extraction`` and single
+    """Keywords for :func:`~cga_lessons.relocalization.relocalize` (``params``, ``extraction``, stages and single
     thresholds), checked in the name of ``func``."""
-    if "params" in kw:
-        resolve_params(kw["params"], {}, func)
     if kw.get("extraction") is not None:
         checks.instance(kw["extraction"], func, "extraction", dict, "a dict of extract_segments' settings")
-    for name, value in kw.items():
-        if name not in ("params", "extraction"):
-            resolve_params(None, {name: value}, func)
+    resolve_params(kw.get("params"), {k: v for k, v in kw.items() if k not in ("params", "extraction")}, func)
     return kw

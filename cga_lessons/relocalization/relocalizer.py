@@ -64,9 +64,9 @@ from cga_lessons.mapping2d import extract_segments
 from .candidates import Candidate, decide, screen_hypotheses, verify_hypotheses
 from .geometry import Observation, ReferenceMap, ScanLines, range_noise, reference_map
 from .inputs import as_segment_array, check_scan
-from .params import STATUSES, RelocParams, check_extraction, check_score, noise_scaled, resolve_params
+from .params import STATUSES, RelocParams, RelocSearch, check_extraction, check_score, noise_scaled, resolve_params
 from .search import pose_hypotheses, propose_rotations
-from .thesis import thesis_relocalization
+from .thesis import ThesisRelocalization, thesis_relocalization
 from .verify import match_lines, pose_covariance
 
 __all__ = [
@@ -76,9 +76,9 @@ __all__ = [
 ]
 
 
-@dataclass
+@dataclass(kw_only=True)
 class Relocalization:
-    """The result of :func:`relocalize`.
+    """The result of :func:`relocalize` (built by keyword).
 
     Attributes
     ----------
@@ -88,10 +88,6 @@ class Relocalization:
     score : float
         The best candidate's score (fraction of returned beams on the map,
         less the beams that would cross a wall); ``-inf`` with no candidate.
-    ambiguous : bool
-        True when the pose must not be trusted: another clearly different
-        pose scores almost as well, the scan does not fix the pose, or the
-        search failed.
     status : str
         ``"ok"``, ``"ambiguous"`` or ``"failed"``.
     candidates : list of Candidate
@@ -112,15 +108,19 @@ class Relocalization:
         0 without a raw scan; the distance thresholds grow with it.
     message : str
         Why the result is ambiguous or failed.
-    votes, thesis_pose, thesis_correspondences
-        The thesis's vote matrix (5.6) ``(|M|, |L|)``, its pose (steps 6-10,
+    ambiguous : bool
+        Read from ``status``: True when the pose must not be trusted (another
+        clearly different pose scores almost as well, the scan does not fix
+        the pose, or the search failed), that is unless ``status`` is ``"ok"``.
+    thesis, votes, thesis_pose, thesis_correspondences
+        The literal method's result (:class:`~cga_lessons.relocalization.thesis.ThesisRelocalization`):
+        the thesis's vote matrix (5.6) ``(|M|, |L|)``, its pose (steps 6-10,
         None without correspondences) and its correspondence vector ``C``
         (``-1`` for none); computed when first read.
     """
 
     pose: np.ndarray | None
     score: float
-    ambiguous: bool
     status: str
     candidates: list = field(default_factory=list)
     correspondences: np.ndarray = field(default_factory=lambda: np.zeros((0, 2), int))
@@ -131,7 +131,7 @@ class Relocalization:
     range_noise: float = 0.0
     message: str = ""
     _thesis_input: tuple | None = field(default=None, repr=False)
-    _thesis: dict | None = field(default=None, repr=False)
+    _thesis: ThesisRelocalization | None = field(default=None, repr=False)
 
     def __post_init__(self):
         f = "Relocalization"
@@ -140,7 +140,6 @@ class Relocalization:
             raise checks.fail(f, "pose", f"None only for a failed result, not one with status {self.status!r}")
         self.pose = None if self.pose is None else checks.array(self.pose, f, "pose", (3,))
         self.score = check_score(self.score, f, failed=self.status == "failed")
-        self.ambiguous = checks.flag(self.ambiguous, f, "ambiguous")
         checks.instance(self.candidates, f, "candidates", list, "a list of Candidate")
         for c in self.candidates:
             checks.instance(c, f, "candidates", Candidate, "a list of Candidate")
@@ -158,24 +157,29 @@ class Relocalization:
         self.message = checks.text(self.message, f, "message", empty=True)
 
     @property
-    def thesis(self) -> dict:
+    def ambiguous(self) -> bool:
+        """The pose must not be trusted: ``status`` is ``"ambiguous"`` or ``"failed"``."""
+        return self.status != "ok"
+
+    @property
+    def thesis(self) -> ThesisRelocalization:
         """The literal method's output (:func:`~cga_lessons.relocalization.thesis.thesis_relocalization`)."""
         if self._thesis is None:
-            M, L, params = self._thesis_input
-            self._thesis = thesis_relocalization(M, L, xi_theta=params.xi_theta, xi_rho=params.xi_rho, entities=False)
+            M, L, search = self._thesis_input
+            self._thesis = thesis_relocalization(M, L, xi_theta=search.xi_theta, xi_rho=search.xi_rho, entities=False)
         return self._thesis
 
     @property
     def votes(self) -> np.ndarray:
-        return self.thesis["votes"]
+        return self.thesis.votes
 
     @property
     def thesis_pose(self):
-        return self.thesis["pose"]
+        return self.thesis.pose
 
     @property
     def thesis_correspondences(self) -> np.ndarray:
-        return self.thesis["C"]
+        return self.thesis.C
 
 
 def combined_noise(scan_noise: float, ref: ReferenceMap) -> float:
@@ -219,7 +223,9 @@ def relocalize(
     max_range : float
         The laser's reach (m): readings at or beyond it are no return.
     params : RelocParams, optional
-        Thresholds; keyword ``overrides`` replace single fields.
+        Thresholds by stage (:class:`~cga_lessons.relocalization.params.RelocSearch`,
+        :class:`~cga_lessons.relocalization.params.RelocCheck`); keyword ``overrides`` replace
+        single fields (``xi_theta=0.1``), a stage or some of its fields (``check={"min_score": 0.4}``).
     extraction : dict, optional
         Keyword arguments for :func:`cga_lessons.mapping2d.lines.extract_segments`
         (its ``xi`` defaults to 3 cm or three times the scan's range noise,
@@ -242,28 +248,28 @@ def relocalize(
     the result says ``status="failed"`` (``score`` ``-inf``, no ``pose``).
     """
     ref, L, obs, noise, params = _inputs(map_segments, scan_segments, scan, max_range, params, extraction, overrides)
-    base = dict(scan_segments=L, range_noise=noise, _thesis_input=(ref.segments, L, params))
+    search, check = params.search, params.check
+    base = dict(scan_segments=L, range_noise=noise, _thesis_input=(ref.segments, L, search))
     if len(L) < 2:
         return _failed(f"too few lines in the scan ({len(L)}); need two non-parallel", base)
     if not len(obs.points):
         return _failed("no returned beam in the scan", base)
     S, M = ScanLines(L), ref.lines
-    rotations, poses, quick = _hypotheses(M, S, params)
+    rotations, poses, quick = _hypotheses(M, S, search)
     base.update(rotations=rotations, n_hypotheses=len(poses))
-    chosen = screen_hypotheses(M, obs, poses, quick, params)
+    chosen = screen_hypotheses(M, obs, poses, quick, search, check)
     if not len(chosen):
         return _failed("no pose hypothesis (no two non-parallel lines match the map)", base)
-    ranked = verify_hypotheses(M, obs, chosen, params)
+    ranked = verify_hypotheses(M, obs, chosen, check)
     best = ranked[0]
     pairs = match_lines(
-        M, S, best.pose, params.line_tolerance, params.parallel_tol, params.overlap_margin, params.min_overlap
+        M, S, best.pose, search.line_tolerance, search.parallel_tol, search.overlap_margin, search.min_overlap
     )
-    cov = pose_covariance(M, obs, best.pose, params.inlier_distance)
-    status, msg = decide(M, obs, ranked, params)
+    cov = pose_covariance(M, obs, best.pose, check.inlier_distance)
+    status, msg = decide(M, obs, ranked, check)
     return Relocalization(
         pose=best.pose,
         score=best.score,
-        ambiguous=status != "ok",
         status=status,
         candidates=ranked,
         correspondences=pairs,
@@ -275,7 +281,7 @@ def relocalize(
 
 def _failed(message: str, base: dict) -> Relocalization:
     """The result of a relocalization that found no pose: ``status="failed"``, score ``-inf``, and why."""
-    return Relocalization(pose=None, score=-np.inf, ambiguous=True, status="failed", message=message, **base)
+    return Relocalization(pose=None, score=-np.inf, status="failed", message=message, **base)
 
 
 def _inputs(map_segments, scan_segments, scan, max_range, params, extraction, overrides):
@@ -304,25 +310,25 @@ def _inputs(map_segments, scan_segments, scan, max_range, params, extraction, ov
     return ref, L, obs, noise, params
 
 
-def _hypotheses(M, S, params):
+def _hypotheses(M, S, search: RelocSearch):
     """Rotations from the angle votes and, for each, the pose hypotheses with their quick scores."""
-    rotations, rot_votes = propose_rotations(M.angle, S.angle, S.length, params.xi_theta, params.n_rotations)
+    rotations, rot_votes = propose_rotations(M.angle, S.angle, S.length, search.xi_theta, search.n_rotations)
     if len(rotations):
-        rotations = rotations[rot_votes >= params.rotation_vote_ratio * rot_votes.max()]
+        rotations = rotations[rot_votes >= search.rotation_vote_ratio * rot_votes.max()]
     poses, quick = [np.zeros((0, 3))], [np.zeros(0)]
     for rot in rotations:
         p, q = pose_hypotheses(
             M,
             S,
             rot,
-            parallel_tol=params.parallel_tol,
-            n_anchor_pairs=params.n_anchor_pairs,
-            min_anchor_angle=params.min_anchor_angle,
-            overlap_margin=params.overlap_margin,
-            min_overlap=params.min_overlap,
-            line_tolerance=params.line_tolerance,
-            slide_step=params.slide_step,
-            slide_below=params.slide_below,
+            parallel_tol=search.parallel_tol,
+            n_anchor_pairs=search.n_anchor_pairs,
+            min_anchor_angle=search.min_anchor_angle,
+            overlap_margin=search.overlap_margin,
+            min_overlap=search.min_overlap,
+            line_tolerance=search.line_tolerance,
+            slide_step=search.slide_step,
+            slide_below=search.slide_below,
         )
         poses.append(p)
         quick.append(q)

@@ -29,6 +29,9 @@ of hypotheses, each a chain of laser poses, one per scan:
    best chain's steps depart from the odometry's beyond what its drift model
    allows (a chain that slid from candidate to candidate along a corridor).
 
+(The scans as evidence about a chain, its slide along the corridor and the
+decision: :mod:`~cga_lessons.relocalization.chain_evidence`.)
+
 Identical rooms stay ambiguous however often the robot looks around in one of
 them, and are reported so (notebook 09 shows both cases).
 """
@@ -40,14 +43,13 @@ import numpy as np
 from cga_lessons import checks
 from cga_lessons.mapping2d import OdometryModel, compose, relative
 
-from .candidates import Candidate, distinct, refine_if_better, tie_bar
+from .candidates import Candidate, distinct, tie_bar
 from .chain import Chain, SequenceRelocalization, refine_chains
+from .chain_evidence import ScanEvidence, decide_chain, polish_chain
 from .geometry import Observation, range_noise, reference_map
 from .inputs import check_pose, check_scan
-from .odometry import odometry_misfit
 from .params import RelocParams, noise_scaled, resolve_params
 from .relocalizer import combined_noise, relocalize
-from .verify import pose_information, score_poses
 
 __all__ = ["Relocalizer", "relocalize_sequence", "relocalizer_for"]
 
@@ -62,7 +64,8 @@ class Relocalizer:
     max_range : float
         The laser's reach (m).
     params : RelocParams, optional
-        Thresholds (keyword ``overrides`` replace single fields).
+        Thresholds by stage (keyword ``overrides`` replace single fields, a stage or some of its fields, as for
+        :func:`~cga_lessons.relocalization.relocalize`).
     max_chains : int
         At most this many chains are kept (the best by score).
     keep_ratio : float
@@ -128,13 +131,10 @@ class Relocalizer:
         self.joint = checks.flag(joint, func, "joint")
         self.window = checks.integer(window, func, "window", low=1)
         self.ref = reference_map(map_segments, func)
-        self.obs: list[Observation] = []
+        self.scans = ScanEvidence(self.ref.lines)
         self.odometry: list[np.ndarray] = []
-        self.returned = np.zeros(0, int)
         self.chains: list[Chain] = []
         self.single: list = []
-        self._scan_params: list[RelocParams] = []
-        self._sigmas: list[float] = []
 
     # ------------------------------------------------------------------ public
 
@@ -153,18 +153,17 @@ class Relocalizer:
         spread = combined_noise(noise, self.ref)  # of the scan's points about the map's walls
         params = noise_scaled(self.params, spread)
         obs = Observation.from_scan(ranges, angles, self.max_range)
-        k = len(self.obs)
-        self.obs.append(obs)
+        k = len(self.scans)
+        self.scans.add(obs, params.check, spread)
         self.odometry.append(odo)
-        self._scan_params.append(params)
-        self._sigmas.append(spread)
-        self.returned = np.append(self.returned, len(obs.points))
         single = relocalize(self.ref, scan=(ranges, angles), max_range=self.max_range, params=self.params)
         self.single.append(single)
 
         if k > 0 and self.chains:
             self._advance(k, [c.pose for c in single.candidates])
-        fresh = [c.pose for c in single.candidates if all(distinct(c.pose, ch.poses[k], params) for ch in self.chains)]
+        fresh = [
+            c.pose for c in single.candidates if all(distinct(c.pose, ch.poses[k], params.check) for ch in self.chains)
+        ]
         if fresh:
             self._start_chains(np.array(fresh), k)
         if self.joint and k > 0 and self.chains:
@@ -174,23 +173,23 @@ class Relocalizer:
 
     def result(self) -> SequenceRelocalization:
         """The answer after the scans added so far."""
-        n = len(self.obs)
+        n = len(self.scans)
         if not self.chains:
             msg = self.single[-1].message if self.single else "no scan yet"
             return SequenceRelocalization(
-                pose=None, score=-np.inf, ambiguous=True, status="failed", n_scans=n, message=msg, single=self.single
+                pose=None, score=-np.inf, status="failed", n_scans=n, message=msg, single=self.single
             )
         ranked = self._ranked()
         best = self.chains[ranked[0]]
-        self._polish(best)
+        polish_chain(self.scans, best)
         cands = [self._candidate(self.chains[i]) for i in ranked]
-        status, msg, probe = self._decide(best, cands)
+        check, odo = self.params.check, self.odometry
+        status, msg, probe = decide_chain(self.scans, best, cands, check, odo, self.odometry_model)
         if probe is not None:
             cands.insert(1, probe)
         return SequenceRelocalization(
             pose=np.array(best.poses[-1]),
             score=cands[0].score,
-            ambiguous=status != "ok",
             status=status,
             candidates=cands,
             trajectory=np.array(best.poses),
@@ -200,16 +199,6 @@ class Relocalizer:
         )
 
     # ------------------------------------------------------------------ internals
-
-    def _score(self, j, poses):
-        p = self._scan_params[j]
-        return score_poses(self.ref.lines, self.obs[j], poses, p.inlier_distance, p.ray_margin)
-
-    def _fit(self, j, poses):
-        """Poses (C, 3) snapped to scan ``j``'s points where that scores better; with their inliers, violations."""
-        p = self._scan_params[j]
-        poses, _, inl, vio = refine_if_better(self.ref.lines, self.obs[j], poses, p.inlier_distance, p.ray_margin)
-        return poses, inl, vio
 
     def _advance(self, k, nearby):
         """Every chain moved by the odometry increment to scan ``k`` and snapped to it.
@@ -221,13 +210,14 @@ class Relocalizer:
         """
         step = relative(self.odometry[k - 1], self.odometry[k])
         pred = compose(np.array([ch.poses[k - 1] for ch in self.chains]), step)
-        poses, inl, vio = self._fit(k, pred)
+        poses, inl, vio = self.scans.fit(k, pred)
         if len(nearby):
             near = np.array(nearby)
-            sc_near, inl_near, vio_near = self._score(k, near)
+            sc_near, inl_near, vio_near = self.scans.score(k, near)
             dpos = np.hypot(*(near[None, :, :2] - pred[:, None, :2]).transpose(2, 0, 1))
             dang = np.abs(np.angle(np.exp(1j * (near[None, :, 2] - pred[:, None, 2]))))
-            close = (dpos < 3 * self.params.distinct_position) & (dang < 3 * self.params.distinct_heading)
+            check = self.params.check
+            close = (dpos < 3 * check.distinct_position) & (dang < 3 * check.distinct_heading)
             for c in range(len(pred)):
                 for m in np.flatnonzero(close[c]):
                     if inl_near[m] - vio_near[m] > inl[c] - vio[c]:
@@ -243,32 +233,34 @@ class Relocalizer:
         chain = np.zeros((k + 1, n, 3))
         inl = np.zeros((k + 1, n))
         vio = np.zeros((k + 1, n))
-        chain[k], inl[k], vio[k] = self._fit(k, poses)
+        chain[k], inl[k], vio[k] = self.scans.fit(k, poses)
         for j in range(k - 1, -1, -1):
             back = compose(chain[j + 1], relative(self.odometry[j + 1], self.odometry[j]))
-            chain[j], inl[j], vio[j] = self._fit(j, back)
+            chain[j], inl[j], vio[j] = self.scans.fit(j, back)
         for c in range(n):
             self.chains.append(Chain([chain[j, c] for j in range(k + 1)], inl[:, c].copy(), vio[:, c].copy()))
 
     def _refine_jointly(self):
         """Every chain's last ``window`` poses fitted to their scans and the odometry together
         (:func:`~cga_lessons.relocalization.chain.refine_chains`), the poses before them held."""
-        n = len(self.obs)
+        n = len(self.scans)
         j0 = max(0, n - self.window)
         chains = np.array([ch.poses for ch in self.chains])
         odo = np.array(self.odometry)
         inc = relative(odo[max(j0 - 1, 0) : n - 1], odo[max(j0, 1) : n])
-        sig = np.maximum(np.array(self._sigmas[j0:]), 1e-3)  # a noise-free (simulated) scan: 1 mm keeps weights finite
+        # a noise-free (simulated) scan: 1 mm keeps weights finite
+        sig = np.maximum(np.array(self.scans.sigmas[j0:]), 1e-3)
         anchor = chains[:, j0 - 1] if j0 > 0 else None
-        out = refine_chains(self.ref.lines, self.obs[j0:], inc, chains[:, j0:], sig, self.odometry_model, anchor=anchor)
+        obs = self.scans.observations[j0:]
+        out = refine_chains(self.ref.lines, obs, inc, chains[:, j0:], sig, self.odometry_model, anchor=anchor)
         for j in range(j0, n):
-            _, inl, vio = self._score(j, out[:, j - j0])
+            _, inl, vio = self.scans.score(j, out[:, j - j0])
             for c, ch in enumerate(self.chains):
                 ch.poses[j] = out[c, j - j0]
                 ch.inliers[j], ch.violations[j] = inl[c], vio[c]
 
     def _ranked(self):
-        scores = np.array([ch.score(self.returned) for ch in self.chains])
+        scores = np.array([ch.score(self.scans.returned) for ch in self.chains])
         return list(np.argsort(-scores, kind="stable"))
 
     def _prune(self):
@@ -282,111 +274,20 @@ class Relocalizer:
         if not self.chains:
             return
         order = self._ranked()
-        best = self.chains[order[0]].score(self.returned)
-        floor = min(self.keep_ratio * best, tie_bar(best, self.params))
+        best = self.chains[order[0]].score(self.scans.returned)
+        floor = min(self.keep_ratio * best, tie_bar(best, self.params.check))
         kept = []
         for i in order:
             ch = self.chains[i]
-            if len(kept) >= self.max_chains or ch.score(self.returned) < floor:
+            if len(kept) >= self.max_chains or ch.score(self.scans.returned) < floor:
                 break
-            if all(distinct(ch.poses[-1], o.poses[-1], self.params) for o in kept):
+            if all(distinct(ch.poses[-1], o.poses[-1], self.params.check) for o in kept):
                 kept.append(ch)
         self.chains = kept
 
     def _candidate(self, ch) -> Candidate:
-        pose, score = np.array(ch.poses[-1]), ch.score(self.returned)
+        pose, score = np.array(ch.poses[-1]), ch.score(self.scans.returned)
         return Candidate(pose, score, float(ch.inliers.sum()), float(ch.violations.sum()))
-
-    def _weak_direction(self, ch) -> np.ndarray:
-        """The unit position direction (2,) that the chain's scans constrain least.
-
-        Every scan's information about its own pose (``J^T J`` of
-        :func:`~cga_lessons.relocalization.verify.pose_information`) is carried
-        to the last pose through the rigid chain: ``J_j`` maps a change of the
-        last pose to the change of pose ``j``.
-        """
-        last = np.asarray(ch.poses[-1])
-        H = np.zeros((3, 3))
-        for j, pose in enumerate(ch.poses):
-            Hj, _ = pose_information(self.ref.lines, self.obs[j], pose, self._scan_params[j].inlier_distance)
-            dx, dy = np.asarray(pose[:2]) - last[:2]
-            J = np.array([[1.0, 0.0, -dy], [0.0, 1.0, dx], [0.0, 0.0, 1.0]])
-            H += J.T @ Hj @ J
-        return np.linalg.eigh(H[:2, :2])[1][:, 0]
-
-    def _summed(self, poses):
-        """Inliers and violations summed over the scans, for one chain of poses (n_scans, 3)."""
-        inl, vio = self._per_scan(poses)
-        return float(inl.sum()), float(vio.sum())
-
-    def _polish(self, ch, rounds: int = 5):
-        """Slide the whole chain along its least constrained direction while the summed score grows.
-
-        The points fix a pose across walls but hardly along a corridor; there
-        the beams through doors and past wall ends decide, and they only count
-        in the beam score.  Coarse steps (5 to 20 cm), then 2 cm steps.
-        """
-        weak = self._weak_direction(ch)
-        poses = np.array(ch.poses)
-        cur = float(ch.inliers.sum() - ch.violations.sum())
-        coarse = True
-        for _ in range(rounds):
-            steps = [-0.2, -0.1, -0.05, 0.05, 0.1, 0.2] if coarse else [-0.02, 0.02]
-            trials = [(poses + np.array([st * weak[0], st * weak[1], 0.0])) for st in steps]
-            per_scan = [self._per_scan(t) for t in trials]
-            net = [float(i.sum() - v.sum()) for i, v in per_scan]
-            k = int(np.argmax(net))
-            if net[k] > cur:
-                poses, cur = trials[k], net[k]
-                ch.poses = list(poses)
-                ch.inliers, ch.violations = per_scan[k]
-            elif coarse:
-                coarse = False
-            else:
-                break
-
-    def _per_scan(self, poses):
-        out = [self._score(j, q[None]) for j, q in enumerate(poses)]
-        return np.array([float(o[1][0]) for o in out]), np.array([float(o[2][0]) for o in out])
-
-    def _decide(self, best, cands):
-        """``(status, message, probe)``: the rule of :func:`~cga_lessons.relocalization.candidates.decide` on the
-        summed scores; the probe is the chain moved rigidly along its weakest direction when it ties."""
-        p = self.params
-        if cands[0].score < p.min_score:
-            return "failed", f"best score {cands[0].score:.3f} below min_score {p.min_score}", None
-        bad = odometry_misfit(best.poses, self.odometry, self.odometry_model)
-        if bad is not None:
-            return "ambiguous", f"the best chain of poses moves against the odometry at scan {bad}", None
-        bar = tie_bar(cands[0].score, p)
-        rivals = [c for c in cands[1:] if c.score >= bar]
-        if rivals:
-            return (
-                "ambiguous",
-                f"{len(rivals)} clearly different pose(s) score >= {bar:.3f}, tied with the best "
-                f"after {len(self.obs)} scan(s)",
-                None,
-            )
-        last = np.asarray(best.poses[-1])
-        weak = self._weak_direction(best)
-        d, a = p.distinct_position * 1.01, p.distinct_heading * 1.01
-        motions = [(d * weak[0], d * weak[1], 0.0), (-d * weak[0], -d * weak[1], 0.0), (0.0, 0.0, a), (0.0, 0.0, -a)]
-        scores, details = [], []
-        for mx, my, ma in motions:
-            inl, vio = self._summed(np.array([_rigid(np.asarray(q), last[:2], mx, my, ma) for q in best.poses]))
-            scores.append((inl - vio) / self.returned.sum())
-            details.append((_rigid(last, last[:2], mx, my, ma), inl, vio))
-        kbest = int(np.argmax(scores))
-        if scores[kbest] >= bar:
-            pose, inl, vio = details[kbest]
-            return (
-                "ambiguous",
-                f"the poses moved by {p.distinct_position} m along ({weak[0]:.2f}, {weak[1]:.2f}) or turned by "
-                f"{np.degrees(p.distinct_heading):.1f} deg tie with them (score >= {bar:.3f}): "
-                f"{len(self.obs)} scan(s) do not fix the pose",
-                Candidate(pose, float(scores[kbest]), inl, vio),
-            )
-        return "ok", "", None
 
 
 def relocalizer_for(func: str, map_segments, max_range, kw: dict) -> Relocalizer:
@@ -399,13 +300,6 @@ def relocalizer_for(func: str, map_segments, max_range, kw: dict) -> Relocalizer
     loc._setup(func, map_segments, max_range, **settings)
     loc.params = resolve_params(params, kw, func)
     return loc
-
-
-def _rigid(pose, centre, mx, my, ma):
-    """A pose moved by the rigid motion: turn by ``ma`` about ``centre``, then shift by ``(mx, my)``."""
-    c, s = np.cos(ma), np.sin(ma)
-    d = pose[:2] - centre
-    return np.array([centre[0] + c * d[0] - s * d[1] + mx, centre[1] + s * d[0] + c * d[1] + my, pose[2] + ma])
 
 
 def relocalize_sequence(map_segments, scans, odometry, *, max_range: float = 5.0, stop_when_confident=False, **kw):

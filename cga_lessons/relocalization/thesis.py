@@ -18,6 +18,8 @@ laser's pose in the map, ``x -> R(Theta) x + t``.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from cga_lessons import checks
@@ -35,7 +37,68 @@ __all__ = [
     "translation_from_lines",
     "translate_entities",
     "thesis_relocalization",
+    "ThesisRelocalization",
 ]
+
+
+@dataclass(frozen=True)
+class ThesisRelocalization:
+    """What :func:`thesis_relocalization` finds by steps 1-10 of section 5.2.
+
+    Attributes
+    ----------
+    votes : ndarray of int, shape (M, L)
+        The vote matrix ``V`` (5.6).
+    C : ndarray of int, shape (M,)
+        The correspondence vector of step 6 (``-1``: none).
+    M_h, L_h : ndarray, shape (M, 2) and (L, 2)
+        The Hough sets ``(rho, theta)`` of the map and of the local map (figure 5.1).
+    pose : ndarray, shape (3,) or None
+        The laser's pose ``(x, y, Theta)`` in the map (steps 7 and 9); None when no correspondence was found.
+    rotated, placed : ndarray, shape (L, 2, 2) or None
+        The local segments after the rotor (step 8) and after the translator too (step 10); None without
+        ``entities`` or without a pose.
+    Theta : float or None
+        The mean angle of step 7 (3.8), None without a pose.
+    translation : ndarray, shape (2,) or None
+        The least-squares translation of step 9 (3.12), None without a pose.
+    """
+
+    votes: np.ndarray
+    C: np.ndarray
+    M_h: np.ndarray
+    L_h: np.ndarray
+    pose: np.ndarray | None = None
+    rotated: np.ndarray | None = None
+    placed: np.ndarray | None = None
+    Theta: float | None = None
+    translation: np.ndarray | None = None
+
+    def __post_init__(self):
+        f = "ThesisRelocalization"
+        n_map = len(checks.array(self.M_h, f, "M_h", (None, 2)))
+        n_scan = len(checks.array(self.L_h, f, "L_h", (None, 2)))
+        votes = checks.array(self.votes, f, "votes", (None, None))
+        if votes.shape != (n_map, n_scan):
+            raise checks.fail(f, "votes", f"expected shape ({n_map}, {n_scan}) (M_h's lines, L_h's), got {votes.shape}")
+        if np.any(votes < 0) or np.any(votes != np.round(votes)):
+            raise checks.fail(f, "votes", "must be whole numbers >= 0")
+        C = checks.array(self.C, f, "C", (None,))
+        if len(C) != n_map:
+            raise checks.fail(f, "C", f"expected one entry per line of M_h ({n_map}), got {len(C)}")
+        if np.any(C < -1) or np.any(C >= n_scan) or np.any(C != np.round(C)):
+            raise checks.fail(f, "C", f"must be indices of scan lines (0 to {n_scan - 1}) or -1")
+        for name in ("votes", "C", "M_h", "L_h"):  # checked, kept as given (the votes and C stay integers)
+            object.__setattr__(self, name, np.asarray(getattr(self, name)))
+        if (self.pose is None) != (self.Theta is None) or (self.pose is None) != (self.translation is None):
+            raise checks.fail(f, "pose, Theta, translation", "give all three (a pose found) or none")
+        if self.pose is not None:
+            object.__setattr__(self, "pose", checks.array(self.pose, f, "pose", (3,)))
+            object.__setattr__(self, "Theta", checks.real(self.Theta, f, "Theta"))
+            object.__setattr__(self, "translation", checks.array(self.translation, f, "translation", (2,)))
+        for name in ("rotated", "placed"):
+            if getattr(self, name) is not None:
+                object.__setattr__(self, name, checks.array(getattr(self, name), f, name, (n_scan, 2, 2)))
 
 
 def correspondences_from_votes(V, min_votes: int = 2) -> np.ndarray:
@@ -190,7 +253,7 @@ def thesis_relocalization(
     theta_xi: float = THETA_XI,
     min_votes: int = 2,
     entities: bool = True,
-) -> dict:
+) -> ThesisRelocalization:
     """Steps 1-10 of section 5.2 as printed: votes, correspondences, rotor, least squares, translator.
 
     Parameters
@@ -213,10 +276,10 @@ def thesis_relocalization(
 
     Returns
     -------
-    dict
+    ThesisRelocalization
         ``votes`` (M, L), ``C`` (M,), ``pose`` ``(x, y, Theta)`` or None when
         no correspondence was found, ``rotated`` and ``placed`` local segments
-        (K, 2, 2) after steps 8 and 10 (None without ``entities``), ``M_h`` and ``L_h``.
+        (L, 2, 2) after steps 8 and 10 (None without ``entities``), ``M_h`` and ``L_h``.
     """
     func = "thesis_relocalization"
     M = endpoint_array(map_segments, func, "map_segments")
@@ -229,9 +292,8 @@ def thesis_relocalization(
     entities = checks.flag(entities, func, "entities")
     V = votes_indexed(M_h, L_h, xi_theta, xi_rho, theta_xi)  # steps 1-5, (5.1)-(5.6)
     C = correspondences(V, min_votes)  # step 6
-    out = {"votes": V, "C": C, "M_h": M_h, "L_h": L_h, "pose": None, "rotated": None, "placed": None}
     if not np.any(C >= 0):
-        return out
+        return ThesisRelocalization(votes=V, C=C, M_h=M_h, L_h=L_h)
     Theta = mean_angle(M_h, L_h, C, theta_xi)  # step 7
     if entities:
         turned = rotated(L, Theta, func, "scan_segments")  # step 8
@@ -243,5 +305,7 @@ def thesis_relocalization(
         t = translation_from_lines(M_h, np.column_stack([L_h[:, 0], np.mod(L_h[:, 1] + Theta, TWO_PI)]), C)
         checks.finite_result(t, func, "map_segments, scan_segments: the translation")
     theta = float(np.mod(Theta + np.pi, TWO_PI) - np.pi)
-    out.update(pose=np.array([t[0], t[1], theta]), rotated=turned, placed=placed, Theta=Theta, translation=t)
-    return out
+    pose = np.array([t[0], t[1], theta])
+    return ThesisRelocalization(
+        votes=V, C=C, M_h=M_h, L_h=L_h, pose=pose, rotated=turned, placed=placed, Theta=Theta, translation=t
+    )

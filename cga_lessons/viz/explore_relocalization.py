@@ -35,7 +35,7 @@ from cga_lessons.checks import seed as as_seed
 from cga_lessons.relocalization import (
     HEADING_TOLERANCE,
     POSITION_TOLERANCE,
-    RelocParams,
+    RelocCheck,
     hough_set,
     pose_error,
     prepare_map,
@@ -146,7 +146,7 @@ class RelocalizationExplorer:
         self.seed, self.n_show = as_seed(seed, func), integer(n_show, func, "n_show", low=1, high=50)
         with relabel(func, "scene"):
             self.ref = prepare_map(self.scene.walls)
-        self.params = RelocParams()
+        self.params = RelocCheck()  # the check stage of relocalize: its tie bar is drawn
         self.M_h = hough_set(self.ref.segments)  # figure 5.1: rho from the map's origin
         self._build_figure()
         self.update()

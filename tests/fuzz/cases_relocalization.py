@@ -8,7 +8,9 @@ from cga_lessons.mapping2d import CarmenLog, OdometryModel, Scene, simulate_scan
 from cga_lessons.relocalization import (
     BeamModel,
     Candidate,
+    CoverageFractions,
     Evaluation,
+    EvaluationSummary,
     MCLConfig,
     MCLEstimate,
     MonteCarloLocalizer,
@@ -16,6 +18,7 @@ from cga_lessons.relocalization import (
     Relocalization,
     Relocalizer,
     RelocParams,
+    ThesisRelocalization,
     as_segment_array,
     combined_noise,
     correspondences_from_votes,
@@ -102,7 +105,6 @@ _CANDIDATE = dict(pose=POSE.copy(), score=0.9, inliers=80.0, violations=2.0)
 _RELOCALIZATION = dict(
     pose=POSE.copy(),
     score=0.9,
-    ambiguous=False,
     status="ok",
     candidates=[Candidate(**_CANDIDATE)],
     correspondences=np.array([[0, 1], [2, 0]]),
@@ -113,7 +115,7 @@ _RELOCALIZATION = dict(
     range_noise=0.01,
     message="",
 )
-_FAILED = dict(pose=None, score=-np.inf, ambiguous=True, status="failed", message="too few lines in the scan (1)")
+_FAILED = dict(pose=None, score=-np.inf, status="failed", message="too few lines in the scan (1)")
 _ESTIMATE = dict(
     pose=POSE.copy(),
     covariance=np.eye(3) * 1e-4,
@@ -247,6 +249,12 @@ CASES = [
     Case(rotate_entities, dict(segments=SCAN_SEGMENTS.copy(), angle=0.4), strict=True),
     Case(translate_entities, dict(segments=SCAN_SEGMENTS.copy(), translation=np.array([0.3, -0.2])), strict=True),
     Case(
+        ThesisRelocalization,
+        lambda: dict(vars(thesis_relocalization(MAP, SCAN_SEGMENTS, xi_theta=0.05, xi_rho=0.2))),
+        strict=True,
+        allow={"rotated": ("None",), "placed": ("None",)},
+    ),
+    Case(
         thesis_relocalization,
         dict(
             map_segments=MAP,
@@ -326,6 +334,22 @@ CASES = [
         kinds={"scene": [MAP], "map_segments": _WRONG_MAPS},
     ),
     Case(Evaluation, _EVALUATION),
+    Case(
+        EvaluationSummary,
+        dict(
+            n=10,
+            success=6,
+            confidently_wrong=0,
+            ambiguous=3,
+            indistinguishable=2,
+            failed=1,
+            success_rate=0.6,
+            success_rate_distinguishable=0.75,
+            median_ms=12.5,
+        ),
+        strict=True,
+    ),
+    Case(CoverageFractions, dict(unknown=0.5, free=0.3, wall=0.2), strict=True),
     Case(held_out_map_indices, dict(n=10, test_indices=np.array([3, 7]), exclude=1, map_step=2), strict=True),
     Case(
         reference_from_log,
