@@ -24,6 +24,8 @@ import numpy as np
 
 from cga_lessons.stereo import detect as sd
 from cga_lessons.stereo import detect_scenes as ss
+from cga_lessons.stereo import detect_scores as sc
+from cga_lessons.stereo.detect_params import present
 from cga_lessons.stereo.rig import load_rig
 
 QUICK = "--quick" in sys.argv
@@ -42,9 +44,9 @@ def run(make, seeds, noise_of=lambda scene: scene.noise, config=None):
         ents = sd.detect_entities(scene.points, np.random.default_rng(1000 + s), config, noise_of(scene))
         times.append(time.perf_counter() - t0)
         sizes.append(len(scene.points))
-        ev = ss.evaluate(scene, ents)
+        ev = sc.evaluate(scene, ents)
         for k in KINDS:
-            tot[k] += [ev[k]["tp"], ev[k]["detected"], ev[k]["truth"]]
+            tot[k] += [ev.kinds[k].tp, ev.kinds[k].detected, ev.kinds[k].truth]
     return tot, float(np.mean(times)), float(np.mean(sizes))
 
 
@@ -136,7 +138,7 @@ def motorcycle(step=6, sigma_px=0.5):
                         inliers=len(e.inliers),
                         rms=e.rms,
                         chi2=e.chi2,
-                        params={k: np.asarray(v).tolist() for k, v in e.params.items()},
+                        params={k: np.asarray(v).tolist() for k, v in present(e.params).items()},
                     )
                     for e in ents
                 ],
@@ -145,21 +147,21 @@ def motorcycle(step=6, sigma_px=0.5):
         floor = floor or ents[0]  # the largest plane of the planes-only run: the floor (normal along image y)
         for e in ents[:6]:
             if e.kind == "plane":
-                ang = np.degrees(np.arccos(min(1.0, abs(e.params["normal"] @ floor.params["normal"]))))
-                what = (f"normal {np.round(e.params['normal'], 3)}  n.x = {e.params['distance']:.3f} m  "
+                ang = np.degrees(np.arccos(min(1.0, abs(e.params.normal @ floor.params.normal))))
+                what = (f"normal {np.round(e.params.normal, 3)}  n.x = {e.params.distance:.3f} m  "
                         f"{ang:4.1f} deg to the floor")  # fmt: skip
             elif e.kind == "sphere":
-                what = f"centre {np.round(e.params['center'], 2)}  radius {e.params['radius']:.2f} m"
+                what = f"centre {np.round(e.params.center, 2)}  radius {e.params.radius:.2f} m"
             else:
-                what = str({k: np.round(v, 2) for k, v in e.params.items()})
+                what = str({k: np.round(v, 2) for k, v in present(e.params).items()})
             print(f"    {e.kind:<6} {len(e.inliers):5d} pts  rms {1e3 * e.rms:5.1f} mm  chi2 {e.chi2:4.2f}  {what}")
         if label == "planes only":
             Xf = X[floor.inliers]
             sph = dm.fit("sphere", Xf)
             if sph is not None:
-                r = np.linalg.norm(Xf - sph["center"], axis=1) - sph["radius"]
+                r = np.linalg.norm(Xf - sph.center, axis=1) - sph.radius
                 print(f"    the floor's points: plane rms {1e3 * floor.rms:.1f} mm, best sphere (radius "
-                      f"{sph['radius']:.0f} m) rms {1e3 * np.sqrt(np.mean(r**2)):.1f} mm")  # fmt: skip
+                      f"{sph.radius:.0f} m) rms {1e3 * np.sqrt(np.mean(r**2)):.1f} mm")  # fmt: skip
 
 
 if __name__ == "__main__":

@@ -5,6 +5,8 @@ rendered with plain 4x4 matrices (map3d_tour.homogeneous_chains), so the motor
 chains that bring the entities back are checked end to end.
 """
 
+import dataclasses
+
 import matplotlib
 
 matplotlib.use("Agg")
@@ -15,7 +17,7 @@ import pytest  # noqa: E402
 
 from cga_lessons import conformal as cga  # noqa: E402
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError  # noqa: E402
-from cga_lessons.map3d import build_fused_map, entity_parameters, fit_line_3d, stereo_depth_limit  # noqa: E402
+from cga_lessons.map3d import build_fused_map, entity_parameters, stereo_depth_limit  # noqa: E402
 from cga_lessons.map3d.eval import COLUMNS, match_board_segment, residual_table, view_errors  # noqa: E402
 from cga_lessons.map3d.laser import fit_post_center, laser_posts, virtual_wall  # noqa: E402
 from cga_lessons.map3d.robot import Robot  # noqa: E402
@@ -46,16 +48,15 @@ def test_noise_free_tour_recovers_the_truth(exact):
     world = exact.tour.world
     assert set(exact.objects) == {"ball", "board", "plate", "post_west", "post_east"}
     for name, obj in exact.objects.items():
-        t, p = world.object(name).truth(), obj["params"]
-        if obj["kind"] in ("sphere", "circle"):
-            assert np.allclose(p["center"], t["center"], atol=1e-6) and abs(p["radius"] - t["radius"]) < 1e-6
-        elif obj["kind"] == "plane":
-            assert (
-                abs(abs(p["normal"] @ t["normal"]) - 1) < 1e-9 and abs(abs(p["distance"]) - abs(t["distance"])) < 1e-6
-            )
+        t, p = world.object(name).truth(), obj.params
+        assert obj.kind == p.kind == t.kind
+        if obj.kind in ("sphere", "circle"):
+            assert np.allclose(p.center, t.center, atol=1e-6) and abs(p.radius - t.radius) < 1e-6
+        elif obj.kind == "plane":
+            assert abs(abs(p.normal @ t.normal) - 1) < 1e-9 and abs(abs(p.distance) - abs(t.distance)) < 1e-6
         else:
-            assert abs(abs(p["direction"][2]) - 1) < 1e-9
-            assert np.allclose(p["point"][:2], t["point"][:2], atol=1e-6)
+            assert abs(abs(p.direction[2]) - 1) < 1e-9
+            assert np.allclose(p.point[:2], t.point[:2], atol=1e-6)
     # the laser: posts to the polygon's approximation of the circle (0.1 mm); the walls come from chapter 3's
     # map, whose corrections move even exact poses by up to 2 cm in this scene but keep its lines within mm
     rows = {r["object"]: r for r in residual_table(exact)}
@@ -99,10 +100,14 @@ def test_view_entities_are_the_fits_of_the_moved_points(fused):
     from cga_lessons.map3d.fits import fit_entity as _fit
 
     for e in fused.views[:8]:
-        p = entity_parameters(e.kind, _fit(e.kind, e.points_world)["blade"])
-        for key, v in e.params.items():
-            same = np.allclose(v, p[key], atol=1e-7) or (key in ("normal", "direction") and np.allclose(v, -p[key]))
-            assert same or (key == "distance" and np.isclose(abs(v), abs(p[key]), atol=1e-7)), (e.name, key)
+        p = entity_parameters(e.kind, _fit(e.kind, e.points_world).blade)
+        assert type(p) is type(e.params)
+        for key in (f.name for f in dataclasses.fields(p)):
+            v, w = getattr(e.params, key), getattr(p, key)
+            if v is None and w is None:  # an optional field neither sets (a plane's center, a line's length)
+                continue
+            same = np.allclose(v, w, atol=1e-7) or (key in ("normal", "direction") and np.allclose(v, -w))
+            assert same or (key == "distance" and np.isclose(abs(v), abs(w), atol=1e-7)), (e.name, key)
 
 
 def test_scan_segments_land_at_laser_height_on_the_walls(fused):
@@ -157,19 +162,19 @@ def test_laser_posts_finds_a_free_standing_post():
         laser_posts(r, a[:-1])
 
 
-def test_fit_post_center_and_fit_line_3d_closed_form():
+def test_fit_post_center_and_fit_line_closed_form():
     t = np.linspace(-1.0, 1.0, 9)
     pts = np.array([3.0, -1.0]) + 0.07 * np.column_stack([-np.cos(t), np.sin(t)])  # the near side of a circle
     assert np.allclose(fit_post_center(pts, (0.0, 0.0), 0.07), [3.0, -1.0], atol=1e-9)
     X = np.array([1.0, 2.0, 0.5]) + np.outer(np.linspace(-1, 2, 7), [0.0, 0.6, 0.8])
-    f = fit_line_3d(X)
-    assert np.allclose(np.abs(f["direction"]), [0.0, 0.6, 0.8]) and f["rms"] < 1e-12
-    assert np.allclose(cga.line_direction(f["blade"]), f["direction"])
-    assert cga.point_line_distance(X[3], f["blade"]) < 1e-9
+    f = cga.fit_line(X)
+    assert np.allclose(np.abs(f.direction), [0.0, 0.6, 0.8]) and f.rms < 1e-12
+    assert np.allclose(cga.line_direction(f.blade), f.direction)
+    assert cga.point_line_distance(X[3], f.blade) < 1e-9
     with pytest.raises(DegenerateGeometryError):
-        fit_line_3d(np.ones((4, 3)))
+        cga.fit_line(np.ones((4, 3)))
     with pytest.raises(InvalidInputError):
-        fit_line_3d(np.array([[0.0, np.nan, 1.0], [1.0, 1.0, 1.0]]))
+        cga.fit_line(np.array([[0.0, np.nan, 1.0], [1.0, 1.0, 1.0]]))
 
 
 def test_stereo_depth_limit_is_the_first_order_error():
@@ -194,7 +199,7 @@ def test_homogeneous_chains_match_the_robot():
     state = RobotState(1.0, 2.0, 0.5, -0.6, 0.3)
     H = homogeneous_chains(RobotGeometry(), x=1.0, y=2.0, theta=0.5, pan=-0.6, tilt=0.3)
     F = Robot(state=state).frames()
-    assert np.allclose(H["camera_left"], F["camera_left"], atol=1e-12) and np.allclose(H["laser"], F["laser"])
+    assert np.allclose(H.camera_left, F.camera_left, atol=1e-12) and np.allclose(H.laser, F.laser)
 
 
 def test_the_board_is_matched_to_its_laser_line(fused):
@@ -227,7 +232,7 @@ def test_robot_and_map_primitives(fused):
     names = {p.name for p in check_scene(prims)}
     assert {"robot/base", "robot/laser", "robot/camera_left", "robot/camera_right", "robot/pan_tilt"} <= names
     cam = next(p for p in prims if p.name == "robot/camera_left")
-    H = robot.frames()["camera_left"]
+    H = robot.frames().camera_left
     assert (
         isinstance(cam, Box) and np.allclose(cam.rotation, H[:3, :3]) and np.linalg.norm(cam.center - H[:3, 3]) < 0.05
     )

@@ -14,7 +14,7 @@ from cga_lessons import conformal as cga
 from cga_lessons import map3d as rb
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
 from cga_lessons.map3d.chains import axes_nearest_point, to_unified
-from cga_lessons.map3d.robot import MOTOR_INPUTS
+from cga_lessons.map3d.motors import MOTOR_INPUTS
 from cga_lessons.mapping2d.conformal import laser_motor
 
 N = 1000
@@ -113,7 +113,7 @@ def test_laser_chain_4_1_to_4_3_equals_homogeneous_matrices(geometry):
     c = _configs(1, geometry)
     m, H = rb.chain_motors(geometry, **c), _truth(geometry, c)
     for name in ("R_pos", "T_pos", "M_cl", "M_pos", "M_lu"):
-        assert np.abs(_matrices(m[name]) - H[name]).max() < TOL, name
+        assert np.abs(_matrices(getattr(m, name)) - H[name]).max() < TOL, name
 
 
 def test_stereo_chain_4_5_to_4_9_equals_homogeneous_matrices():
@@ -121,18 +121,18 @@ def test_stereo_chain_4_5_to_4_9_equals_homogeneous_matrices():
     g = rb.RobotGeometry()
     m, H = rb.chain_motors(g, **c), _truth(g, c)
     for name in ("T_ep", "R_pt", "T_opt", "M_mpt", "M_eu", "M_eu_lines"):
-        assert np.abs(_matrices(m[name]) - H[name]).max() < TOL, name
+        assert np.abs(_matrices(getattr(m, name)) - H[name]).max() < TOL, name
 
 
 def test_chain_about_lines_2_109_is_exact_for_axes_that_miss():
     c = _configs(3, SKEW)
     m, H = rb.chain_motors(SKEW, **c), _truth(SKEW, c)
-    assert np.abs(_matrices(m["M_eu_lines"]) - H["M_eu_lines"]).max() < TOL
+    assert np.abs(_matrices(m.M_eu_lines) - H["M_eu_lines"]).max() < TOL
     # the thesis's chain (rotors about the axis directions at the nearest point) is then an approximation
-    err = np.linalg.norm(_matrices(m["M_eu"])[:, :3, 3] - H["M_eu"][:, :3, 3], axis=1)
+    err = np.linalg.norm(_matrices(m.M_eu)[:, :3, 3] - H["M_eu"][:, :3, 3], axis=1)
     assert 1e-3 < err.max() < 0.05
     # ... whose rotation is still exact: both turn by the same axes' directions
-    assert np.abs(_matrices(m["M_eu"])[:, :3, :3] - H["M_eu"][:, :3, :3]).max() < TOL
+    assert np.abs(_matrices(m.M_eu)[:, :3, :3] - H["M_eu"][:, :3, :3]).max() < TOL
 
 
 def test_eq_4_2_erratum_printed_form_ignores_the_heading():
@@ -140,8 +140,8 @@ def test_eq_4_2_erratum_printed_form_ignores_the_heading():
     g = rb.RobotGeometry()
     m, H = rb.chain_motors(g, **c), _truth(g, c)
     R_lsr = cga.rotor([0, 0, 1.0], g.laser_mount[3])  # the laser's mounting rotor (identity: it looks ahead)
-    printed = rb.base_motor_as_printed(m["T_pos"], R_lsr)
-    assert np.abs(_matrices(m["M_pos"]) - H["M_pos"]).max() < TOL
+    printed = rb.base_motor_as_printed(m.T_pos, R_lsr)
+    assert np.abs(_matrices(m.M_pos) - H["M_pos"]).max() < TOL
     err = np.abs(_matrices(printed) - H["M_pos"])[:, :3, :3].max(axis=(1, 2))
     assert np.all(err[np.abs(c["theta"]) > 0.1] > 0.05)
 
@@ -150,22 +150,22 @@ def test_eq_4_3_erratum_printed_order_needs_a_straight_laser():
     for g, printed_ok in ((rb.RobotGeometry(), True), (TURNED, False)):
         c = _configs(5, g)
         m, H = rb.chain_motors(g, **c), _truth(g, c)
-        printed = rb.laser_chain_as_printed(m["M_cl"], m["M_pos"])
-        assert np.abs(_matrices(m["M_lu"]) - H["M_lu"]).max() < TOL
+        printed = rb.laser_chain_as_printed(m.M_cl, m.M_pos)
+        assert np.abs(_matrices(m.M_lu) - H["M_lu"]).max() < TOL
         err = np.abs(_matrices(printed) - H["M_lu"]).max()
         assert (err < TOL) if printed_ok else (err > 0.1)
     # corrected (4.3) = M_pos M_lsr, the 3D form of the corrected (3.17)
-    assert np.abs(_matrices(m["M_lu"]) - _matrices(m["M_pos"] * m["M_lsr"])).max() < TOL
+    assert np.abs(_matrices(m.M_lu) - _matrices(m.M_pos * m.M_lsr)).max() < TOL
 
 
 def test_eq_4_9_erratum_rotor_alone_loses_the_position():
     c = _configs(6)
     g = rb.RobotGeometry()
     m, H = rb.chain_motors(g, **c), _truth(g, c)
-    printed = rb.stereo_chain_as_printed(m["T_opt"], m["T_ep"], m["R_pt"])
+    printed = rb.stereo_chain_as_printed(m.T_opt, m.T_ep, m.R_pt)
     miss = np.linalg.norm(_matrices(printed)[:, :3, 3] - H["M_eu"][:, :3, 3], axis=1)
     assert np.allclose(miss, np.hypot(c["x"], c["y"]), atol=1e-9)
-    assert np.abs(_matrices(m["M_eu"]) - H["M_eu"]).max() < TOL
+    assert np.abs(_matrices(m.M_eu) - H["M_eu"]).max() < TOL
 
 
 # ---------------------------------------------------------------- (4.4) and (4.10) on entities
@@ -258,9 +258,9 @@ def test_stereo_rig_and_frames_match_the_chain():
     assert np.allclose(rig.R1[2], [1.0, 0.0, 0.0])  # optical axis along the stereo frame's x
     F = robot.frames()
     H = _truth(robot.geometry, {k: np.full(N, getattr(robot.state, k)) for k in rb.DOFS})
-    assert np.allclose(F["camera_left"], H["M_eu"][0], atol=1e-12)
-    assert np.allclose(F["laser"], H["M_lu"][0], atol=1e-12) and np.allclose(F["base"], H["M_pos"][0], atol=1e-12)
-    assert np.allclose(F["camera_right"][:3, 3], F["camera_left"][:3, 3] - 0.12 * F["camera_left"][:3, 1])
+    assert np.allclose(F.camera_left, H["M_eu"][0], atol=1e-12)
+    assert np.allclose(F.laser, H["M_lu"][0], atol=1e-12) and np.allclose(F.base, H["M_pos"][0], atol=1e-12)
+    assert np.allclose(F.camera_right[:3, 3], F.camera_left[:3, 3] - 0.12 * F.camera_left[:3, 1])
 
 
 def test_bad_input_raises():

@@ -16,6 +16,7 @@ from cga_lessons import conformal as cga
 from cga_lessons import stereo as st
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
 from cga_lessons.conformal import fitting as sf
+from cga_lessons.conformal.plane_ransac import ransac_plane
 from cga_lessons.stereo import camera as cam
 from cga_lessons.stereo import experiments as ex
 from cga_lessons.stereo import real as real
@@ -32,19 +33,19 @@ def bundled():
 
 def assert_entities_close(truth, rec, tol=1e-9):
     """Every parameter of every entity (raw values, not only the error summary)."""
-    np.testing.assert_allclose(rec["point"]["points"], truth["point"]["points"], atol=tol)
-    np.testing.assert_allclose(rec["pair"]["endpoints"], truth["pair"]["endpoints"], atol=tol)
+    np.testing.assert_allclose(rec["point"].points, truth["point"].points, atol=tol)
+    np.testing.assert_allclose(rec["pair"].endpoints, truth["pair"].endpoints, atol=tol)
     for q in ("direction", "closest_point", "length"):
-        np.testing.assert_allclose(rec["line"][q], truth["line"][q], atol=tol)
+        np.testing.assert_allclose(getattr(rec["line"], q), getattr(truth["line"], q), atol=tol)
     for q in ("center", "radius"):
-        np.testing.assert_allclose(rec["circle"][q], truth["circle"][q], atol=tol)
-        np.testing.assert_allclose(rec["sphere"][q], truth["sphere"][q], atol=tol)
-    np.testing.assert_allclose(rec["circle"]["center_via_plane"], truth["circle"]["center"], atol=tol)
-    sign = np.sign(rec["circle"]["normal"] @ truth["circle"]["normal"])
-    np.testing.assert_allclose(sign * rec["circle"]["normal"], truth["circle"]["normal"], atol=tol)
-    sign = np.sign(rec["plane"]["normal"] @ truth["plane"]["normal"])
-    np.testing.assert_allclose(sign * rec["plane"]["normal"], truth["plane"]["normal"], atol=tol)
-    np.testing.assert_allclose(sign * rec["plane"]["distance"], truth["plane"]["distance"], atol=tol)
+        np.testing.assert_allclose(getattr(rec["circle"], q), getattr(truth["circle"], q), atol=tol)
+        np.testing.assert_allclose(getattr(rec["sphere"], q), getattr(truth["sphere"], q), atol=tol)
+    np.testing.assert_allclose(rec["circle"].center_via_plane, truth["circle"].center, atol=tol)
+    sign = np.sign(rec["circle"].normal @ truth["circle"].normal)
+    np.testing.assert_allclose(sign * rec["circle"].normal, truth["circle"].normal, atol=tol)
+    sign = np.sign(rec["plane"].normal @ truth["plane"].normal)
+    np.testing.assert_allclose(sign * rec["plane"].normal, truth["plane"].normal, atol=tol)
+    np.testing.assert_allclose(sign * rec["plane"].distance, truth["plane"].distance, atol=tol)
 
 
 # ------------------------------------------------------------ rig, scene
@@ -95,7 +96,7 @@ def test_noise_free_entities_recover_the_bundled_scene(method):
     rec = st.reconstruct_entities(rig, {k: st.observe(rig, s[k]) for k in KEYS}, method)
     assert_entities_close(scene.truth(), rec)
     errs = st.entity_errors(scene.truth(), rec)
-    assert max(max(v.values()) for v in errs.values()) < 1e-9
+    assert max(max(vars(v).values()) for v in errs.values()) < 1e-9
 
 
 @pytest.mark.parametrize("seed", range(6))
@@ -111,15 +112,33 @@ def test_noise_free_entities_on_random_rigs_and_scenes(seed):
 def test_entities_are_the_conformal_blades():
     rig, scene, s = bundled()
     rec = st.reconstruct_entities(rig, {k: st.observe(rig, s[k]) for k in KEYS})
-    X = rec["point"]["blade"]  # (2.61): null vectors with x . e = -1
+    X = rec["point"].blade  # (2.61): null vectors with x . e = -1
     np.testing.assert_allclose((X * X).scalar(), 0.0, atol=1e-12)
     np.testing.assert_allclose((X | cga.einf).scalar(), -1.0, atol=1e-12)
     for name, blade, grade in (("pair", "blade", 2), ("line", "blade", 3), ("circle", "blade", 3)):
-        assert rec[name][blade].grades_present() == [grade]
+        assert getattr(rec[name], blade).grades_present() == [grade]
     for k, ent in (("sphere_key", "sphere"), ("plane_key", "plane"), ("circle_key", "circle")):
         for x in s[k]:  # the defining points lie on the entity: x ^ blade = 0 (2.76)
-            assert (cga.up(x) ^ rec[ent]["blade"]).iszero(atol=1e-9)
-    assert not (cga.up(scene.sphere_center) ^ rec["sphere"]["blade"]).iszero(atol=1e-6)
+            assert (cga.up(x) ^ rec[ent].blade).iszero(atol=1e-9)
+    assert not (cga.up(scene.sphere_center) ^ rec["sphere"].blade).iszero(atol=1e-6)
+
+
+def test_truth_blades_are_the_true_entities():
+    rig, scene, s = bundled()
+    truth = scene.truth()
+    rec = st.reconstruct_entities(rig, {k: st.observe(rig, s[k]) for k in KEYS})
+    np.testing.assert_allclose(rec["line"].midpoint, truth["line"].midpoint, atol=1e-9)
+    c, r, n = cga.circle_center_radius(truth["circle"].blade)
+    np.testing.assert_allclose(c, scene.circle_center, atol=1e-12)
+    assert r == pytest.approx(scene.circle_radius, abs=1e-12) and abs(abs(n @ scene.circle_normal) - 1) < 1e-12
+    c, r = cga.sphere_center_radius(truth["sphere"].blade)
+    np.testing.assert_allclose(c, scene.sphere_center, atol=1e-12)
+    assert r == pytest.approx(scene.sphere_radius, abs=1e-12)
+    for x in scene.board_corners():  # every corner lies on the true plane, and on the reconstructed one
+        assert (cga.up(x) ^ truth["plane"].blade).iszero(atol=1e-9)
+    for name in ("pair", "line", "circle", "plane", "sphere"):  # the same dual forms as the reconstruction's
+        assert truth[name].blade.grades_present() == rec[name].blade.grades_present(), name
+    assert truth["plane"].radius == pytest.approx(0.5 * np.hypot(*scene.board_size))
 
 
 def test_circle_centre_two_ways_and_2_121_as_printed():
@@ -138,7 +157,7 @@ def test_circle_centre_two_ways_and_2_121_as_printed():
 def test_drawing_procedures_of_4_1():
     rig, scene, s = bundled()
     rec = st.reconstruct_entities(rig, {k: st.observe(rig, s[k]) for k in KEYS})
-    np.testing.assert_allclose(st.line_polyline(rec["line"]["blade"], rec["pair"]["blade"]), scene.segment, atol=1e-9)
+    np.testing.assert_allclose(st.line_polyline(rec["line"].blade, rec["pair"].blade), scene.segment, atol=1e-9)
     ring = st.circle_polyline(scene.circle_center, scene.circle_normal, scene.circle_radius, n=16)
     assert ring.shape == (17, 3)
     np.testing.assert_allclose(ring[0], ring[-1], atol=1e-12)
@@ -192,23 +211,23 @@ def test_conformal_fits_noise_free(seed):
     rng = np.random.default_rng(seed)
     c, r, X = random_cap(rng, 40)
     fit = sf.fit_sphere(X)
-    np.testing.assert_allclose(fit["center"], c, atol=1e-9 * max(1, r))
-    assert fit["radius"] == pytest.approx(r, abs=1e-9 * max(1, r))
-    assert fit["rms"] < 1e-9
+    np.testing.assert_allclose(fit.center, c, atol=1e-9 * max(1, r))
+    assert fit.radius == pytest.approx(r, abs=1e-9 * max(1, r))
+    assert fit.rms < 1e-9
     n = rng.normal(size=3)
     n /= np.linalg.norm(n)
     ring = st.circle_polyline(c, n, r, n=7)[:7]
     fc = sf.fit_circle(ring)
-    np.testing.assert_allclose(fc["center"], c, atol=1e-9 * max(1, r))
-    assert fc["radius"] == pytest.approx(r, abs=1e-9 * max(1, r))
-    assert abs(abs(fc["normal"] @ n) - 1) < 1e-12
+    np.testing.assert_allclose(fc.center, c, atol=1e-9 * max(1, r))
+    assert fc.radius == pytest.approx(r, abs=1e-9 * max(1, r))
+    assert abs(abs(fc.normal @ n) - 1) < 1e-12
     for x in ring:  # the fitted blade is the circle: x ^ z* = 0
-        assert (cga.up(x) ^ fc["blade"]).iszero(atol=1e-8)
+        assert (cga.up(x) ^ fc.blade).iszero(atol=1e-8)
     P = c + rng.normal(size=(30, 2)) @ np.linalg.svd(n[None])[2][1:]
     fp = sf.fit_plane(P)
-    assert abs(abs(fp["normal"] @ n) - 1) < 1e-12
-    assert fp["distance"] == pytest.approx(fp["normal"] @ c, abs=1e-9)
-    np.testing.assert_allclose(cga.plane_normal_distance(fp["blade"])[0], fp["normal"], atol=1e-12)
+    assert abs(abs(fp.normal @ n) - 1) < 1e-12
+    assert fp.distance == pytest.approx(fp.normal @ c, abs=1e-9)
+    np.testing.assert_allclose(cga.plane_normal_distance(fp.blade)[0], fp.normal, atol=1e-12)
 
 
 @pytest.mark.parametrize("seed", range(6))
@@ -218,8 +237,8 @@ def test_conformal_sphere_fit_is_pratts_fit_and_plane_fit_is_tls(seed):
     X = X + rng.normal(scale=0.05 * r, size=X.shape)
     fit = sf.fit_sphere(X)
     pc, pr = pratt_fit(X)
-    np.testing.assert_allclose(fit["center"], pc, atol=1e-7 * max(1.0, r))
-    assert fit["radius"] == pytest.approx(pr, rel=1e-7)
+    np.testing.assert_allclose(fit.center, pc, atol=1e-7 * max(1.0, r))
+    assert fit.radius == pytest.approx(pr, rel=1e-7)
     # minimality: the conformal objective sum (x.s)^2 / s^2 is lowest at the fit
     D = cga.up(X)
 
@@ -227,14 +246,15 @@ def test_conformal_sphere_fit_is_pratts_fit_and_plane_fit_is_tls(seed):
         s = cga.sphere(center, radius)
         return float(np.sum(np.asarray((D | s).scalar()) ** 2) / (s * s).scalar())
 
-    best = objective(fit["center"], fit["radius"])
+    best = objective(fit.center, fit.radius)
     for _ in range(20):
-        assert best <= objective(fit["center"] + rng.normal(scale=0.01 * r, size=3), fit["radius"]) + 1e-15
-    assert best <= objective(*[sf.fit_sphere_geometric(X)[k] for k in ("center", "radius")]) + 1e-15
+        assert best <= objective(fit.center + rng.normal(scale=0.01 * r, size=3), fit.radius) + 1e-15
+    geometric = sf.fit_sphere_geometric(X)
+    assert best <= objective(geometric.center, geometric.radius) + 1e-15
     Y = rng.normal(size=(50, 3)) * [1.0, 2.0, 0.05]
     a, b = sf.fit_plane(Y), sf.fit_plane_euclidean(Y)
-    assert abs(abs(a["normal"] @ b["normal"]) - 1) < 1e-12
-    assert abs(np.sign(a["normal"] @ b["normal"]) * a["distance"] - b["distance"]) < 1e-12
+    assert abs(abs(a.normal @ b.normal) - 1) < 1e-12
+    assert abs(np.sign(a.normal @ b.normal) * a.distance - b.distance) < 1e-12
 
 
 @settings(max_examples=30, deadline=None)
@@ -251,8 +271,8 @@ def test_conformal_fits_commute_with_similarities(angle, scale, shift):
     Y = scale * X @ R.T + np.array(shift)
     for fit in (sf.fit_sphere, sf.fit_circle):
         a, b = fit(X), fit(Y)
-        np.testing.assert_allclose(b["center"], scale * R @ a["center"] + shift, atol=1e-7 * max(1, scale))
-        assert b["radius"] == pytest.approx(scale * a["radius"], rel=1e-7)
+        np.testing.assert_allclose(b.center, scale * R @ a.center + shift, atol=1e-7 * max(1, scale))
+        assert b.radius == pytest.approx(scale * a.radius, rel=1e-7)
 
 
 def test_fits_reject_degenerate_points():
@@ -293,12 +313,12 @@ def test_ransac_planes_in_a_synthetic_cloud():
     floor = np.column_stack([rng.uniform(-2, 2, 800), rng.uniform(0, 4, 800), rng.normal(scale=0.003, size=800)])
     wall = np.column_stack([rng.uniform(-2, 2, 500), 4 + rng.normal(scale=0.003, size=500), rng.uniform(0, 2, 500)])
     junk = rng.uniform([-2, 0, 0], [2, 4, 2], size=(200, 3))
-    fits, labels = sf.segment_planes(np.vstack([floor, wall, junk]), rng, n_planes=3, threshold=0.01, min_inliers=100)
+    fits, labels = cga.segment_planes(np.vstack([floor, wall, junk]), rng, n_planes=3, threshold=0.01, min_inliers=100)
     assert len(fits) == 2
-    assert abs(fits[0]["normal"][2]) > 0.9999 and abs(fits[1]["normal"][1]) > 0.9999
+    assert abs(fits[0].normal[2]) > 0.9999 and abs(fits[1].normal[1]) > 0.9999
     assert np.mean(labels[:800] == 0) > 0.97 and np.mean(labels[800:1300] == 1) > 0.97
     with pytest.raises(InvalidInputError, match="threshold"):
-        sf.ransac_plane(floor, rng, threshold=0.0)
+        ransac_plane(floor, rng, threshold=0.0)
 
 
 # ------------------------------------------------------------ experiments
@@ -311,8 +331,8 @@ def test_fundamental_comparison_and_triangulation_curve():
     assert rows[(True, True)]["cond_Z"] < 1e-3 * rows[(False, True)]["cond_Z"]
     assert rows[(True, True)]["s3_over_s2"] < 1e-14 < rows[(True, False)]["s3_over_s2"]
     c = ex.triangulation_error_curve(rig, np.random.default_rng(2), [0.0, 0.5, 1.0], n_points=100)
-    assert c["midpoint"][0] < 1e-9 and c["dlt"][0] < 1e-9
-    np.testing.assert_allclose(c["midpoint"][1:], c["predicted"][1:], rtol=0.3)  # first-order theory
+    assert c.midpoint[0] < 1e-9 and c.dlt[0] < 1e-9
+    np.testing.assert_allclose(c.midpoint[1:], c.predicted[1:], rtol=0.3)  # first-order theory
     text = ex.format_table([{"a": "x", "b": 1.23456, "c": float("nan")}], ["a", "b", "c"], {"b": ".2f"})
     assert text.splitlines()[2].split() == ["x", "1.23", "-"]
 
@@ -356,10 +376,10 @@ def test_motorcycle_conventions_and_disparity_is_triangulation():
 def test_motorcycle_planes():
     _, _, disp, calib = real.load_motorcycle()
     X, _ = real.disparity_to_points(disp, calib, step=6)
-    fits, labels = sf.segment_planes(X, np.random.default_rng(0), n_planes=3, threshold=0.015, min_inliers=300)
+    fits, labels = cga.segment_planes(X, np.random.default_rng(0), n_planes=3, threshold=0.015, min_inliers=300)
     assert len(fits) == 3
     floor = fits[0]
-    assert floor["inliers"] > 0.25 * len(X) and floor["rms"] < 0.01
-    assert floor["normal"] @ [0.0, 1.0, 0.0] > 0.9 or floor["normal"] @ [0.0, -1.0, 0.0] > 0.9  # image "down"
-    angles = [np.degrees(np.arccos(abs(floor["normal"] @ f["normal"]))) for f in fits[1:]]
+    assert floor.inliers > 0.25 * len(X) and floor.rms < 0.01
+    assert floor.normal @ [0.0, 1.0, 0.0] > 0.9 or floor.normal @ [0.0, -1.0, 0.0] > 0.9  # image "down"
+    angles = [np.degrees(np.arccos(abs(floor.normal @ f.normal))) for f in fits[1:]]
     assert max(angles) > 80  # a wall or shelf front stands on the floor

@@ -17,6 +17,7 @@ import pytest  # noqa: E402
 
 from cga_lessons import kinematics as kin  # noqa: E402
 from cga_lessons.algebra import InvalidInputError  # noqa: E402
+from cga_lessons.conformal import PlaneParameters, SphereParameters  # noqa: E402
 from cga_lessons.kinematics.arms import PANDA_DH as PANDA_TABLE  # noqa: E402
 from cga_lessons.kinematics.arms import UR5_DH as UR5_TABLE  # noqa: E402
 from cga_lessons.kinematics.arms import panda, ur5  # noqa: E402
@@ -25,8 +26,12 @@ from cga_lessons.mapping2d import laser  # noqa: E402
 from cga_lessons.relocalization import MCLConfig  # noqa: E402
 from cga_lessons.relocalization.mcl import MonteCarloLocalizer  # noqa: E402
 from cga_lessons.relocalization.sampling import KLDConfig  # noqa: E402
-from cga_lessons.stereo.detect_scenes import TruthEntity  # noqa: E402
-from cga_lessons.stereo.detect_search import DetectedEntity  # noqa: E402
+from cga_lessons.stereo import (  # noqa: E402
+    DetectedEntity,
+    DetectionError,
+    DetectionMatch,
+    TruthEntity,
+)
 from cga_lessons.viz import future_work as fw  # noqa: E402
 from cga_lessons.viz import future_work_arms as fwa  # noqa: E402
 from cga_lessons.viz import future_work_stereo as fws  # noqa: E402
@@ -225,17 +230,17 @@ def _cloud(rng):
     truth = [
         TruthEntity(
             "plane",
-            {"normal": np.array([0, 0, 1.0]), "center": np.array([0.5, 0.5, 0]), "distance": 0.0},
+            PlaneParameters(normal=np.array([0, 0, 1.0]), distance=0.0, center=np.array([0.5, 0.5, 0])),
             0.7,
             np.arange(100),
         ),
-        TruthEntity("sphere", {"center": np.array([2.0, 0.5, 0.5]), "radius": 0.3}, 0.3, np.arange(100, 180)),
+        TruthEntity("sphere", SphereParameters(center=np.array([2.0, 0.5, 0.5]), radius=0.3), 0.3, np.arange(100, 180)),
     ]
-    ents = [DetectedEntity("sphere", dict(truth[1].params), None, np.arange(100, 180), np.eye(4),
+    ents = [DetectedEntity("sphere", truth[1].params, None, np.arange(100, 180), np.eye(4),
                            ("center_x", "center_y", "center_z", "radius"), 0.001, 1.0),
-            DetectedEntity("plane", dict(truth[0].params), None, np.arange(0, 90), np.eye(4),
+            DetectedEntity("plane", truth[0].params, None, np.arange(0, 90), np.eye(4),
                            ("normal_x", "normal_y", "normal_z", "distance"), 0.002, 1.0),
-            DetectedEntity("plane", dict(truth[0].params), None, np.arange(185, 200), np.eye(4),
+            DetectedEntity("plane", truth[0].params, None, np.arange(185, 200), np.eye(4),
                            ("normal_x", "normal_y", "normal_z", "distance"), 0.01, 1.0)]  # fmt: skip
     return X, labels, truth, ents
 
@@ -251,6 +256,16 @@ def test_detections_figure_draws_each_detections_points_in_its_truths_colour(rng
         assert np.allclose(sc.get_facecolor()[0], want)
     assert np.allclose(np.array(left.collections[0]._offsets3d).T, X[labels < 0])  # clutter, grey
     assert "2 planes, 1 sphere " in right.get_title() and "(2 matched" in right.get_title()
+    plt.close(fig)
+
+
+def test_detections_figure_reads_the_matches_of_evaluate(rng):
+    X, labels, truth, ents = _cloud(rng)
+    matches = [DetectionMatch(0, 1, DetectionError(center=0.0, radius=0.0)),
+               DetectionMatch(1, 0, DetectionError(center=0.0, angle=0.0, offset=0.0))]  # fmt: skip
+    fig = fws.detections_figure(X, labels, truth, ents, matches)
+    assert np.allclose(fig.axes[1].collections[0].get_facecolor()[0], fws.PALETTE[1])
+    assert "(2 matched" in fig.axes[1].get_title()
     plt.close(fig)
 
 

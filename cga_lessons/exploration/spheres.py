@@ -30,7 +30,7 @@ def _sphere_fit(P: np.ndarray, func: str):
     if sv[0] == 0 or sv[-1] <= 1e-9 * sv[0]:
         raise checks.degenerate(func, "points", "the points are coplanar (or coincide): no unique sphere")
     fit = _conformal_sphere_fit(P)
-    return fit["center"], float(fit["radius"])
+    return fit.center, float(fit.radius)
 
 
 def fit_sphere(points):

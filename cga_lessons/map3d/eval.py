@@ -14,8 +14,9 @@ from __future__ import annotations
 import numpy as np
 
 from cga_lessons import checks
+from cga_lessons.conformal import LineParameters
 
-from .fuse import FusedMap
+from .fused_map import FusedMap
 
 __all__ = ["residual_table", "match_board_segment", "line_at_height", "wall_errors", "view_errors", "COLUMNS"]
 
@@ -42,9 +43,9 @@ def _angle(u, v) -> float:
     return float(np.degrees(np.arccos(min(1.0, c))))
 
 
-def line_at_height(params: dict, z: float) -> np.ndarray:
-    """The point (3,) of a line (``direction``, ``point``) at height ``z``; raises for a horizontal line."""
-    d, p = np.asarray(params["direction"], float), np.asarray(params["point"], float)
+def line_at_height(params: LineParameters, z: float) -> np.ndarray:
+    """The point (3,) of a line (its ``direction`` and ``point``) at height ``z``; raises for a horizontal line."""
+    d, p = np.asarray(params.direction, float), np.asarray(params.point, float)
     if abs(d[2]) < 1e-9:
         raise checks.degenerate(
             "line_at_height", "params", "the line is horizontal; it has no single point at a height"
@@ -69,9 +70,9 @@ def match_board_segment(fused: FusedMap, name: str, max_offset: float = 0.15, ma
     candidate wins.
     """
     obj = fused.objects.get(name)
-    if obj is None or obj["kind"] != "plane":
+    if obj is None or obj.kind != "plane":
         return None
-    n, d = obj["params"]["normal"], obj["params"]["distance"]
+    n, d = obj.params.normal, obj.params.distance
     cams = np.array([e.state.pose[:2] for e in fused.views if e.name == name])
     if (np.append(cams.mean(axis=0), fused.laser_height) @ n - d) < 0:
         n, d = -n, -d
@@ -143,18 +144,18 @@ def view_errors(fused: FusedMap) -> list:
 
 def _stereo_vs_truth(kind, p, t, laser_height) -> dict:
     if kind in ("sphere", "circle"):
-        row = {"stereo_pos_cm": 100 * float(np.linalg.norm(p["center"] - t["center"])),
-               "stereo_radius_cm": 100 * (p["radius"] - t["radius"])}  # fmt: skip
+        row = {"stereo_pos_cm": 100 * float(np.linalg.norm(p.center - t.center)),
+               "stereo_radius_cm": 100 * (p.radius - t.radius)}  # fmt: skip
         if kind == "circle":
-            row["stereo_angle_deg"] = _angle(p["normal"], t["normal"])
+            row["stereo_angle_deg"] = _angle(p.normal, t.normal)
         return row
     if kind == "plane":
-        return {"stereo_pos_cm": 100 * abs(float(p["normal"] @ t["center"]) - p["distance"]),
-                "stereo_angle_deg": _angle(p["normal"], t["normal"])}  # fmt: skip
+        return {"stereo_pos_cm": 100 * abs(float(p.normal @ t.center) - p.distance),
+                "stereo_angle_deg": _angle(p.normal, t.normal)}  # fmt: skip
     if kind == "line":
         q = line_at_height(p, laser_height)
-        return {"stereo_pos_cm": 100 * float(np.linalg.norm(q[:2] - t["point"][:2])),
-                "stereo_angle_deg": _angle(p["direction"], t["direction"])}  # fmt: skip
+        return {"stereo_pos_cm": 100 * float(np.linalg.norm(q[:2] - t.point[:2])),
+                "stereo_angle_deg": _angle(p.direction, t.direction)}  # fmt: skip
     raise checks.fail("residual_table", "fused", f"unknown entity kind {kind!r}")
 
 
@@ -184,11 +185,11 @@ def residual_table(fused: FusedMap) -> list:
         t = o.truth()
         row = dict.fromkeys(COLUMNS, np.nan)
         obj = fused.objects.get(o.name)
-        row.update(object=o.name, entity=t["kind"], views=obj["n_views"] if obj else 0, laser_n=0)
+        row.update(object=o.name, entity=t.kind, views=obj.n_views if obj else 0, laser_n=0)
         laser_seen = False
         if obj is not None:
-            row.update(_stereo_vs_truth(obj["kind"], obj["params"], t, h))
-        if t["kind"] == "plane":
+            row.update(_stereo_vs_truth(obj.kind, obj.params, t, h))
+        if t.kind == "plane":
             k = match_board_segment(fused, o.name) if obj is not None else None
             if k is None and o.name in werr:  # the laser saw it; the cameras did not (or no match)
                 row["laser_pos_cm"] = 100 * float(werr[o.name].max())
@@ -196,25 +197,25 @@ def residual_table(fused: FusedMap) -> list:
             if k is not None:
                 s = fused.laser.segments[k]
                 ends = np.array([[*s.start, h], [*s.end, h]])
-                row["laser_pos_cm"] = 100 * float(np.abs(ends @ t["normal"] - t["distance"]).max())
-                n, d = obj["params"]["normal"], obj["params"]["distance"]
+                row["laser_pos_cm"] = 100 * float(np.abs(ends @ t.normal - t.distance).max())
+                n, d = obj.params.normal, obj.params.distance
                 row["laser_stereo_cm"] = 100 * float(np.sqrt(np.mean((ends @ n - d) ** 2)))
                 row["laser_stereo_deg"] = _angle(np.append(s.normal, 0.0), n)
                 row["laser_n"] = int(s.n_points)
                 laser_seen = True
-        elif t["kind"] == "line":
+        elif t.kind == "line":
             groups = fused.laser_post_groups
             if groups:
-                dist = [np.linalg.norm(gp["center"][:2] - t["point"][:2]) for gp in groups]
+                dist = [np.linalg.norm(gp.center[:2] - t.point[:2]) for gp in groups]
                 gp = groups[int(np.argmin(dist))]
-                if min(dist) < 3 * t["radius"] + 0.1:
+                if min(dist) < 3 * t.radius + 0.1:
                     row["laser_pos_cm"] = 100 * float(min(dist))
-                    row["laser_n"] = int(gp["n"])
+                    row["laser_n"] = int(gp.n)
                     laser_seen = True
                     if obj is not None:
-                        q = line_at_height(obj["params"], h)
-                        row["laser_stereo_cm"] = 100 * float(np.linalg.norm(q[:2] - gp["center"][:2]))
-        elif t["kind"] == "box" and o.name in werr:
+                        q = line_at_height(obj.params, h)
+                        row["laser_stereo_cm"] = 100 * float(np.linalg.norm(q[:2] - gp.center[:2]))
+        elif t.kind == "box" and o.name in werr:
             row["laser_pos_cm"] = 100 * float(np.sqrt(np.mean(werr[o.name] ** 2)))
             row["laser_n"] = len(werr[o.name])
             laser_seen = True

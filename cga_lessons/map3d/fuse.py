@@ -26,8 +26,6 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 import numpy as np
 
 from cga_lessons import checks
@@ -35,102 +33,18 @@ from cga_lessons import conformal as cga
 from cga_lessons.algebra import DegenerateGeometryError
 from cga_lessons.mapping2d import MapResult, build_map, extract_segments
 
-from .chains import check_entity, to_unified
-from .fits import ENTITY_KINDS, blade_parameters, fit_entity
+from .chains import to_unified
+from .fits import blade_parameters, fit_entity
+from .fused_map import FusedMap, FusedObject, PostGroup, StereoEntity
 from .laser import group_detections, laser_posts, virtual_wall
-from .robot import Robot, chain_motors
+from .motors import chain_motors
+from .robot import Robot
 from .state import RobotGeometry, RobotState
 from .tour import Tour, triangulate_view
 
-__all__ = [
-    "StereoEntity",
-    "FusedMap",
-    "build_fused_map",
-    "stereo_depth_limit",
-]
+__all__ = ["build_fused_map", "stereo_depth_limit"]
 
 _UP = np.array([0.0, 0.0, 1.0])
-
-
-# ----------------------------------------------------------------- the fused map
-@dataclass
-class StereoEntity:
-    """One object seen in one stereo view: its entity in the stereo frame and in the unified frame (4.10)."""
-
-    name: str
-    kind: str
-    view: int
-    scan: int
-    state: RobotState
-    blade_stereo: object
-    blade_world: object
-    params: dict
-    points_world: np.ndarray
-
-    def __post_init__(self):
-        f = "StereoEntity"
-        checks.text(self.name, f, "name")
-        checks.choice(self.kind, f, "kind", ENTITY_KINDS)
-        self.view, self.scan = (checks.integer(getattr(self, k), f, k, low=0) for k in ("view", "scan"))
-        checks.instance(self.state, f, "state", RobotState, "a RobotState")
-        check_entity(self.blade_stereo, f, "blade_stereo")
-        check_entity(self.blade_world, f, "blade_world")
-        checks.instance(self.params, f, "params", dict, "a dict (entity_parameters)")
-        self.points_world = checks.rows(self.points_world, f, "points_world", 3)
-
-
-@dataclass
-class FusedMap:
-    """The 3D map: laser walls and posts, stereo entities per view and fused per object.
-
-    Attributes
-    ----------
-    tour : Tour
-        The recording (and the truth, for evaluation only).
-    laser : MapResult
-        Chapter 3's result: corrected poses and the fused 2D line map.
-    laser_height : float
-    scan_segments : list of ndarray (k, 2, 3)
-        Each scan's segments moved to the unified frame by (4.4).
-    virtual_walls : list of VirtualWall
-    laser_post_detections : ndarray (m, 3)
-        Post centres of every scan at laser height, unified frame.
-    laser_post_groups : list of dict
-        ``center`` (3,), ``n`` detections, one per post found by the laser.
-    views : list of StereoEntity
-    objects : dict
-        name -> ``{"kind", "blade", "params", "n_views", "points", ...}`` fused over the views.
-    """
-
-    tour: Tour
-    laser: MapResult
-    laser_height: float
-    scan_segments: list
-    virtual_walls: list
-    laser_post_detections: np.ndarray
-    laser_post_groups: list
-    views: list
-    objects: dict
-    wall_height: float = 1.0
-    post_radius: float = 0.05
-    robot: Robot | None = field(default=None, repr=False)
-
-    def __post_init__(self):
-        f = "FusedMap"
-        checks.instance(self.tour, f, "tour", Tour, "a Tour (simulate_tour)")
-        checks.instance(self.laser, f, "laser", MapResult, "a MapResult (mapping2d.build_map)")
-        self.laser_height = checks.real(self.laser_height, f, "laser_height")
-        for name in ("scan_segments", "virtual_walls", "laser_post_groups", "views"):
-            checks.instance(getattr(self, name), f, name, list, "a list")
-        for k, segs in enumerate(self.scan_segments):
-            checks.array(segs, f, f"scan_segments[{k}]", (None, 2, 3))
-        self.laser_post_detections = checks.rows(self.laser_post_detections, f, "laser_post_detections", 3)
-        checks.instance(self.objects, f, "objects", dict, "a dict")
-        for name in ("wall_height", "post_radius"):
-            setattr(self, name, checks.real(getattr(self, name), f, name, low=0.0, strict_low=True))
-        if self.robot is not None:
-            checks.instance(self.robot, f, "robot", Robot, "a Robot or None")
-
 
 _KIND = {"Ball": "sphere", "Board": "plane", "Plate": "circle", "Post": "line"}
 _MIN_POINTS = {"sphere": 20, "plane": 12, "circle": 12, "line": 8}
@@ -255,11 +169,11 @@ def _moved_posts(tour: Tour, poses, post_radius: float, min_post_detections: int
         M = _laser_motors(tour.geometry, poses[np.array(post_scan)])
         detections = np.atleast_2d(cga.down(to_unified(M, cga.up(np.array(centres)))))  # (4.4)
     groups = [
-        {
-            "center": detections[idx].mean(axis=0),
-            "n": len(idx),
-            "spread": float(detections[idx][:, :2].std(axis=0).max()),
-        }
+        PostGroup(
+            center=detections[idx].mean(axis=0),
+            n=len(idx),
+            spread=float(detections[idx][:, :2].std(axis=0).max()),
+        )
         for idx in group_detections(detections, 3 * post_radius)
         if len(idx) >= min_post_detections
     ]
@@ -284,30 +198,27 @@ def _stereo_views(tour: Tour, poses, robot: Robot, kinds: dict, z_max: float):
                 fit = fit_entity(kind, X_s)  # section 4.1, in the stereo frame
             except DegenerateGeometryError:
                 continue
-            blade_w = robot.stereo_to_unified(fit["blade"])  # (4.10): the entity itself
+            blade_w = robot.stereo_to_unified(fit.blade)  # (4.10): the entity itself
             X_w = cga.apply_to_points(robot["M_eu"], X_s)  # its points, by the same motor
-            views.append(StereoEntity(name, kind, vi, view.scan, robot.state, fit["blade"], blade_w,
+            views.append(StereoEntity(name, kind, vi, view.scan, robot.state, fit.blade, blade_w,
                                       blade_parameters(kind, blade_w), X_w))  # fmt: skip
             pooled.setdefault(name, []).append(X_w)
     return views, pooled
 
 
-def _fused_object(kind: str, parts: list) -> dict:
+def _fused_object(kind: str, parts: list) -> FusedObject:
     """Step 6: one entity of an object from the points of all its views."""
     X = np.vstack(parts)
     fit = fit_entity(kind, X)
-    obj = {"kind": kind, "blade": fit["blade"], "params": blade_parameters(kind, fit["blade"]),
-           "n_views": len(parts), "points": X, "rms": fit["rms"]}  # fmt: skip
-    if kind == "line":
-        obj["ends"] = fit["ends"]
-    if kind == "plane":
-        obj["corners"] = _plane_rectangle(X, obj["params"]["normal"], obj["params"]["distance"])
-    return obj
+    params = blade_parameters(kind, fit.blade)
+    corners = _plane_rectangle(X, params.normal, params.distance) if kind == "plane" else None
+    return FusedObject(kind, fit.blade, params, len(parts), X, fit.rms,
+                       ends=fit.ends if kind == "line" else None, corners=corners)  # fmt: skip
 
 
 def _laser_motors(geometry, poses):
     """``M_lu`` (4.3) for many poses (k, 3) at once: one batched motor."""
-    return chain_motors(geometry, x=poses[:, 0], y=poses[:, 1], theta=poses[:, 2])["M_lu"]
+    return chain_motors(geometry, x=poses[:, 0], y=poses[:, 1], theta=poses[:, 2]).M_lu
 
 
 def _plane_rectangle(X, n, d) -> np.ndarray:

@@ -50,15 +50,15 @@ def geometer_chains(geometry=None) -> GeometerChains:
     >>> g.camera.n, g.laser.n, [j.name for j in g.camera.joints]
     (5, 3, ['x', 'y', 'theta', 'pan', 'tilt'])
     """
-    from cga_lessons.map3d.robot import chain_motors
+    from cga_lessons.map3d.motors import chain_motors
     from cga_lessons.map3d.state import RobotGeometry
 
     if geometry is not None:
         checks.instance(geometry, "geometer_chains", "geometry", RobotGeometry, "a RobotGeometry or None")
     fixed = chain_motors(geometry or RobotGeometry())
     base = [prismatic(_X, "x"), prismatic([0.0, 1.0, 0.0], "y"), revolute(_Z, name="theta")]
-    head = [revolute(fixed["L_pan"], name="pan"), revolute(fixed["L_tilt"], name="tilt")]
+    head = [revolute(fixed.L_pan, name="pan"), revolute(fixed.L_tilt, name="tilt")]
     return GeometerChains(
-        camera=chain(base + head, fixed["M_eye"], name="geometer camera"),
-        laser=chain(base, fixed["M_lsr"], name="geometer laser"),
+        camera=chain(base + head, fixed.M_eye, name="geometer camera"),
+        laser=chain(base, fixed.M_lsr, name="geometer laser"),
     )

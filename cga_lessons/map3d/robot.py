@@ -50,7 +50,7 @@ arrays for the degrees of freedom, so 1,000 configurations cost one batch.
 
 from __future__ import annotations
 
-from dataclasses import replace
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
 
@@ -58,120 +58,27 @@ from cga_lessons import checks
 from cga_lessons import conformal as cga
 from cga_lessons.algebra import Multivector
 
-from .chains import (
-    axes_nearest_point,
-    axis_line,
-    base_motor,
-    base_rotor,
-    base_translator,
-    check_dofs,
-    check_entity,
-    eye_translator,
-    head_motor,
-    head_rotor,
-    head_translator,
-    laser_chain,
-    laser_mount_motor,
-    stereo_chain,
-    stereo_chain_about_lines,
-    turned_laser_mount,
-    unified,
-)
+from .chains import check_entity, unified
+from .motors import FIXED_PARTS, MOTOR_DOFS, MOTOR_INPUTS, build_motor, fixed_parts
+from .parameters import check_fields, pose_matrix
 from .state import DOFS, RobotGeometry, RobotState, check_changes
 
-__all__ = ["Robot", "chain_motors", "MOTOR_INPUTS"]
+__all__ = ["Robot", "RobotFrames"]
 
 
-# ----------------------------------------------------------------- dependency graph
-def _axis_rotor(angle, axis):
-    """The thesis's R_pan / R_tilt: a rotor about the axis *direction* (2.96), placed by T_eje in (4.5)-(4.9)."""
-    return cga.rotor(axis, angle)
+@dataclass(frozen=True, eq=False)
+class RobotFrames:
+    """The robot's frames as 4x4 poses (world from frame, :meth:`Robot.frames`): ``base``, ``laser``, ``head``
+    (at the point nearest both pan-tilt axes), ``camera_left`` and ``camera_right``, each an array (4, 4)."""
 
+    base: np.ndarray
+    laser: np.ndarray
+    head: np.ndarray
+    camera_left: np.ndarray
+    camera_right: np.ndarray
 
-def _line_rotor(angle, L):
-    """R_L = exp(-angle/2 L) about the axis line itself (2.109; the footnote of 4.2.2)."""
-    return cga.rotor_about_line(L, angle)
-
-
-#: Each motor of the chains: ``(degrees of freedom it reads, parts it is built from, function)``; the
-#: function takes the degrees of freedom, then the parts.  Insertion order is a topological order.
-MOTOR_INPUTS = {
-    "R_pos": (("theta",), (), base_rotor),
-    "T_pos": (("x", "y"), (), base_translator),
-    "M_cl": ((), ("R_pos", "M_lsr"), turned_laser_mount),
-    "M_pos": ((), ("T_pos", "R_pos"), base_motor),
-    "M_lu": ((), ("T_pos", "M_cl", "R_pos"), laser_chain),
-    "R_pan": (("pan",), ("pan_axis",), _axis_rotor),
-    "R_tilt": (("tilt",), ("tilt_axis",), _axis_rotor),
-    "T_ep": ((), ("R_pos", "T_eje"), head_translator),
-    "R_pt": ((), ("R_pos", "R_pan", "R_tilt"), head_rotor),
-    "T_opt": ((), ("R_pt", "T_ojo"), eye_translator),
-    "M_mpt": ((), ("T_pos", "R_pt"), head_motor),
-    "M_eu": ((), ("T_opt", "T_ep", "M_mpt"), stereo_chain),
-    "R_Lpan": (("pan",), ("L_pan",), _line_rotor),
-    "R_Ltilt": (("tilt",), ("L_tilt",), _line_rotor),
-    "M_eu_lines": ((), ("T_pos", "R_pos", "R_Lpan", "R_Ltilt", "M_eye"), stereo_chain_about_lines),
-}
-_FIXED = ("M_lsr", "T_eje", "T_ojo", "M_eye", "L_pan", "L_tilt", "pan_axis", "tilt_axis")
-
-
-def _dof_sets() -> dict:
-    out = {}
-    for name, (dofs, inputs, _) in MOTOR_INPUTS.items():
-        out[name] = frozenset(dofs).union(*(out.get(i, frozenset()) for i in inputs))
-    return out
-
-
-_DEPENDS = _dof_sets()
-
-
-def _fixed_parts(geometry: RobotGeometry) -> dict:
-    g = geometry
-    L_pan = axis_line(g.pan_point, g.pan_direction, "Robot")
-    L_tilt = axis_line(g.tilt_point, g.tilt_direction, "Robot")
-    eje = axes_nearest_point(L_pan, L_tilt)
-    T_eje, T_ojo = cga.translator(eje), cga.translator(np.asarray(g.eye_offset, float))
-    return {
-        "M_lsr": laser_mount_motor(g),
-        "T_eje": T_eje,
-        "T_ojo": T_ojo,
-        "M_eye": T_eje * T_ojo,
-        "L_pan": L_pan,
-        "L_tilt": L_tilt,
-        "eje_point": eje,
-        "pan_axis": np.asarray(cga.line_direction(L_pan), float),
-        "tilt_axis": np.asarray(cga.line_direction(L_tilt), float),
-    }
-
-
-def _build(name: str, m: dict, v: dict) -> Multivector:
-    dofs, inputs, func = MOTOR_INPUTS[name]
-    return func(*(v[d] for d in dofs), *(m[i] for i in inputs))
-
-
-def chain_motors(geometry: RobotGeometry | None = None, *, x=0.0, y=0.0, theta=0.0, pan=0.0, tilt=0.0) -> dict:
-    """Every motor of (4.1)-(4.9) (and the 2.109 variant) for one or many configurations.
-
-    Degrees of freedom may be scalars or arrays of one shape (N,): the motors
-    then hold (N,) coefficient arrays, one configuration per entry.
-
-    Returns
-    -------
-    dict
-        name -> Multivector for the names of :data:`MOTOR_INPUTS`, and the fixed
-        parts ``M_lsr``, ``T_eje``, ``T_ojo``, ``M_eye = T_eje T_ojo``, the axis
-        lines ``L_pan``, ``L_tilt`` and their unit directions ``pan_axis``,
-        ``tilt_axis`` (arrays).
-    """
-    f = "chain_motors"
-    if geometry is not None:
-        checks.instance(geometry, f, "geometry", RobotGeometry, "a RobotGeometry or None")
-    vals = check_dofs(f, x=x, y=y, theta=theta, pan=pan, tilt=tilt)
-    fixed = _fixed_parts(geometry or RobotGeometry())
-    m = {k: fixed[k] for k in _FIXED}
-    for name in MOTOR_INPUTS:
-        m[name] = _build(name, m, vals)
-    return m
+    def __post_init__(self):
+        check_fields(self, **{f.name: pose_matrix for f in fields(self)})
 
 
 # ----------------------------------------------------------------- the robot
@@ -179,7 +86,7 @@ class Robot:
     """Geometer: fixed geometry, current :class:`RobotState` and every motor of its chains, kept up to date.
 
     ``robot.update(pan=0.3)`` changes one degree of freedom and recomputes
-    only the motors that depend on it (:data:`MOTOR_INPUTS`); it returns their
+    only the motors that depend on it (:data:`~cga_lessons.map3d.motors.MOTOR_INPUTS`); it returns their
     names, and ``robot.evaluations`` counts how often each motor was built.
 
     >>> r = Robot()
@@ -195,8 +102,8 @@ class Robot:
         if state is not None:
             checks.instance(state, "Robot", "state", RobotState, "a RobotState or None")
         self.geometry = geometry or RobotGeometry()
-        self._fixed = _fixed_parts(self.geometry)
-        self.motors = {k: self._fixed[k] for k in _FIXED}
+        self._fixed = fixed_parts(self.geometry)
+        self.motors = {k: self._fixed[k] for k in FIXED_PARTS}
         self.evaluations = dict.fromkeys(MOTOR_INPUTS, 0)
         self.state = RobotState()
         self._check(state or self.state, "Robot", "state")
@@ -237,8 +144,8 @@ class Robot:
         vals = {n: getattr(self.state, n) for n in DOFS}
         done = []
         for name in MOTOR_INPUTS:
-            if _DEPENDS[name] & changed:
-                self.motors[name] = _build(name, self.motors, vals)
+            if MOTOR_DOFS[name] & changed:
+                self.motors[name] = build_motor(name, self.motors, vals)
                 self.evaluations[name] += 1
                 done.append(name)
         return tuple(done)
@@ -283,16 +190,16 @@ class Robot:
         g = self.geometry
         return stereo_head(g.baseline, g.focal_px, tuple(g.image_size), None, (0.0, -g.baseline / 2, 0.0), 0.0, 0.0)
 
-    def frames(self) -> dict:
+    def frames(self) -> RobotFrames:
         """4x4 poses (world from frame): ``base``, ``laser``, ``head`` (pan-tilt point), ``camera_left/right``."""
         M = self.motors
-        out = {
-            "base": cga.motor_to_matrix(M["M_pos"]),
-            "laser": cga.motor_to_matrix(M["M_lu"]),
-            "head": cga.motor_to_matrix(M["T_ep"] * M["M_mpt"]),
-            "camera_left": cga.motor_to_matrix(M["M_eu"]),
-        }
         right = np.eye(4)
         right[1, 3] = -self.geometry.baseline
-        out["camera_right"] = out["camera_left"] @ right
-        return out
+        left = cga.motor_to_matrix(M["M_eu"])
+        return RobotFrames(
+            base=cga.motor_to_matrix(M["M_pos"]),
+            laser=cga.motor_to_matrix(M["M_lu"]),
+            head=cga.motor_to_matrix(M["T_ep"] * M["M_mpt"]),
+            camera_left=left,
+            camera_right=left @ right,
+        )

@@ -12,7 +12,7 @@ objects do not occlude one another in the bundled layout.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 
@@ -20,11 +20,20 @@ from cga_lessons import checks, stereo
 from cga_lessons.mapping2d import OdometryModel, simulate_odometry, simulate_scan
 
 from .chains import check_dofs
+from .parameters import check_fields, pose_matrix
 from .robot import Robot
 from .state import RobotGeometry, RobotState
 from .world import World3D, default_world
 
-__all__ = ["homogeneous_chains", "waypoint_tour", "View", "Tour", "simulate_tour", "triangulate_view"]
+__all__ = [
+    "HomogeneousChains",
+    "homogeneous_chains",
+    "waypoint_tour",
+    "View",
+    "Tour",
+    "simulate_tour",
+    "triangulate_view",
+]
 
 _Z = np.array([0.0, 0.0, 1.0])
 
@@ -46,7 +55,22 @@ def _h(R=None, t=None, shape=()):
     return H
 
 
-def homogeneous_chains(geometry: RobotGeometry | None = None, *, x=0.0, y=0.0, theta=0.0, pan=0.0, tilt=0.0) -> dict:
+@dataclass(frozen=True, eq=False)
+class HomogeneousChains:
+    """The robot's poses as plain 4x4 matrices (:func:`homogeneous_chains`): ``base``, ``laser`` and
+    ``camera_left`` (world from frame), each an array (4, 4), or (N, 4, 4) for N configurations."""
+
+    base: np.ndarray
+    laser: np.ndarray
+    camera_left: np.ndarray
+
+    def __post_init__(self):
+        check_fields(self, **{f.name: pose_matrix for f in fields(self)})
+
+
+def homogeneous_chains(
+    geometry: RobotGeometry | None = None, *, x=0.0, y=0.0, theta=0.0, pan=0.0, tilt=0.0
+) -> HomogeneousChains:
     """The laser and left-camera poses as plain 4x4 matrices (Rodrigues rotations), for one or many configurations.
 
     The mechanism as a robotics text writes it (product of exponentials):
@@ -57,8 +81,8 @@ def homogeneous_chains(geometry: RobotGeometry | None = None, *, x=0.0, y=0.0, t
 
     Returns
     -------
-    dict
-        ``"laser"``, ``"camera_left"``, ``"base"``: arrays (4, 4) or (N, 4, 4).
+    HomogeneousChains
+        ``laser``, ``camera_left``, ``base``: arrays (4, 4) or (N, 4, 4).
     """
     f = "homogeneous_chains"
     if geometry is not None:
@@ -79,7 +103,7 @@ def homogeneous_chains(geometry: RobotGeometry | None = None, *, x=0.0, y=0.0, t
     q1, q2 = stereo.closest_points_on_rays([g.pan_point], [g.pan_direction], [g.tilt_point], [g.tilt_direction])
     H_eye = _h(None, 0.5 * (q1[0] + q2[0]) + np.asarray(g.eye_offset, float))
     H_cam = H_pos @ about(g.pan_point, g.pan_direction, pan) @ about(g.tilt_point, g.tilt_direction, tilt) @ H_eye
-    return {"base": H_pos, "laser": H_pos @ H_lsr, "camera_left": H_cam}
+    return HomogeneousChains(base=H_pos, laser=H_pos @ H_lsr, camera_left=H_cam)
 
 
 # ----------------------------------------------------------------- the tour
@@ -218,7 +242,7 @@ def simulate_tour(
             for pan in pans:
                 state = RobotState(*truth[k], pan=pan, tilt=tilt)
                 H = homogeneous_chains(geometry, **{d: getattr(state, d) for d in ("x", "y", "theta", "pan", "tilt")})
-                H_cam = H["camera_left"]
+                H_cam = H.camera_left
                 C1 = H_cam[:3, 3]
                 C2 = C1 - geometry.baseline * H_cam[:3, 1]
                 pixels, true_pts = {}, {}
@@ -239,7 +263,8 @@ def simulate_tour(
 
 
 def triangulate_view(geometry: RobotGeometry, view: View) -> dict:
-    """Triangulated points (stereo frame) of each object seen in ``view`` (A.14, midpoint of figure A.4)."""
+    """Triangulated points (stereo frame) of each object seen in ``view`` (A.14, midpoint of figure A.4): object name
+    -> points (N, 3)."""
     checks.instance(view, "triangulate_view", "view", View, "a View (simulate_tour)")
     rig = Robot(geometry).stereo_rig()
     return {name: stereo.triangulate(rig.P1, rig.P2, x1, x2) for name, (x1, x2) in view.pixels.items()}

@@ -25,7 +25,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from cga_lessons import checks
+from cga_lessons.conformal import CircleParameters, SphereParameters
 from cga_lessons.mapping2d import Scene
+
+from .parameters import BoardTruth, BoxTruth, PostTruth
 
 __all__ = ["Ball", "Board", "Plate", "Pedestal", "Post", "World3D", "default_world"]
 
@@ -76,8 +79,9 @@ class Ball:
     def sample(self, cameras, rng, n=300) -> np.ndarray:
         return _cap(self.center, self.radius, cameras, n, rng)
 
-    def truth(self) -> dict:
-        return {"kind": "sphere", "center": self.center, "radius": float(self.radius)}
+    def truth(self) -> SphereParameters:
+        """The true sphere."""
+        return SphereParameters(center=self.center, radius=float(self.radius))
 
 
 @dataclass(frozen=True)
@@ -127,14 +131,10 @@ class Board:
         st = rng.uniform(-0.5, 0.5, size=(n, 2)) * [self.width, self.height]
         return self.face_center + st[:, :1] * self.along + st[:, 1:] * _UP
 
-    def truth(self) -> dict:
-        return {
-            "kind": "plane",
-            "normal": self.normal,
-            "distance": float(self.normal @ self.face_center),
-            "center": self.face_center,
-            "corners": self.face_corners(),
-        }
+    def truth(self) -> BoardTruth:
+        """The true front face: its plane, centre and corners."""
+        return BoardTruth(normal=self.normal, distance=float(self.normal @ self.face_center), center=self.face_center,
+                          corners=self.face_corners())  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -156,8 +156,9 @@ class Pedestal:
     def sample(self, cameras, rng, n=0) -> np.ndarray:
         return np.zeros((0, 3))  # furniture: the laser maps it, the cameras do not look for it
 
-    def truth(self) -> dict:
-        return {"kind": "box", "center": np.array([*self.xy, self.size[2] / 2]), "size": np.asarray(self.size, float)}
+    def truth(self) -> BoxTruth:
+        """The true box."""
+        return BoxTruth(center=np.array([*self.xy, self.size[2] / 2]), size=np.asarray(self.size, float))
 
 
 @dataclass(frozen=True)
@@ -185,8 +186,9 @@ class Plate:
         t = rng.uniform(0.0, 2 * np.pi, n)
         return self.center + self.radius * np.column_stack([np.cos(t), np.sin(t), np.zeros(n)])
 
-    def truth(self) -> dict:
-        return {"kind": "circle", "center": self.center, "radius": float(self.radius), "normal": _UP.copy()}
+    def truth(self) -> CircleParameters:
+        """The true rim."""
+        return CircleParameters(center=self.center, radius=float(self.radius), normal=_UP.copy())
 
 
 @dataclass(frozen=True)
@@ -218,14 +220,14 @@ class Post:
         z = np.sort(rng.uniform(0.0, self.height, n))
         return np.column_stack([np.full(n, self.xy[0]), np.full(n, self.xy[1]), z])
 
-    def truth(self) -> dict:
-        return {
-            "kind": "line",
-            "point": np.array([self.xy[0], self.xy[1], 0.0]),
-            "direction": _UP.copy(),
-            "radius": float(self.radius),
-            "ends": np.array([[self.xy[0], self.xy[1], 0.0], [self.xy[0], self.xy[1], self.height]]),
-        }
+    def truth(self) -> PostTruth:
+        """The true axis, radius and ends."""
+        return PostTruth(
+            direction=_UP.copy(),
+            point=np.array([self.xy[0], self.xy[1], 0.0]),
+            radius=float(self.radius),
+            ends=np.array([[self.xy[0], self.xy[1], 0.0], [self.xy[0], self.xy[1], self.height]]),
+        )
 
 
 # ----------------------------------------------------------------- the world

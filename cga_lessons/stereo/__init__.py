@@ -15,12 +15,18 @@ Nothing here draws (figures and widgets are in :mod:`cga_lessons.viz`).  This fa
   its parameters
 * :mod:`~cga_lessons.stereo.detect_models`: The four kinds of entity a detector looks for: hypotheses, residuals and
   fits (section 4.1, table 2.1)
+* :mod:`~cga_lessons.stereo.detect_params`: The parameters of a detected (or true) entity:
+  :mod:`cga_lessons.conformal`'s records, a true patch's sides, and the helpers the detector uses on them
 * :mod:`~cga_lessons.stereo.detect_noise`: The noise model of entity detection: per-point covariances, chi-square
   gates, Mahalanobis residuals
-* :mod:`~cga_lessons.stereo.detect_scenes`: Test scenes with ground truth for entity detection, and the scoring of
-  detections against it
+* :mod:`~cga_lessons.stereo.detect_scenes`: Test scenes with ground truth for entity detection: entities placed in
+  front of a stereo head, and clutter
+* :mod:`~cga_lessons.stereo.detect_scores`: The scoring of entity detections against a scene's ground truth:
+  position errors, matches, precision and recall
 * :mod:`~cga_lessons.stereo.detect_search`: The search behind :func:`cga_lessons.stereo.detect.detect_entities`: one
   round of RANSAC, model selection,
+* :mod:`~cga_lessons.stereo.entities`: The objects of section 4.1 as typed records: points, a point pair, a line, a
+  circle, a plane and a sphere
 * :mod:`~cga_lessons.stereo.epipolar`: Two-view geometry: the fundamental matrix and cameras from it (appendix A.2,
   Eqs. A.6-A.13)
 * :mod:`~cga_lessons.stereo.experiments`: The numerical experiments of the stereo notebook (appendix A and section
@@ -43,11 +49,15 @@ Nothing here draws (figures and widgets are in :mod:`cga_lessons.viz`).  This fa
   (:mod:`cga_lessons.checks`)
 """
 
-from .accuracy import entity_errors
+from .accuracy import CircleError, LineError, PlaneError, PositionError, SphereError, entity_errors
 from .camera import camera_center, optical_planes, project, projection_matrix_rt
 from .detect import DetectConfig, detect_entities
 from .detect_noise import triangulation_covariance
-from .detect_scenes import KINDS, SceneConfig, evaluate, scene_rig, stereo_scene
+from .detect_params import PatchParameters
+from .detect_scenes import KINDS, SceneConfig, TruthEntity, scene_rig, stereo_scene
+from .detect_scores import DetectionError, DetectionMatch, DetectionScore, KindScore, evaluate
+from .detect_search import DetectedEntity, SelectionEvidence
+from .entities import SceneCircle, SceneLine, ScenePair, ScenePlane, ScenePoints, SceneSphere
 from .epipolar import (
     cameras_from_fundamental,
     eight_point_matrix,
@@ -57,6 +67,7 @@ from .epipolar import (
     fundamental_8point,
 )
 from .experiments import (
+    TriangulationCurve,
     entity_error_table,
     format_table,
     fundamental_comparison,
@@ -120,4 +131,24 @@ __all__ = [
     "stereo_scene",
     "triangulation_covariance",
     "triangulation_error_curve",
+    "TriangulationCurve",
+    "ScenePoints",
+    "ScenePair",
+    "SceneLine",
+    "SceneCircle",
+    "ScenePlane",
+    "SceneSphere",
+    "PositionError",
+    "LineError",
+    "PlaneError",
+    "CircleError",
+    "SphereError",
+    "DetectedEntity",
+    "SelectionEvidence",
+    "TruthEntity",
+    "PatchParameters",
+    "DetectionError",
+    "DetectionMatch",
+    "KindScore",
+    "DetectionScore",
 ]

@@ -1,11 +1,14 @@
 """The accuracy of reconstructed entities: their errors against the truth (section 4.1, the stereo notebook).
 
-Both sides are dicts ``entity -> {quantity: value}`` in the format of
-:func:`cga_lessons.stereo.reconstruct_entities` (the estimate) and :meth:`cga_lessons.stereo.StereoScene.truth`
-(the truth).
+Both sides are dicts ``entity name -> record``: the records of :mod:`cga_lessons.stereo.entities` that
+:func:`cga_lessons.stereo.reconstruct_entities` (the estimate) and :meth:`cga_lessons.stereo.StereoScene.truth` (the
+truth) give; an estimate may also be a least-squares fit of :mod:`cga_lessons.conformal` (a circle, plane or sphere).
+The errors come back as one typed record per entity.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -14,7 +17,7 @@ from cga_lessons.checks import fail
 
 from . import validate as vd
 
-__all__ = ["entity_errors"]
+__all__ = ["entity_errors", "PositionError", "LineError", "PlaneError", "CircleError", "SphereError"]
 
 
 def _angle(u, v, signed=True) -> float:
@@ -25,34 +28,97 @@ def _angle(u, v, signed=True) -> float:
     return float(np.arctan2(np.linalg.norm(np.cross(u, v)), c))
 
 
+def _errors(record, func: str) -> None:
+    """Every field of an error record: a finite number >= 0 (metres or radians)."""
+    for name in record.__dataclass_fields__:
+        object.__setattr__(record, name, checks.real(getattr(record, name), func, name, low=0.0))
+
+
+@dataclass(frozen=True)
+class PositionError:
+    """Points and point pairs: the largest ``position`` error of a point (metres)."""
+
+    position: float
+
+    def __post_init__(self):
+        _errors(self, "PositionError")
+
+
+@dataclass(frozen=True)
+class LineError:
+    """A line: the angle of its ``direction`` (radians), the ``position`` error of its closest point to the origin and
+    its ``offset``, the distance of the true segment's midpoint from the estimated line (metres)."""
+
+    direction: float
+    position: float
+    offset: float
+
+    def __post_init__(self):
+        _errors(self, "LineError")
+
+
+@dataclass(frozen=True)
+class PlaneError:
+    """A plane: the angle between the ``normal`` lines (radians) and the ``offset`` of the true object's centre from
+    the estimated plane (metres)."""
+
+    normal: float
+    offset: float
+
+    def __post_init__(self):
+        _errors(self, "PlaneError")
+
+
+@dataclass(frozen=True)
+class CircleError:
+    """A circle: ``center`` and ``radius`` errors (metres) and the angle between the ``normal`` lines (radians)."""
+
+    center: float
+    radius: float
+    normal: float
+
+    def __post_init__(self):
+        _errors(self, "CircleError")
+
+
+@dataclass(frozen=True)
+class SphereError:
+    """A sphere: ``center`` and ``radius`` errors (metres)."""
+
+    center: float
+    radius: float
+
+    def __post_init__(self):
+        _errors(self, "SphereError")
+
+
 _POINTS, _VEC, _NUM = (None, 3), (3,), ()
-#: The parameters :func:`entity_errors` reads, by entity (``midpoint`` of a true line is optional).
+#: The parameters :func:`entity_errors` reads, by entity.
 _TRUTH = {
     "point": {"points": _POINTS},
     "pair": {"endpoints": (2, 3)},
-    "line": {"direction": _VEC, "closest_point": _VEC},
+    "line": {"direction": _VEC, "closest_point": _VEC, "midpoint": _VEC},
     "circle": {"center": _VEC, "radius": _NUM, "normal": _VEC},
-    "plane": {"normal": _VEC, "point": _VEC},
+    "plane": {"normal": _VEC, "center": _VEC},
     "sphere": {"center": _VEC, "radius": _NUM},
 }
-_ESTIMATE = {**_TRUTH, "plane": {"normal": _VEC, "distance": _NUM}}
+_ESTIMATE = {**_TRUTH, "line": {"direction": _VEC, "closest_point": _VEC}, "plane": {"normal": _VEC, "distance": _NUM}}
 
 
 def _parameters(d, func: str, name: str, spec: dict) -> dict:
-    """The checked parameters ``entity -> {quantity: value}`` of ``d`` that ``spec`` names (scalars as floats)."""
-    d = checks.instance(d, func, name, dict, "a dict entity -> parameters (as reconstruct_entities returns)")
+    """The checked parameters ``entity -> {quantity: value}`` of the records in ``d`` that ``spec`` names."""
+    d = checks.instance(d, func, name, dict, "a dict entity name -> record (as reconstruct_entities returns)")
     out = {}
     for k in (k for k in spec if k in d):
         where = f"{name}[{k!r}]"
-        e = checks.instance(d[k], func, where, dict, "a dict of parameters")
-        wanted = {**spec[k], "midpoint": _VEC} if k == "line" and "midpoint" in e else spec[k]
         out[k] = {}
-        for q, shape in wanted.items():
-            if q not in e:
-                raise fail(func, where, f"has no {q!r}")
-            a = vd.array(e[q], func, f"{where}[{q!r}]", shape, at_least=1 if shape else 0)
+        for q, shape in spec[k].items():
+            if not hasattr(d[k], q) or isinstance(d[k], (dict, str)):
+                raise fail(func, where, f"expected a {k} record with {q!r} (reconstruct_entities, a fit), got "
+                                        f"{type(d[k]).__name__}")  # fmt: skip
+            a = vd.array(getattr(d[k], q), func, f"{where}.{q}", shape, at_least=1 if shape else 0)
             if q in ("direction", "normal"):
-                vd.direction(a, func, f"{where}[{q!r}]")
+                vd.direction(a, func, f"{where}.{q}")
             out[k][q] = float(a) if shape == () else a
     return out
 
@@ -72,7 +138,8 @@ def entity_errors(truth: dict, est: dict) -> dict:
     Returns
     -------
     dict
-        ``entity -> {quantity: error}`` for the entities present in both.
+        ``entity name -> error record`` (:class:`PositionError`, :class:`LineError`, :class:`PlaneError`,
+        :class:`CircleError`, :class:`SphereError`) for the entities present in both.
     """
     f = "entity_errors"
     truth, est = _parameters(truth, f, "truth", _TRUTH), _parameters(est, f, "est", _ESTIMATE)
@@ -86,19 +153,20 @@ def entity_errors(truth: dict, est: dict) -> dict:
         e, t = est[k], truth[k]
         if k in ("point", "pair"):
             key = "points" if k == "point" else "endpoints"
-            out[k] = {"position": float(np.max(np.linalg.norm(e[key] - t[key], axis=1)))}
+            out[k] = PositionError(float(np.max(np.linalg.norm(e[key] - t[key], axis=1))))
         elif k == "line":
             pos = float(np.linalg.norm(e["closest_point"] - t["closest_point"]))
-            out[k] = {"direction": _angle(e["direction"], t["direction"]), "position": pos}
-            if "midpoint" in t:
-                m = t["midpoint"] - e["closest_point"]
-                out[k]["offset"] = float(np.linalg.norm(m - np.dot(m, e["direction"]) * e["direction"]))
+            m = t["midpoint"] - e["closest_point"]
+            offset = float(np.linalg.norm(m - np.dot(m, e["direction"]) * e["direction"]))
+            out[k] = LineError(direction=_angle(e["direction"], t["direction"]), position=pos, offset=offset)
         elif k == "plane":
-            offset = abs(float(np.dot(e["normal"], t["point"])) - e["distance"])
-            out[k] = {"normal": _angle(e["normal"], t["normal"], signed=False), "offset": offset}
+            offset = abs(float(np.dot(e["normal"], t["center"])) - e["distance"])
+            out[k] = PlaneError(normal=_angle(e["normal"], t["normal"], signed=False), offset=offset)
+        elif k == "circle":
+            out[k] = CircleError(center=float(np.linalg.norm(e["center"] - t["center"])),
+                                 radius=abs(e["radius"] - t["radius"]),
+                                 normal=_angle(e["normal"], t["normal"], signed=False))  # fmt: skip
         else:
-            out[k] = {"center": float(np.linalg.norm(e["center"] - t["center"]))}
-            out[k]["radius"] = abs(e["radius"] - t["radius"])
-            if k == "circle":
-                out[k]["normal"] = _angle(e["normal"], t["normal"], signed=False)
+            out[k] = SphereError(center=float(np.linalg.norm(e["center"] - t["center"])),
+                                 radius=abs(e["radius"] - t["radius"]))  # fmt: skip
     return out

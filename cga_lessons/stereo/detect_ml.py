@@ -15,6 +15,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from cga_lessons.conformal import CircleParameters, LineParameters, PlaneParameters, SphereParameters
+
 from .detect_models import DOF, basis, cross, fit, orient, residuals, unit
 from .detect_noise import NoiseModel
 
@@ -22,26 +24,29 @@ __all__ = ["polish", "covariance", "fit_ml"]
 
 
 # ------------------------------------------------- local parametrisation
-def _perturb(kind: str, p: dict, delta: np.ndarray) -> dict:
-    """The entity moved by a minimal local step ``delta`` (3 dof plane, 4 sphere, 6 circle, 4 line)."""
+def _perturb(kind: str, p, delta: np.ndarray):
+    """The entity moved by a minimal local step ``delta`` (3 dof plane, 4 sphere, 6 circle, 4 line), unchecked
+    (the classes' ``unchecked``: a trial step's radius may be negative)."""
     if kind == "plane":
-        u, v = basis(p["normal"])
-        return {"normal": unit(p["normal"] + delta[0] * u + delta[1] * v), "distance": p["distance"] + delta[2]}
+        u, v = basis(p.normal)
+        return PlaneParameters.unchecked(normal=unit(p.normal + delta[0] * u + delta[1] * v),
+                                         distance=p.distance + delta[2])  # fmt: skip
     if kind == "sphere":
-        return {"center": p["center"] + delta[:3], "radius": p["radius"] + delta[3]}
+        return SphereParameters.unchecked(center=p.center + delta[:3], radius=p.radius + delta[3])
     if kind == "circle":
-        u, v = basis(p["normal"])
-        return {"center": p["center"] + delta[:3], "normal": unit(p["normal"] + delta[3] * u + delta[4] * v),
-                "radius": p["radius"] + delta[5]}  # fmt: skip
-    u, v = basis(p["direction"])
-    return {"direction": unit(p["direction"] + delta[0] * u + delta[1] * v),
-            "point": p["point"] + delta[2] * u + delta[3] * v}  # fmt: skip
+        u, v = basis(p.normal)
+        return CircleParameters.unchecked(center=p.center + delta[:3],
+                                          normal=unit(p.normal + delta[3] * u + delta[4] * v),
+                                          radius=p.radius + delta[5])  # fmt: skip
+    u, v = basis(p.direction)
+    return LineParameters.unchecked(direction=unit(p.direction + delta[0] * u + delta[1] * v),
+                                    point=p.point + delta[2] * u + delta[3] * v)  # fmt: skip
 
 
-def _vector(kind: str, p: dict) -> np.ndarray:
+def _vector(kind: str, p) -> np.ndarray:
     keys = {"plane": ("normal", "distance"), "sphere": ("center", "radius"),
             "circle": ("center", "normal", "radius"), "line": ("point", "direction")}[kind]  # fmt: skip
-    return np.concatenate([np.atleast_1d(np.asarray(p[k], float)) for k in keys])
+    return np.concatenate([np.atleast_1d(np.asarray(getattr(p, k), float)) for k in keys])
 
 
 def _whitener(kind, params, X, noise, idx):
@@ -59,8 +64,8 @@ def _whitener(kind, params, X, noise, idx):
     off = np.zeros_like(r)
     if kind == "circle":  # E|q| = rho + t^T Sigma t / (2 rho), t the rim's tangent
         t = cross(B[..., 0], B[..., 1])
-        w = X - params["center"]
-        q = w - (w @ params["normal"])[:, None] * params["normal"]
+        w = X - params.center
+        q = w - (w @ params.normal)[:, None] * params.normal
         off[:, 1] = noise.quad(idx, t, t) / (2 * np.linalg.norm(q, axis=-1))
     return W, off, noise, idx
 
@@ -79,8 +84,8 @@ def _sphere_white(params, X, noise, idx, iterations: int = 5):
     whitened distance, is ``(tr Sigma - |Sigma g|^2 / g^T Sigma g) / (2 rho sqrt(g^T Sigma g))``
     (``sigma / rho`` for isotropic noise, 0 for noise along one direction): subtracted.
     """
-    w = X - params["center"]
-    rho = params["radius"]
+    w = X - params.center
+    rho = params.radius
     g = w / np.linalg.norm(w, axis=-1, keepdims=True)
     cc = np.sum(w * w, axis=-1) - rho * rho
     for _ in range(iterations):
@@ -115,7 +120,7 @@ def _jacobians(kind, params, X, Wh):
     return np.array(J).T, np.array(T).T
 
 
-def polish(kind: str, params: dict, X: np.ndarray, noise: NoiseModel, idx: np.ndarray, iterations: int = 5) -> dict:
+def polish(kind: str, params, X: np.ndarray, noise: NoiseModel, idx: np.ndarray, iterations: int = 5):
     """Maximum-likelihood refinement of a conformal fit: Gauss-Newton on the Mahalanobis residuals.
 
     The conformal least squares weigh every point alike and every direction
@@ -133,6 +138,11 @@ def polish(kind: str, params: dict, X: np.ndarray, noise: NoiseModel, idx: np.nd
     normal turns with the noise; fitted with it, a 22 cm ball at 2.9 m and
     1 px shrinks towards the camera by ~2 cm (10 times its standard
     deviation).
+
+    Returns the polished parameters, of the class of ``params`` (the kind's
+    defining fields only: a plane's drawing ``center`` and a line's ``length`` are
+    dropped once a step is taken), with the normal (direction) sign fixed by
+    :func:`~cga_lessons.stereo.detect_models.orient`.
     """
     if len(X) <= DOF[kind]:
         return params
@@ -143,7 +153,7 @@ def polish(kind: str, params: dict, X: np.ndarray, noise: NoiseModel, idx: np.nd
         step = np.linalg.lstsq(J, -_white(kind, params, X, Wh), rcond=None)[0]
         for _ in range(6):
             new = _perturb(kind, params, step)
-            if new.get("radius", 1.0) > 0:
+            if getattr(new, "radius", 1.0) > 0:
                 Wn = _whitener(kind, new, X, noise, idx)
                 c = float(np.sum(_white(kind, new, X, Wn) ** 2))
                 if c < cost:
@@ -160,15 +170,19 @@ def polish(kind: str, params: dict, X: np.ndarray, noise: NoiseModel, idx: np.nd
     else:
         key = "direction" if kind == "line" else None
     if key is not None:
-        n = orient(params[key])
+        n = orient(getattr(params, key))
         if kind == "plane":
-            params = {"normal": n, "distance": float(params["distance"] * (n @ params["normal"]))}
+            params = PlaneParameters.unchecked(normal=n, distance=float(params.distance * (n @ params.normal)))
         else:
-            params = {**params, key: n}
+            params = type(params).unchecked(**{**_fields(params), key: n})
     return params
 
 
-def covariance(kind: str, params: dict, X: np.ndarray, noise: NoiseModel, idx: np.ndarray) -> np.ndarray:
+def _fields(params) -> dict:
+    return {name: getattr(params, name) for name in type(params).__dataclass_fields__}
+
+
+def covariance(kind: str, params, X: np.ndarray, noise: NoiseModel, idx: np.ndarray) -> np.ndarray:
     """First-order covariance of the fitted parameters (order :data:`PARAM_NAMES`), from the noise of the inliers.
 
     For the maximum-likelihood entity of :func:`polish`, with J the Jacobian
@@ -190,8 +204,11 @@ def covariance(kind: str, params: dict, X: np.ndarray, noise: NoiseModel, idx: n
     return T @ np.linalg.pinv(J.T @ J) @ T.T
 
 
-def fit_ml(kind: str, X: np.ndarray, noise: NoiseModel, idx: np.ndarray) -> dict | None:
-    """The conformal least-squares fit of ``kind`` (section 4.1) polished to maximum likelihood, or None."""
+def fit_ml(kind: str, X: np.ndarray, noise: NoiseModel, idx: np.ndarray):
+    """The conformal least-squares fit of ``kind`` (section 4.1) polished to maximum likelihood, or None.
+
+    Returns a :class:`~cga_lessons.conformal.PlaneParameters`, ``SphereParameters``, ``CircleParameters`` or
+    ``LineParameters`` (None when the points determine no entity of the kind)."""
     p = fit(kind, X)
     if p is None:
         return None

@@ -2,7 +2,7 @@
 
 Each kind is a conformal entity of table 2.1, built from a minimal set of
 points exactly as section 4.1 builds it, and refined by the conformal least
-squares of :mod:`cga_lessons.conformal.fitting`:
+squares of :mod:`cga_lessons.conformal.fitting` and :mod:`cga_lessons.conformal.line_fit`:
 
 ========  =======  ===============================  =====================================
 kind      minimal  hypothesis (dual form)            least-squares refinement
@@ -10,7 +10,7 @@ kind      minimal  hypothesis (dual form)            least-squares refinement
 sphere    4        s* = a ^ b ^ c ^ d  (2.75)        ``M s = lambda G s`` (fit_sphere)
 plane     3        P* = e ^ a ^ b ^ c  (2.77)        the same, without e0 (fit_plane)
 circle    3        z* = a ^ b ^ c      (2.80)        two smallest eigenvectors, s1 ^ s2 (2.79)
-line      2        L* = e ^ a ^ b      (2.81)        two best planes, L = pi1 ^ pi2 (:func:`fit_line`)
+line      2        L* = e ^ a ^ b      (2.81)        two best planes, L = pi1 ^ pi2 (fit_line)
 ========  =======  ===============================  =====================================
 
 Parameters are read back with (2.115, 2.116, 2.73) for spheres, (2.89) for
@@ -21,8 +21,8 @@ B for the Mahalanobis test of :mod:`cga_lessons.stereo.detect_noise`.  For a
 sphere it is the distance behind ``x . s = (rho^2 - |x - p|^2) / 2`` (2.71,
 2.72); for a plane ``x . pi = x . n - delta`` (2.89); for a line (2.130).
 
-Parameters are dicts of arrays; batches carry a leading axis.  The
-maximum-likelihood polish of a fit and the covariance of its parameters are in
+Parameters are the records of :mod:`cga_lessons.conformal.parameters`; batches (made with the classes'
+``unchecked``) carry a leading axis.  The maximum-likelihood polish of a fit and the covariance of its parameters are in
 :mod:`cga_lessons.stereo.detect_ml`.
 """
 
@@ -32,9 +32,10 @@ import numpy as np
 
 from cga_lessons import conformal as cga
 from cga_lessons.algebra import DegenerateGeometryError
+from cga_lessons.conformal import CircleParameters, LineParameters, PlaneParameters, SphereParameters
 
-__all__ = ["KINDS", "MINIMAL", "CODIM", "DOF", "PARAM_NAMES", "hypotheses", "residuals", "fit", "fit_line", "blade",
-           "orient", "basis"]  # fmt: skip
+__all__ = ["KINDS", "MINIMAL", "CODIM", "DOF", "PARAM_NAMES", "hypotheses", "residuals", "fit",
+           "blade", "orient", "basis"]  # fmt: skip
 
 #: Order of the model-selection test: manifold dimension first (curves before surfaces), then fewer parameters.
 KINDS = ("line", "circle", "plane", "sphere")
@@ -49,8 +50,6 @@ PARAM_NAMES = {
     "circle": ("center_x", "center_y", "center_z", "normal_x", "normal_y", "normal_z", "radius"),
     "line": ("point_x", "point_y", "point_z", "direction_x", "direction_y", "direction_z"),
 }
-_G = np.diag([1.0, 1.0, 1.0, 1.0, -1.0])
-_BLADES = [1, 2, 4, 8, 16]  # e1 e2 e3 e+ e-
 
 
 def _dot(a, b):
@@ -82,6 +81,13 @@ def basis(n):
     return u, cross(n, u)
 
 
+def _core(kind: str, params) -> dict:
+    """The fields that define the entity (not the drawing's ``center`` of a plane nor a line's ``length``)."""
+    names = {"plane": ("normal", "distance"), "sphere": ("center", "radius"), "circle": ("center", "radius", "normal"),
+             "line": ("point", "direction")}[kind]  # fmt: skip
+    return {name: getattr(params, name) for name in names}
+
+
 # ------------------------------------------------------------- hypotheses
 def hypotheses(kind: str, X: np.ndarray, idx: np.ndarray, min_conditioning: float = 0.05):
     """Entities of ``kind`` through minimal point sets, built in the conformal model.
@@ -99,8 +105,8 @@ def hypotheses(kind: str, X: np.ndarray, idx: np.ndarray, min_conditioning: floa
 
     Returns
     -------
-    params : dict of ndarray
-        A batch of H' <= H entities (kind-specific keys).
+    params : PlaneParameters, SphereParameters, CircleParameters or LineParameters, or None
+        A batch of H' <= H entities (every field with a leading axis), None when no set is kept.
     kept : ndarray of int
         The rows of idx they came from.
     """
@@ -122,19 +128,21 @@ def hypotheses(kind: str, X: np.ndarray, idx: np.ndarray, min_conditioning: floa
     if kind == "sphere":
         S = cga.sphere_from_points(a, b, c, P[kept, 3])  # (2.75)
         center, radius = cga.sphere_center_radius(S)  # (2.115), (2.116), (2.73)
-        return {"center": np.atleast_2d(center), "radius": np.atleast_1d(radius)}, kept
+        return SphereParameters.unchecked(center=np.atleast_2d(center), radius=np.atleast_1d(radius)), kept
     if kind == "plane":
         n, d = cga.plane_normal_distance(cga.plane_from_points(a, b, c))  # (2.77), (2.89)
-        return {"normal": np.atleast_2d(n), "distance": np.atleast_1d(d)}, kept
+        return PlaneParameters.unchecked(normal=np.atleast_2d(n), distance=np.atleast_1d(d)), kept
     if kind == "circle":
         center, radius, n = cga.circle_center_radius(cga.circle_from_points(a, b, c))  # (2.80), (2.119)-(2.124)
-        return {"center": np.atleast_2d(center), "radius": np.atleast_1d(radius), "normal": np.atleast_2d(n)}, kept
+        return CircleParameters.unchecked(center=np.atleast_2d(center), radius=np.atleast_1d(radius),
+                                          normal=np.atleast_2d(n)), kept  # fmt: skip
     L = cga.line_from_points(a, b)  # (2.81)
-    return {"point": np.atleast_2d(cga.line_closest_point(L)), "direction": np.atleast_2d(cga.line_direction(L))}, kept
+    return LineParameters.unchecked(point=np.atleast_2d(cga.line_closest_point(L)),
+                                    direction=np.atleast_2d(cga.line_direction(L))), kept  # fmt: skip
 
 
 # -------------------------------------------------------------- residuals
-def residuals(kind: str, params: dict, X: np.ndarray):
+def residuals(kind: str, params, X: np.ndarray):
     """Geometric residuals of points X (N, 3) from a batch of entities (leading axis H) or from one entity.
 
     Returns
@@ -147,8 +155,8 @@ def residuals(kind: str, params: dict, X: np.ndarray):
         Unit directions of the components (the gradient of r in the point).
     """
     key = {"plane": "normal", "sphere": "center", "circle": "center", "line": "point"}[kind]
-    single = np.ndim(params[key]) == 1
-    p = {k: np.asarray(v, float)[None] if single else np.asarray(v, float) for k, v in params.items()}
+    single = np.ndim(getattr(params, key)) == 1
+    p = {k: np.asarray(v, float)[None] if single else np.asarray(v, float) for k, v in _core(kind, params).items()}
     Xb = X[None]  # (1, N, 3)
     if kind == "plane":
         n = p["normal"][:, None, :]
@@ -177,75 +185,35 @@ def residuals(kind: str, params: dict, X: np.ndarray):
 
 
 # ------------------------------------------------------------------- fits
-def fit_line(X) -> dict:
-    """Conformal least-squares line: the meet of the two best planes, ``L = pi1 ^ pi2`` (2.77, 2.81, 2.89).
-
-    A point lies on a line exactly when ``x . pi = 0`` for every plane pi of
-    the pencil through it.  The plane problem of
-    :func:`cga_lessons.conformal.fitting.fit_plane` (``min sum (x_i . pi)^2`` over
-    ``pi = n + delta e`` with ``pi^2 = |n|^2 = 1``, delta eliminated in closed
-    form) therefore has a two-dimensional near-null space for points on a
-    line: its two smallest eigenvectors are two orthogonal planes through the
-    line, and their outer product is the line in standard form (the dual of
-    ``e ^ a ^ b``, 2.81).  Direction (2.127) and the point nearest the origin
-    (2.129) are read from it; ``point`` is the foot of the points' centroid.
-
-    Returns
-    -------
-    dict
-        ``point``, ``direction`` (unit), ``blade`` (dual form, 2.81), ``rms``.
-    """
-    X = np.asarray(X, dtype=float)
-    if len(X) < 2:
-        raise DegenerateGeometryError(f"fit_line: need at least 2 points, got {len(X)}")
-    c = X.mean(axis=0)
-    k = np.sqrt(np.mean(np.sum((X - c) ** 2, axis=1)))
-    if not k > 0:
-        raise DegenerateGeometryError("fit_line: all points coincide")
-    D = cga.up((X - c) / k).to_array(_BLADES)  # conformal points (2.62), normalised cloud
-    A = np.column_stack([(D @ _G)[:, :3], -np.ones(len(X))])  # x . (n + delta e) = x . n - delta
-    M = A.T @ A
-    b, m = M[:3, 3], M[3, 3]
-    _, V = np.linalg.eigh(M[:3, :3] - np.outer(b, b) / m)  # Schur complement: delta = -b . n / m
-    planes = [cga.plane(V[:, j], k * (-b @ V[:, j] / m) + c @ V[:, j]) for j in (0, 1)]  # (2.89)
-    L = planes[0] ^ planes[1]  # standard form of the line
-    r = orient(np.asarray(cga.line_direction(L), float))  # (2.127)
-    p0 = np.asarray(cga.line_closest_point(L), float)  # (2.129)
-    point = p0 + ((c - p0) @ r) * r
-    w = X - point
-    rms = float(np.sqrt(np.mean(np.sum((w - np.outer(w @ r, r)) ** 2, axis=1))))
-    return {"point": point, "direction": r, "blade": cga.line_from_points(point, point + r), "rms": rms}
-
-
-def fit(kind: str, X: np.ndarray) -> dict | None:
+def fit(kind: str, X: np.ndarray) -> PlaneParameters | SphereParameters | CircleParameters | LineParameters | None:
     """The conformal least-squares fit of ``kind`` to X (N, 3), or None when X does not determine one."""
     if len(X) < MINIMAL[kind] + 1:
         return None
     try:
         if kind == "sphere":
             f = cga.fit_sphere(X)
-            return {"center": f["center"], "radius": float(f["radius"])}
+            return SphereParameters(center=f.center, radius=float(f.radius))
         if kind == "plane":
             f = cga.fit_plane(X)
-            n = orient(f["normal"])
-            return {"normal": n, "distance": float(f["distance"] * (n @ f["normal"]))}
+            n = orient(f.normal)
+            return PlaneParameters(normal=n, distance=float(f.distance * (n @ f.normal)))
         if kind == "circle":
             f = cga.fit_circle(X)
-            return {"center": f["center"], "radius": float(f["radius"]), "normal": orient(f["normal"])}
-        f = fit_line(X)
-        return {"point": f["point"], "direction": f["direction"]}
+            return CircleParameters(center=f.center, radius=float(f.radius), normal=orient(f.normal))
+        f = cga.fit_line(X)
+        return LineParameters(point=f.point, direction=f.direction)
     except (DegenerateGeometryError, np.linalg.LinAlgError, FloatingPointError):
         return None
 
 
-def blade(kind: str, params: dict):
+def blade(kind: str, params):
     """The conformal entity: sphere (2.72) and plane (2.89) in standard form, circle (2.80) and line (2.81) dual."""
     if kind == "sphere":
-        return cga.sphere(params["center"], params["radius"])
+        return cga.sphere(params.center, params.radius)
     if kind == "plane":
-        return cga.plane(params["normal"], params["distance"])
+        return cga.plane(params.normal, params.distance)
     if kind == "line":
-        return cga.line_from_points(params["point"], params["point"] + params["direction"])
-    c, r, n = params["center"], params["radius"], params["normal"]
+        return cga.line_from_points(params.point, params.point + params.direction)
+    c, r, n = params.center, params.radius, params.normal
     u, v = basis(np.asarray(n, float))
     return cga.circle_from_points(c + r * u, c + r * v, c - r * u)

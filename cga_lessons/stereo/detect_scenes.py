@@ -1,4 +1,4 @@
-"""Test scenes with ground truth for entity detection, and the scoring of detections against it.
+"""Test scenes with ground truth for entity detection: entities placed in front of a stereo head, and clutter.
 
 A scene holds several plane patches (boards), sphere caps (balls, the part
 both cameras see), circles (rims, rings) and line segments (handles), placed
@@ -19,8 +19,8 @@ length, 1600 x 1200): at 2 m and 1 px its depth noise is ~1.2 cm.  (The bundled
 head of ``data/stereo_rig.json``, 12 cm and 700 px, has ~6.7 cm there: too
 noisy for balls of 15-30 cm; use it with a nearer ``depth``.)
 
-:func:`evaluate` matches detections to the truth by kind and position and
-returns precision and recall per kind.
+:func:`~cga_lessons.stereo.detect_scores.evaluate` matches detections to the
+truth by kind and position and returns precision and recall per kind.
 """
 
 from __future__ import annotations
@@ -32,16 +32,17 @@ import numpy as np
 from cga_lessons import checks
 from cga_lessons.algebra import DegenerateGeometryError, GeometryError
 from cga_lessons.checks import degenerate
+from cga_lessons.conformal import CircleParameters, LineParameters, PlaneParameters, SphereParameters
 
 from . import head as st
 from . import validate as vd
 from .detect_noise import triangulation_covariance
-from .detect_search import DetectedEntity
+from .detect_params import PatchParameters, indices, of_kind
 from .experiments import random_points_in_view
 from .rig import StereoRig, stereo_head
 from .triangulation import triangulate
 
-__all__ = ["SceneConfig", "TruthEntity", "DetectScene", "scene_rig", "cloud_scene", "stereo_scene", "evaluate"]
+__all__ = ["SceneConfig", "TruthEntity", "DetectScene", "scene_rig", "cloud_scene", "stereo_scene"]
 
 KINDS = ("plane", "sphere", "circle", "line")
 
@@ -98,13 +99,23 @@ class SceneConfig:
 
 @dataclass(frozen=True, eq=False)
 class TruthEntity:
-    """A true entity: ``kind``, ``params`` (as in :class:`cga_lessons.stereo.detect_search.DetectedEntity`), ``extent``
-    (radius of its bounding sphere) and the indices of its points in the scene's cloud."""
+    """A true entity: ``kind``, ``params`` (as in :class:`cga_lessons.stereo.detect_search.DetectedEntity`: a plane's
+    ``center`` and ``sides`` are the patch's, a :class:`~cga_lessons.stereo.detect_params.PatchParameters`, a line's
+    ``length`` the segment's), ``extent`` (radius of its
+    bounding sphere) and the indices of its points in the scene's cloud."""
 
     kind: str
-    params: dict
+    params: PlaneParameters | SphereParameters | CircleParameters | LineParameters
     extent: float
     indices: np.ndarray
+
+    def __post_init__(self):
+        f = "TruthEntity"
+        kind, params = of_kind(self.kind, self.params, f)
+        object.__setattr__(self, "kind", kind)
+        object.__setattr__(self, "params", params)
+        object.__setattr__(self, "extent", checks.real(self.extent, f, "extent", low=0.0))
+        object.__setattr__(self, "indices", indices(self.indices, f, "indices"))
 
 
 @dataclass(frozen=True, eq=False)
@@ -203,7 +214,7 @@ def _entities(rng, rig, cfg):
             m = int(round(cfg.surface_density * a * b))
             st_ = rng.uniform(-0.5, 0.5, size=(m, 2)) * [a, b]
             pts = p + st_[:, :1] * u + st_[:, 1:] * v
-            prm = {"normal": n, "distance": float(n @ p), "center": p, "sides": (float(a), float(b))}
+            prm = PatchParameters(normal=n, distance=float(n @ p), center=p, sides=(float(a), float(b)))
         elif kind == "sphere":
             to_c = [_unit(C - p) for C in (rig.C1, rig.C2)]
             d = rng.normal(size=(20000, 3))
@@ -211,13 +222,13 @@ def _entities(rng, rig, cfg):
             ok = (d @ to_c[0] > np.cos(np.radians(70))) & (d @ to_c[1] > np.cos(np.radians(70)))
             m = int(round(cfg.surface_density * 4 * np.pi * r * r * ok.mean()))
             pts = p + r * d[ok][:m]
-            prm = {"center": p, "radius": float(r)}
+            prm = SphereParameters(center=p, radius=float(r))
         elif kind == "circle":
             n = _orient(_facing(rng, p, rig))
             u, v = _frame(n, rng)
             t = rng.uniform(0, 2 * np.pi, int(round(cfg.curve_density * 2 * np.pi * r)))
             pts = p + r * (np.cos(t)[:, None] * u + np.sin(t)[:, None] * v)
-            prm = {"center": p, "normal": n, "radius": float(r)}
+            prm = CircleParameters(center=p, radius=float(r), normal=n)
         else:
             view = _unit(p - rig.C1)
             for _ in range(1000):
@@ -226,7 +237,7 @@ def _entities(rng, rig, cfg):
                     break
             d = _orient(d)
             pts = p + np.outer(rng.uniform(-0.5, 0.5, int(round(cfg.curve_density * length))) * length, d)
-            prm = {"point": p, "direction": d, "length": float(length)}
+            prm = LineParameters(point=p, direction=d, length=float(length))
         out.append((kind, prm, float(ext), pts))
     return out
 
@@ -284,81 +295,3 @@ def stereo_scene(rng: np.random.Generator, cfg: SceneConfig | None = None, rig: 
     Y = triangulate(rig.P1, rig.P2, x1, x2)
     cov = triangulation_covariance(rig.P1, rig.P2, x1, x2, cfg.noise_px)
     return DetectScene(Y, X, labels, truth, cov, rig)
-
-
-# ------------------------------------------------------------------ scoring
-def _angle(a, b) -> float:
-    return float(np.degrees(np.arccos(np.clip(abs(float(np.dot(a, b))), 0.0, 1.0))))
-
-
-def entity_errors(det, truth: TruthEntity) -> dict:
-    """Position errors of a detection against a true entity of the same kind (metres, degrees)."""
-    p, t = det.params, truth.params
-    if truth.kind == "plane":
-        return {"angle": _angle(p["normal"], t["normal"]), "offset": abs(p["normal"] @ t["center"] - p["distance"]),
-                "center": float(np.linalg.norm(p["center"] - t["center"]))}  # fmt: skip
-    if truth.kind == "line":
-        w = t["point"] - p["point"]
-        return {"angle": _angle(p["direction"], t["direction"]),
-                "offset": float(np.linalg.norm(w - (w @ p["direction"]) * p["direction"])),
-                "center": float(abs(w @ p["direction"]))}  # fmt: skip
-    out = {"center": float(np.linalg.norm(p["center"] - t["center"])), "radius": abs(p["radius"] - t["radius"])}
-    if truth.kind == "circle":
-        out["angle"] = _angle(p["normal"], t["normal"])
-    return out
-
-
-def _within(kind, err, truth: TruthEntity, tol: float) -> bool:
-    """Kind-specific position test: tol in metres; angles within atan(tol / extent); centres of flats and
-    lines within the object's own extent (a detection elsewhere on the same infinite plane is not it)."""
-    ang = np.degrees(np.arctan2(tol, truth.extent))
-    if kind in ("plane", "line"):
-        return err["angle"] <= ang and err["offset"] <= tol and err["center"] <= truth.extent + tol
-    ok = err["center"] <= tol and err["radius"] <= tol
-    return ok and (kind == "sphere" or err["angle"] <= ang)
-
-
-def evaluate(scene: DetectScene, detections, position_tol: float | None = None) -> dict:
-    """Precision and recall per kind: a detection is right when a true entity of its kind is within tolerance.
-
-    Detections are matched largest first, each to the unmatched true entity of
-    its kind with the smallest position error that passes the test
-    (``position_tol`` metres, default 4 x :meth:`DetectScene.noise_scale`).
-
-    Returns
-    -------
-    dict
-        ``kind -> {"precision", "recall", "tp", "detected", "truth"}`` plus
-        ``"all"`` (the same over every kind), ``"matches"`` (list of
-        ``(detection index, truth index, errors)``) and ``"tolerance"``.
-    """
-    f = "evaluate"
-    scene = checks.instance(scene, f, "scene", DetectScene, "a DetectScene (stereo_scene, cloud_scene)")
-    detections = checks.instance(detections, f, "detections", (list, tuple), "a list of DetectedEntity")
-    for d in detections:
-        checks.instance(d, f, "detections", DetectedEntity, "DetectedEntity items (detect_entities)")
-    if position_tol is None:
-        tol = 4.0 * scene.noise_scale()
-    else:
-        tol = checks.real(position_tol, f, "position_tol", low=0.0, high=vd.LIMIT)
-    used, matches = set(), []
-    for i, det in enumerate(detections):
-        cands = []
-        for j, t in enumerate(scene.truth):
-            if j in used or t.kind != det.kind:
-                continue
-            err = entity_errors(det, t)
-            if _within(det.kind, err, t, tol):
-                cands.append((err.get("offset", 0.0) + err["center"], j, err))
-        if cands:
-            _, j, err = min(cands, key=lambda c: c[0])
-            used.add(j)
-            matches.append((i, j, err))
-    out = {"matches": matches, "tolerance": tol}
-    for kind in KINDS + ("all",):
-        det = [d for d in detections if kind in ("all", d.kind)]
-        tru = [t for t in scene.truth if kind in ("all", t.kind)]
-        tp = sum(1 for i, j, _ in matches if kind in ("all", scene.truth[j].kind))
-        out[kind] = {"precision": tp / len(det) if det else 1.0, "recall": tp / len(tru) if tru else 1.0,
-                     "tp": tp, "detected": len(det), "truth": len(tru)}  # fmt: skip
-    return out

@@ -8,11 +8,38 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from cga_lessons import checks
+from cga_lessons.algebra import Multivector
+from cga_lessons.conformal import CircleParameters, LineParameters, PlaneParameters, SphereParameters
+
 from . import detect_ml as ml
 from . import detect_models as dm
 from .detect_noise import NoiseModel, chi2_gate
+from .detect_params import PARAMS, indices, of_kind, present, rows
 
-__all__ = ["DetectedEntity", "Search", "merge"]
+__all__ = ["SelectionEvidence", "DetectedEntity", "Search", "merge"]
+
+
+@dataclass(frozen=True)
+class SelectionEvidence:
+    """Why a detection is of its kind (model selection, :meth:`Search.select`).
+
+    ``support``: kind -> the number of points each kind reached when fitted to the selection support and regrown;
+    ``lr``: the likelihood-ratio statistic of the nested pair of the chosen dimension (plane vs sphere, line vs
+    circle; the general kind wins above a chi-square quantile), None when only one kind of the pair was fitted.
+    """
+
+    support: dict = field(default_factory=dict)
+    lr: float | None = None
+
+    def __post_init__(self):
+        f = "SelectionEvidence"
+        support = checks.instance(self.support, f, "support", dict, "a dict kind -> number of points")
+        support = {checks.choice(k, f, "support", dm.KINDS): checks.integer(n, f, "support", low=0)
+                   for k, n in support.items()}  # fmt: skip
+        object.__setattr__(self, "support", support)
+        if self.lr is not None:
+            object.__setattr__(self, "lr", checks.real(self.lr, f, "lr"))
 
 
 @dataclass(frozen=True, eq=False)
@@ -23,11 +50,12 @@ class DetectedEntity:
     ----------
     kind : str
         ``"plane"``, ``"sphere"``, ``"circle"`` or ``"line"``.
-    params : dict
+    params : PlaneParameters, SphereParameters, CircleParameters or LineParameters (a dict of its fields is made
+        into one)
         plane: ``normal``, ``distance`` (``n . x = distance``), ``center`` (inliers' centroid on the plane);
         sphere: ``center``, ``radius``; circle: ``center``, ``normal``, ``radius``;
         line: ``point`` (foot of the inliers' centroid), ``direction``, ``length`` (extent of the inliers).
-    blade : Multivector
+    blade : Multivector or None
         The conformal entity (sphere, plane: standard form 2.72, 2.89; circle, line: dual form 2.80, 2.81).
     inliers : ndarray of int
         Indices of its points in the input cloud.
@@ -38,20 +66,41 @@ class DetectedEntity:
         RMS geometric distance of the inliers from the entity (metres).
     chi2 : float
         Mean squared Mahalanobis residual per degree of freedom (about 1 when the noise model is right).
-    evidence : dict
+    evidence : SelectionEvidence
         Model selection: the support each kind reached when regrown from the selection support (kind -> points),
-        and ``"lr"``, the likelihood-ratio statistic of the nested pair (plane vs sphere, line vs circle).
+        and ``lr``, the likelihood-ratio statistic of the nested pair (plane vs sphere, line vs circle).
+
+    Every field is checked when the record is made (the blade may be None in a record made by hand).
     """
 
     kind: str
-    params: dict
+    params: PlaneParameters | SphereParameters | CircleParameters | LineParameters
     blade: object
     inliers: np.ndarray
     covariance: np.ndarray
     covariance_names: tuple
     rms: float
     chi2: float
-    evidence: dict = field(default_factory=dict)
+    evidence: SelectionEvidence = field(default_factory=SelectionEvidence)
+
+    def __post_init__(self):
+        f, put = "DetectedEntity", lambda name, value: object.__setattr__(self, name, value)
+        kind, params = of_kind(self.kind, self.params, f)
+        put("kind", kind)
+        put("params", params)
+        if self.blade is not None:
+            checks.instance(self.blade, f, "blade", Multivector, "a conformal blade (a Multivector) or None")
+            if not all(np.all(np.isfinite(np.asarray(c, float))) for c in self.blade.coeffs.values()):
+                raise checks.fail(f, "blade", "has NaN or inf coefficients")
+        put("inliers", indices(self.inliers, f, "inliers"))
+        names = checks.instance(self.covariance_names, f, "covariance_names", (tuple, list), "a tuple of names")
+        if not all(isinstance(n, str) for n in names):
+            raise checks.fail(f, "covariance_names", f"expected names (str), got {names!r:.60}")
+        put("covariance_names", tuple(names))
+        put("covariance", checks.array(self.covariance, f, "covariance", (len(names), len(names))))
+        put("rms", checks.real(self.rms, f, "rms", low=0.0))
+        put("chi2", checks.real(self.chi2, f, "chi2", low=0.0))
+        checks.instance(self.evidence, f, "evidence", SelectionEvidence, "a SelectionEvidence")
 
 
 class Search:
@@ -134,12 +183,12 @@ class Search:
             if P is None:
                 continue
             counts = np.concatenate([
-                np.sum(self.noise.mahalanobis2(free[sub], *dm.residuals(kind, {k: v[s:s + 64] for k, v in P.items()},
+                np.sum(self.noise.mahalanobis2(free[sub], *dm.residuals(kind, rows(P, slice(s, s + 64)),
                                                                          Xf[sub])) < self.gate[kind], axis=1)
                 for s in range(0, len(kept), 64)
             ])  # fmt: skip
             h = int(np.argmax(counts))
-            prm, inl = self.refine(kind, {k: v[h] for k, v in P.items()}, free)
+            prm, inl = self.refine(kind, rows(P, h), free)
             if best is None or len(inl) > len(best[2]):
                 best = (kind, prm, inl)
         return best
@@ -159,7 +208,7 @@ class Search:
 
         Returns
         -------
-        kind, (params, support) of that kind, evidence dict (support sizes per kind, ``"lr"``).
+        kind, (params, support) of that kind, SelectionEvidence (or None, None, None: nothing fits).
         """
         fits = {}
         for kind in [k for k in dm.KINDS if k in self.cfg.kinds]:
@@ -168,9 +217,9 @@ class Search:
                 prm = dm.fit(kind, self.X[self.consensus(kind, prm, S)]) or prm  # re-selected: robust to clutter
                 fits[kind] = self.refine(kind, prm, free, anchor=S, polish=True)
         if not fits:
-            return None, None, {}
+            return None, None, None
         size = {k: len(v[1]) for k, v in fits.items()}
-        evidence = dict(size)
+        lr = None
         n_curve = max([size[k] for k in ("line", "circle") if k in size], default=-1)
         n_surf = max([size[k] for k in ("plane", "sphere") if k in size], default=-1)
         curves = n_curve >= n_surf - self.cfg.selection_z * np.sqrt(max(n_surf, 1))
@@ -179,11 +228,11 @@ class Search:
         if len(group) == 2:
             U = np.union1d(fits[group[0]][1], fits[group[1]][1])
             cost = [np.sum(np.minimum(self.m2(k, fits[k][0], U), self.gate[k])) for k in group]
-            evidence["lr"] = float(cost[0] - cost[1])
+            lr = float(cost[0] - cost[1])
             extra = dm.DOF[group[1]] - dm.DOF[group[0]]
-            if evidence["lr"] > chi2_gate(extra, self.cfg.selection_confidence):
+            if lr > chi2_gate(extra, self.cfg.selection_confidence):
                 kind = group[1]
-        return kind, fits[kind], evidence
+        return kind, fits[kind], SelectionEvidence(support=size, lr=lr)
 
     def significant(self, kind, prm, inl, free) -> bool:
         """Enough points, and more than clutter at the free points' density would put in the gate."""
@@ -196,35 +245,36 @@ class Search:
         expected = density * _support(kind, prm, self.X[inl]) * _gate_section(self, kind, prm, inl)
         return len(inl) >= expected + cfg.significance * np.sqrt(expected)
 
-    def entity(self, kind, prm, inl, evidence) -> DetectedEntity:
+    def entity(self, kind, prm, inl, evidence: SelectionEvidence | None = None) -> DetectedEntity:
         inl = np.sort(inl)
         Xi = self.X[inl]
         r, B = dm.residuals(kind, prm, Xi)
         m2 = self.noise.mahalanobis2(inl, r, B)
-        params = {k: (np.asarray(v, float) if np.ndim(v) else float(v)) for k, v in prm.items()}
+        params = {k: (np.asarray(v, float) if np.ndim(v) else float(v)) for k, v in present(prm).items()}
         if kind == "plane":
             c = Xi.mean(axis=0)
             params["center"] = c - (c @ params["normal"] - params["distance"]) * params["normal"]
         if kind == "line":
             t = (Xi - params["point"]) @ params["direction"]
             params["length"] = float(np.ptp(t))
+        params = PARAMS[kind](**params)
         return DetectedEntity(
             kind, params, dm.blade(kind, params), inl, ml.covariance(kind, params, Xi, self.noise, inl),
             dm.PARAM_NAMES[kind], float(np.sqrt(np.mean(np.sum(r * r, axis=1)))),
-            float(np.mean(m2) / dm.CODIM[kind]), dict(evidence),
+            float(np.mean(m2) / dm.CODIM[kind]), evidence or SelectionEvidence(),
         )  # fmt: skip
 
 
 def _support(kind, prm, Xi) -> float:
     """Area (surfaces) or length (curves) covered by the inliers Xi, for the clutter expectation."""
     if kind == "line":
-        return float(max(np.ptp((Xi - prm["point"]) @ prm["direction"]), 1e-9))
+        return float(max(np.ptp((Xi - prm.point) @ prm.direction), 1e-9))
     if kind == "circle":
-        u, v = dm.basis(np.asarray(prm["normal"], float))
-        ang = np.sort(np.arctan2((Xi - prm["center"]) @ v, (Xi - prm["center"]) @ u))
+        u, v = dm.basis(np.asarray(prm.normal, float))
+        ang = np.sort(np.arctan2((Xi - prm.center) @ v, (Xi - prm.center) @ u))
         gap = np.max(np.diff(np.concatenate([ang, ang[:1] + 2 * np.pi])))
-        return float(prm["radius"] * (2 * np.pi - gap))
-    n = prm["normal"] if kind == "plane" else dm.unit(np.mean(Xi - prm["center"], axis=0))
+        return float(prm.radius * (2 * np.pi - gap))
+    n = prm.normal if kind == "plane" else dm.unit(np.mean(Xi - prm.center, axis=0))
     u, v = dm.basis(np.asarray(n, float))
     Q = np.column_stack([Xi @ u, Xi @ v])
     # an ellipse of semi-axes 2 sigma covers a uniform disc or rectangle of the same second moments

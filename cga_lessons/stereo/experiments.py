@@ -11,6 +11,8 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from cga_lessons import checks, conformal
@@ -28,6 +30,7 @@ from .triangulation import triangulate
 __all__ = [
     "random_points_in_view",
     "fundamental_comparison",
+    "TriangulationCurve",
     "triangulation_error_curve",
     "entity_error_table",
     "format_table",
@@ -125,18 +128,33 @@ def _comparison(rig, rng, n_points, noise_px, trials, n_test, func):
     ]
 
 
+@dataclass(frozen=True)
+class TriangulationCurve:
+    """RMS 3D errors (metres) against pixel noise: ``noise_px`` (K,) the noise levels (std, pixels), ``midpoint`` (K,)
+    and ``dlt`` (K,) the errors of the two triangulations (A.14), ``difference`` (K,) the RMS distance between their
+    points, and ``predicted`` (K,) the first-order depth error of a parallel rig, ``sigma_Z = Z^2 sqrt(2) sigma /
+    (f b)`` (RMS over the points)."""
+
+    noise_px: np.ndarray
+    midpoint: np.ndarray
+    dlt: np.ndarray
+    difference: np.ndarray
+    predicted: np.ndarray
+
+    def __post_init__(self):
+        f = "TriangulationCurve"
+        k = len(vd.array(self.noise_px, f, "noise_px", (None,), at_least=1))
+        for name in self.__dataclass_fields__:
+            a = vd.array(getattr(self, name), f, name, (None,))
+            if len(a) != k:
+                raise fail(f, f"noise_px, {name}", f"must have one length, got {k} and {len(a)}")
+            object.__setattr__(self, name, a)
+
+
 def triangulation_error_curve(rig: StereoRig, rng: np.random.Generator, noise_levels, n_points=300, depth=(1.0, 4.0)):
     """RMS 3D error (metres) of midpoint and DLT triangulation (A.14) for each pixel noise level.
 
-    The same points and the same noise are given to both methods.
-
-    Returns
-    -------
-    dict
-        ``"noise_px"`` (K,), ``"midpoint"`` (K,), ``"dlt"`` (K,), and
-        ``"difference"`` (K,), the RMS distance between the two methods' points,
-        and ``"predicted"`` (K,), the first-order depth error of a parallel rig,
-        ``sigma_Z = Z^2 sqrt(2) sigma / (f b)`` (RMS over the points).
+    The same points and the same noise are given to both methods.  Returns a :class:`TriangulationCurve`.
     """
     f = "triangulation_error_curve"
     rig, rng, n_points, depth = (
@@ -163,7 +181,7 @@ def triangulation_error_curve(rig: StereoRig, rng: np.random.Generator, noise_le
     # First order, parallel rig: Z = f b / d, so sigma_Z = Z^2 sigma_d / (f b) with sigma_d = sqrt(2) sigma.
     Z = (X - rig.C1) @ rig.R1[2]
     out["predicted"] = np.sqrt(np.mean(Z**4)) * np.sqrt(2.0) * out["noise_px"] / (rig.K[0, 0] * rig.baseline)
-    return {k: np.asarray(v, float) for k, v in out.items()}
+    return TriangulationCurve(**{k: np.asarray(v, float) for k, v in out.items()})
 
 
 _ROWS = [
@@ -230,14 +248,14 @@ def _error_table(rig, scene, rng, noise_px, trials):
             est = rec[entity] if row[1].startswith("4.1") else fits[row]
             e = entity_errors(truth, {entity: est})[entity]
             if entity == "point":
-                per_point = np.linalg.norm(est["points"] - truth["point"]["points"], axis=1)
+                per_point = np.linalg.norm(est.points - truth["point"].points, axis=1)
                 errs[row]["position_mm"].extend(1e3 * per_point)
                 continue
-            pos = e["center"] if "center" in e else e.get("offset", e.get("position"))
+            pos = e.center if hasattr(e, "center") else getattr(e, "offset", getattr(e, "position", None))
             errs[row]["position_mm"].append(1e3 * pos)
-            if "radius" in e:
-                errs[row]["radius_mm"].append(1e3 * e["radius"])
-            ang = e.get("normal", e.get("direction"))
+            if hasattr(e, "radius"):
+                errs[row]["radius_mm"].append(1e3 * e.radius)
+            ang = getattr(e, "normal", getattr(e, "direction", None))
             if ang is not None:
                 errs[row]["angle_deg"].append(np.degrees(ang))
     table = []

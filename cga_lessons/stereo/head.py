@@ -26,11 +26,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from cga_lessons import checks
+from cga_lessons import conformal as cga
 from cga_lessons.algebra import GeometryError
 from cga_lessons.checks import degenerate, fail
 
 from . import camera as cam
 from . import validate as vd
+from .entities import SceneCircle, SceneLine, ScenePair, ScenePlane, ScenePoints, SceneSphere
 from .polylines import frame
 from .rig import StereoRig
 
@@ -108,23 +110,30 @@ class StereoScene:
         return np.array([self.board_center + 0.5 * (sx * w * u + sy * h * v) for sx, sy in signs])
 
     def truth(self) -> dict:
-        """Ground-truth parameters in the format of :func:`reconstruct_entities`."""
+        """The true entities, in the format of :func:`reconstruct_entities` (entity name -> record of
+        :mod:`cga_lessons.stereo.entities`; the plane is drawn about the board's centre, with its half diagonal)."""
         a, b = self.segment
         r = _unit(b - a)
-        n = _unit(self.board_normal)
+        n, m = _unit(self.board_normal), _unit(self.circle_normal)
+        c, rho, s, p = self.circle_center, self.circle_radius, self.sphere_center, self.board_center
+        u, v = frame(m)
+        ball = s + self.sphere_radius * np.array([[1.0, 0, 0], [0, 1.0, 0], [0, 0, 1.0], [-1.0, 0, 0]])
+        try:  # the blades in the dual forms reconstruct_entities builds (2.62, 2.68, 2.75, 2.77, 2.80, 2.81)
+            blades = (cga.up(self.points), cga.point_pair(a, b), cga.line_from_points(a, b),
+                      cga.circle_from_points(c + rho * u, c + rho * v, c - rho * u),
+                      cga.plane_from_points(*self.board_corners()[:3]), cga.sphere_from_points(*ball))  # fmt: skip
+        except GeometryError as exc:
+            raise degenerate("StereoScene.truth", "self", f"the scene's objects are degenerate: {exc}") from None
         return {
-            "point": {"points": np.array(self.points, dtype=float)},
-            "pair": {"endpoints": np.array(self.segment, dtype=float)},
-            "line": {
-                "direction": r,
-                "closest_point": a - np.dot(a, r) * r,
-                "length": float(np.linalg.norm(b - a)),
-                "midpoint": 0.5 * (a + b),
-            },
-            "circle": {"center": self.circle_center, "radius": self.circle_radius, "normal": _unit(self.circle_normal)},
-            "plane": {"normal": n, "distance": float(np.dot(n, self.board_center)), "point": self.board_center},
-            "sphere": {"center": self.sphere_center, "radius": self.sphere_radius},
-        }
+            "point": ScenePoints(points=np.array(self.points, dtype=float), blade=blades[0]),
+            "pair": ScenePair(endpoints=np.array(self.segment, dtype=float), blade=blades[1]),
+            "line": SceneLine(direction=r, closest_point=a - np.dot(a, r) * r, length=float(np.linalg.norm(b - a)),
+                              midpoint=0.5 * (a + b), blade=blades[2]),
+            "circle": SceneCircle(center=c, radius=rho, normal=m, center_via_plane=c, blade=blades[3]),
+            "plane": ScenePlane(normal=n, distance=float(np.dot(n, p)), center=p,
+                                radius=0.5 * float(np.hypot(*self.board_size)), blade=blades[4]),
+            "sphere": SceneSphere(center=s, radius=self.sphere_radius, blade=blades[5]),
+        }  # fmt: skip
 
 
 def load_scene(path=None) -> StereoScene:

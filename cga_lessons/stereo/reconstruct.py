@@ -15,6 +15,7 @@ from cga_lessons.algebra import GeometryError
 from cga_lessons.checks import degenerate, fail
 
 from . import validate as vd
+from .entities import SceneCircle, SceneLine, ScenePair, ScenePlane, ScenePoints, SceneSphere
 from .rig import StereoRig
 from .triangulation import triangulate
 
@@ -71,14 +72,14 @@ def reconstruct_entities(rig: StereoRig, views: dict, method: str = "midpoint") 
     Returns
     -------
     dict
-        ``"point"``: points (N, 3) from up (2.62) and down (2.114), conformal
-        ``blade``; ``"pair"``: ``endpoints`` (2.68, 2.131); ``"line"``:
-        ``direction`` (2.127), ``closest_point`` (2.129), ``length`` (2.125);
-        ``"circle"``: ``center`` (2.123, 2.115, 2.116), ``center_via_plane``
-        (2.119-2.121), ``radius`` (2.122), ``normal`` (2.119); ``"plane"``:
-        ``normal``, ``distance`` (2.77), and the circumcircle's ``center`` and
-        ``radius`` used to draw it; ``"sphere"``: ``center`` and ``radius``
-        (2.75, 2.115, 2.116, 2.73).  Each holds its conformal ``blade``.
+        Entity name -> its record (:mod:`cga_lessons.stereo.entities`):
+        ``"point"`` a :class:`ScenePoints` (up 2.62 and down 2.114),
+        ``"pair"`` a :class:`ScenePair` (2.68, 2.131), ``"line"`` a
+        :class:`SceneLine` (2.81, 2.125-2.129), ``"circle"`` a
+        :class:`SceneCircle` (2.80, 2.119-2.124), ``"plane"`` a
+        :class:`ScenePlane` (2.77; its circumcircle's centre and radius to
+        draw it) and ``"sphere"`` a :class:`SceneSphere` (2.75, 2.115, 2.116,
+        2.73).  Each holds its conformal ``blade``.
     """
     f = "reconstruct_entities"
     rig = checks.instance(rig, f, "rig", StereoRig, "a StereoRig (stereo_head, random_rig, load_rig)")
@@ -118,26 +119,22 @@ def _triangulate_view(rig, views: dict, key: str, n: int, method: str, func: str
 def _entities(tri: dict) -> dict:
     out = {}
     X = cga.up(tri["points"])  # (2.62), a batch
-    out["point"] = {"points": cga.down(X), "blade": X}  # (2.114)
+    out["point"] = ScenePoints(points=cga.down(X), blade=X)  # (2.114)
     a, b = tri["segment"]
     PP = cga.point_pair(a, b)  # (2.68)
-    out["pair"] = {"endpoints": np.array(cga.point_pair_endpoints(PP)), "blade": PP}  # (2.131)
+    out["pair"] = ScenePair(endpoints=np.array(cga.point_pair_endpoints(PP)), blade=PP)  # (2.131)
     L = cga.line_from_points(a, b)  # (2.81)
     length = float(np.sqrt((L * L).scalar()))  # (2.125)
-    out["line"] = {
-        "direction": cga.line_direction(L),
-        "closest_point": cga.line_closest_point(L),
-        "length": length,
-        "blade": L,
-    }
+    out["line"] = SceneLine(direction=cga.line_direction(L), closest_point=cga.line_closest_point(L), length=length,
+                            midpoint=0.5 * (a + b), blade=L)  # fmt: skip
     Z = cga.circle_from_points(*tri["circle_key"])  # (2.80)
     c, r, n = cga.circle_center_radius(Z)
-    out["circle"] = {"center": c, "center_via_plane": _centre_via_plane(Z), "radius": r, "normal": n, "blade": Z}
+    out["circle"] = SceneCircle(center=c, radius=r, normal=n, center_via_plane=_centre_via_plane(Z), blade=Z)
     Pl = cga.plane_from_points(*tri["plane_key"])  # (2.77)
     n, d = cga.plane_normal_distance(Pl)
     c, r, _ = cga.circle_center_radius(cga.circle_from_points(*tri["plane_key"]))
-    out["plane"] = {"normal": n, "distance": d, "center": c, "radius": r, "blade": Pl}
+    out["plane"] = ScenePlane(normal=n, distance=d, center=c, radius=r, blade=Pl)
     S = cga.sphere_from_points(*tri["sphere_key"])  # (2.75)
     c, r = cga.sphere_center_radius(S)
-    out["sphere"] = {"center": c, "radius": r, "blade": S}
+    out["sphere"] = SceneSphere(center=c, radius=r, blade=S)
     return out

@@ -154,12 +154,12 @@ class RobotExplorer:
     @property
     def camera_position(self) -> np.ndarray:
         """The left camera's centre in the world (m), from the stereo chain's motor ``M_eu`` (4.9)."""
-        return self.robot.frames()["camera_left"][:3, 3]
+        return self.robot.frames().camera_left[:3, 3]
 
     @property
     def sight_direction(self) -> np.ndarray:
         """Where the left camera looks: its +x axis in the world (a unit vector)."""
-        return self.robot.frames()["camera_left"][:3, 0]
+        return self.robot.frames().camera_left[:3, 0]
 
     @property
     def sight_end(self) -> np.ndarray:

@@ -15,6 +15,7 @@ from matplotlib.patches import Patch
 
 from cga_lessons import stereo as st
 from cga_lessons.checks import array, fail, integer, real, relabel
+from cga_lessons.conformal import ENTITY_PARAMETERS
 from cga_lessons.stereo import label_image
 
 from .future_work import metric_box
@@ -26,6 +27,13 @@ __all__ = ["PALETTE", "detections_figure", "detections_on_image", "depth_noise",
 PALETTE = plt.get_cmap("tab20")(np.arange(20))[[0, 2, 4, 6, 8, 10, 12, 16, 18, 1, 3, 5, 7, 9, 11, 13, 17, 19]]
 _KINDS = ("plane", "sphere", "circle", "line")
 CLUTTER, UNMATCHED = (0.72, 0.72, 0.72, 1.0), (0.0, 0.0, 0.0, 1.0)
+_PARAMS = tuple(ENTITY_PARAMETERS.values())
+
+
+def _typed(e) -> bool:
+    """A kind among the four, and parameters of that kind (:data:`cga_lessons.conformal.ENTITY_PARAMETERS`)."""
+    kind, params = getattr(e, "kind", None), getattr(e, "params", None)
+    return kind in _KINDS and isinstance(params, _PARAMS) and params.kind == kind
 
 
 def _entities(entities, n_points, func, points: str = "points"):
@@ -35,7 +43,7 @@ def _entities(entities, n_points, func, points: str = "points"):
     ents = list(entities)
     for k, e in enumerate(ents):
         idx = getattr(e, "inliers", None)
-        if getattr(e, "kind", None) not in _KINDS or idx is None or not isinstance(getattr(e, "params", None), dict):
+        if not _typed(e) or idx is None:
             raise fail(func, f"entities[{k}]", f"expected a DetectedEntity, got {type(e).__name__}")
         idx = np.asarray(idx)
         if idx.ndim != 1 or idx.dtype.kind not in "iu" or (len(idx) and (idx.min() < 0 or idx.max() >= n_points)):
@@ -54,11 +62,11 @@ def _shape(ax, e, color):
     """An entity from its parameters: sphere wireframe, circle, line segment (planes: only their points)."""
     p = e.params
     if e.kind == "sphere":
-        _sphere(ax, np.asarray(p["center"]), float(p["radius"]), color)
+        _sphere(ax, np.asarray(p.center), float(p.radius), color)
     elif e.kind == "circle":
-        ax.plot(*st.circle_polyline(p["center"], p["normal"], p["radius"]).T, color=color, lw=2.0)
-    elif e.kind == "line":
-        a, d = np.asarray(p["point"]), np.asarray(p["direction"]) * float(p["length"]) / 2
+        ax.plot(*st.circle_polyline(p.center, p.normal, p.radius).T, color=color, lw=2.0)
+    elif e.kind == "line" and p.length is not None:
+        a, d = np.asarray(p.point), np.asarray(p.direction) * float(p.length) / 2
         ax.plot(*np.array([a - d, a + d]).T, color=color, lw=2.5)
 
 
@@ -67,11 +75,14 @@ def _count(n: int, kind: str) -> str:
 
 
 def _matches(matches, ents: list, kinds: list, func: str) -> dict:
-    """detection index -> truth index, from ``(detection, truth, ...)`` pairs of the same kind."""
+    """detection index -> truth index, from :class:`~cga_lessons.stereo.DetectionMatch` records or ``(detection,
+    truth, ...)`` pairs, of the same kind."""
     if not isinstance(matches, (list, tuple, np.ndarray)):
         raise fail(func, "matches", f"expected (detection index, truth index, ...) pairs, got {type(matches).__name__}")
     to_truth = {}
     for m in matches:
+        if isinstance(m, st.DetectionMatch):
+            m = (m.detection, m.truth)
         if not isinstance(m, (list, tuple, np.ndarray)) or len(m) < 2:
             raise fail(func, "matches", f"expected (detection index, truth index, ...) pairs, got {m!r}")
         i, j = integer(m[0], func, "matches"), integer(m[1], func, "matches")
@@ -86,9 +97,9 @@ def detections_figure(points, labels, truth, entities, matches=(), elev=22.0, az
     """Ground truth (left) and detections (right) of a cloud (N, 3) in 3D.
 
     ``labels`` (N,) holds each point's true entity (-1: clutter); ``truth`` the true entities (with ``kind``
-    and ``params``, as :class:`~cga_lessons.stereo.detect_scenes.TruthEntity`); ``entities`` the detections;
-    ``matches`` pairs ``(detection index, truth index, ...)`` as
-    :func:`cga_lessons.stereo.detect_scenes.evaluate` returns them.  In the right panel, the i-th scatter
+    and ``params``, as :class:`~cga_lessons.stereo.TruthEntity`); ``entities`` the detections;
+    ``matches`` the :class:`~cga_lessons.stereo.DetectionMatch` records of :func:`cga_lessons.stereo.evaluate`,
+    or pairs ``(detection index, truth index, ...)``.  In the right panel, the i-th scatter
     holds the points of detection i.  Returns the figure.
     """
     func = "detections_figure"
@@ -96,8 +107,8 @@ def detections_figure(points, labels, truth, entities, matches=(), elev=22.0, az
     if not isinstance(truth, (list, tuple)):
         raise fail(func, "truth", f"expected a list of true entities (TruthEntity), got {type(truth).__name__}")
     truth = list(truth)
-    if not all(getattr(t, "kind", None) in _KINDS and isinstance(getattr(t, "params", None), dict) for t in truth):
-        raise fail(func, "truth", "expected entities with a kind and params (TruthEntity)")
+    if not all(_typed(t) for t in truth):
+        raise fail(func, "truth", "expected entities with a kind and params of that kind (TruthEntity)")
     kinds = [t.kind for t in truth]
     lab = array(labels, func, "labels", (len(X),))
     if np.any(lab != np.round(lab)) or lab.min() < -1 or lab.max() >= len(kinds):

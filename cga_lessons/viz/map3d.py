@@ -69,7 +69,7 @@ def _robot(robot, state, func: str) -> None:
 def _robot_primitives(robot: Robot, prefix: str, frames: bool) -> list:
     g = robot.geometry
     F = robot.frames()
-    Hb, Hl, Hh, Hc = F["base"], F["laser"], F["head"], F["camera_left"]
+    Hb, Hl, Hh, Hc = F.base, F.laser, F.head, F.camera_left
     L, W, Hgt = g.base_size
     z0 = g.base_clearance
     R = Hb[:3, :3]
@@ -93,7 +93,7 @@ def _robot_primitives(robot: Robot, prefix: str, frames: bool) -> list:
     for side, y in (("left", 0.0), ("right", -b)):
         out.append(Box(f"{prefix}/camera_{side}", _apply(Hc, [0.02, y, 0.0]), (0.05, 0.04, 0.04), Hc[:3, :3], _CAM))
     if frames:
-        out += [Frame(f"{prefix}/frames/{k}", F[k], 0.25) for k in ("base", "laser", "camera_left")]
+        out += [Frame(f"{prefix}/frames/{k}", H, 0.25) for k, H in (("base", Hb), ("laser", Hl), ("camera_left", Hc))]
     return out
 
 
@@ -132,23 +132,23 @@ def _map_primitives(fused: FusedMap, virtual_walls: bool, scans: bool, path: boo
             for j, s in enumerate(segs):
                 out.append(Polyline(f"{prefix}/scans/{k}_{j}", s, (0.95, 0.55, 0.5), 1.0))
     for k, gp in enumerate(fused.laser_post_groups):
-        c = gp["center"]
+        c = gp.center
         out.append(
             Cylinder(f"{prefix}/laser_posts/{k}", c - [0, 0, 0.02], c + [0, 0, 0.02], fused.post_radius * 1.6, _LINE)
         )
     for name, obj in fused.objects.items():
-        p, nm = obj["params"], f"{prefix}/objects/{name}"
-        if obj["kind"] == "sphere":
-            out.append(Sphere(nm, p["center"], p["radius"], _OBJ))
-        elif obj["kind"] == "plane":
-            out.append(Quad(nm, obj["corners"], (0.35, 0.55, 0.9), 0.9))
-        elif obj["kind"] == "circle":
-            n = p["normal"] * 0.012
-            out.append(Cylinder(nm, p["center"] - n, p["center"] + n, p["radius"], (0.95, 0.55, 0.1)))
-        elif obj["kind"] == "line":
-            out.append(Cylinder(nm, obj["ends"][0], obj["ends"][1], fused.post_radius, (0.55, 0.35, 0.2)))
+        p, nm = obj.params, f"{prefix}/objects/{name}"
+        if obj.kind == "sphere":
+            out.append(Sphere(nm, p.center, p.radius, _OBJ))
+        elif obj.kind == "plane":
+            out.append(Quad(nm, obj.corners, (0.35, 0.55, 0.9), 0.9))
+        elif obj.kind == "circle":
+            n = p.normal * 0.012
+            out.append(Cylinder(nm, p.center - n, p.center + n, p.radius, (0.95, 0.55, 0.1)))
+        elif obj.kind == "line":
+            out.append(Cylinder(nm, obj.ends[0], obj.ends[1], fused.post_radius, (0.55, 0.35, 0.2)))
         if points:
-            out.append(PointCloud(f"{prefix}/points/{name}", obj["points"], (0.1, 0.3, 0.9), 0.01))
+            out.append(PointCloud(f"{prefix}/points/{name}", obj.points, (0.1, 0.3, 0.9), 0.01))
     if path:
         poses = fused.laser.poses
         out.append(
@@ -168,20 +168,20 @@ def _truth_primitives(fused: FusedMap, prefix: str) -> list:
     for o in fused.tour.world.objects:
         t = o.truth()
         nm = f"{prefix}/{o.name}"
-        if t["kind"] == "sphere":
+        if t.kind == "sphere":
             u = np.linspace(0, 2 * np.pi, 33)
             ring = np.column_stack([np.cos(u), np.sin(u), np.zeros_like(u)])
-            out.append(Polyline(nm, t["center"] + t["radius"] * ring, (0, 0, 0), 1.0))
-        elif t["kind"] in ("plane",):
-            out.append(Polyline(nm, np.vstack([t["corners"], t["corners"][:1]]), (0, 0, 0), 1.0))
-        elif t["kind"] == "circle":
+            out.append(Polyline(nm, t.center + t.radius * ring, (0, 0, 0), 1.0))
+        elif t.kind in ("plane",):
+            out.append(Polyline(nm, np.vstack([t.corners, t.corners[:1]]), (0, 0, 0), 1.0))
+        elif t.kind == "circle":
             u = np.linspace(0, 2 * np.pi, 33)
-            out.append(Polyline(nm, t["center"] + t["radius"] * np.column_stack([np.cos(u), np.sin(u), 0 * u]),
+            out.append(Polyline(nm, t.center + t.radius * np.column_stack([np.cos(u), np.sin(u), 0 * u]),
                                 (0, 0, 0), 1.0))  # fmt: skip
-        elif t["kind"] == "line":
-            out.append(Polyline(nm, t["ends"], (0, 0, 0), 1.0))
-        elif t["kind"] == "box":
-            out.append(Box(nm, t["center"], t["size"], np.eye(3), (0.6, 0.5, 0.4), 0.35))
+        elif t.kind == "line":
+            out.append(Polyline(nm, t.ends, (0, 0, 0), 1.0))
+        elif t.kind == "box":
+            out.append(Box(nm, t.center, t.size, np.eye(3), (0.6, 0.5, 0.4), 0.35))
     return out
 
 

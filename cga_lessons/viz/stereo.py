@@ -5,6 +5,7 @@ from __future__ import annotations
 import matplotlib.pyplot as plt
 import numpy as np
 
+from cga_lessons import conformal as cga
 from cga_lessons import stereo as st
 from cga_lessons.checks import array, fail, instance, real, relabel
 
@@ -92,14 +93,13 @@ def plot_epipolar_lines(left, right, x1, x2, F, figsize=(9, 3.4)):
 def plot_triangulation_curve(curve, theory=None, figsize=(6, 3.6)):
     """RMS 3D error against pixel noise for midpoint (A.14) and DLT triangulation.
 
-    ``curve`` holds arrays of one length under ``"noise_px"``, ``"midpoint"`` and ``"dlt"`` (metres);
-    ``theory``, optional, is an array of the same length (metres) drawn as a dashed line.
+    ``curve``: a :class:`~cga_lessons.stereo.TriangulationCurve` (its ``noise_px``, ``midpoint`` and ``dlt`` are
+    drawn); ``theory``, optional, is an array of the same length (metres) drawn as a dashed line.
     """
     func = "plot_triangulation_curve"
-    if not isinstance(curve, dict) or any(k not in curve for k in ("noise_px", "midpoint", "dlt")):
-        raise fail(func, "curve", "expected a dict with 'noise_px', 'midpoint' and 'dlt' (triangulation_error_curve)")
-    s = coords(curve["noise_px"], func, "curve", (None,), at_least=1)
-    curve = {k: coords(curve[k], func, f"curve[{k!r}]", s.shape) for k in ("midpoint", "dlt")}
+    instance(curve, func, "curve", st.TriangulationCurve, "a TriangulationCurve (triangulation_error_curve)")
+    s = coords(curve.noise_px, func, "curve.noise_px", (None,), at_least=1)
+    curve = {k: coords(getattr(curve, k), func, f"curve.{k}", s.shape) for k in ("midpoint", "dlt")}
     theory = None if theory is None else coords(theory, func, "theory", s.shape)
     fig, ax = plt.subplots(figsize=fig_size(figsize, func))
     ax.plot(s, 1e3 * curve["midpoint"], "o-", label="midpoint (A.14, fig. A.4)")
@@ -127,23 +127,23 @@ def _entities(ax, ent: dict, color, style, label):
     kw = {"color": color, "ls": style, "lw": 1.6, "axlim_clip": True}
     ax.plot([], [], [], color=color, ls=style, label=label)
     if "point" in ent:
-        ax.scatter(*ent["point"]["points"].T, color=color, s=14, depthshade=False, axlim_clip=True)
+        ax.scatter(*ent["point"].points.T, color=color, s=14, depthshade=False, axlim_clip=True)
     t = np.linspace(0.0, 1.0, 40)[:, None]  # dense, so that clipping hides only the part outside
-    if "line" in ent and "blade" in ent["line"]:
-        a, b = st.line_polyline(ent["line"]["blade"], ent["pair"]["blade"])
+    if "line" in ent and "pair" in ent:
+        a, b = st.line_polyline(ent["line"].blade, ent["pair"].blade)
         ax.plot(*(a + t * (b - a)).T, **kw)
     elif "pair" in ent:
-        a, b = ent["pair"]["endpoints"]
+        a, b = ent["pair"].endpoints
         ax.plot(*(a + t * (b - a)).T, **kw)
     if "circle" in ent:
         c = ent["circle"]
-        ax.plot(*st.circle_polyline(c["center"], c["normal"], c["radius"]).T, **kw)
-    if "plane" in ent and "center" in ent["plane"]:
+        ax.plot(*st.circle_polyline(c.center, c.normal, c.radius).T, **kw)
+    if "plane" in ent:
         p = ent["plane"]
-        ax.plot(*st.square_polyline(p["center"], p["normal"], p["radius"]).T, **kw)
+        ax.plot(*st.square_polyline(p.center, p.normal, p.radius).T, **kw)
     if "sphere" in ent:
         s = ent["sphere"]
-        _sphere_wire(ax, s["center"], s["radius"], color=color, lw=0.6, alpha=0.8)
+        _sphere_wire(ax, s.center, s.radius, color=color, lw=0.6, alpha=0.8)
 
 
 def plot_entities_3d(scene, estimates: dict, rig=None, ax=None, title=None, elev=18, azim=-150, figsize=(7, 5.5)):
@@ -157,8 +157,8 @@ def plot_entities_3d(scene, estimates: dict, rig=None, ax=None, title=None, elev
     ----------
     scene : StereoScene
     estimates : dict
-        ``label -> entity dict`` in the format of :func:`~cga_lessons.stereo.reconstruct_entities`
-        (fit dicts may stand for single entities).
+        ``label -> entities``, each a dict ``entity name -> record`` as :func:`~cga_lessons.stereo.reconstruct_entities`
+        returns (the fits of :mod:`cga_lessons.conformal` may stand for its circle, plane and sphere).
     rig : StereoRig, optional
         Camera centres are drawn when given.
     ax : Axes3D, optional
@@ -166,7 +166,7 @@ def plot_entities_3d(scene, estimates: dict, rig=None, ax=None, title=None, elev
     func = "plot_entities_3d"
     sc = instance(scene, func, "scene", st.StereoScene, "a StereoScene")
     if not isinstance(estimates, dict) or not all(isinstance(e, dict) for e in estimates.values()):
-        raise fail(func, "estimates", "expected a dict label -> entity dict (reconstruct_entities)")
+        raise fail(func, "estimates", "expected a dict label -> dict of entities (reconstruct_entities)")
     if rig is not None:
         instance(rig, func, "rig", st.StereoRig, "a StereoRig or None")
     ax, title = axes(ax, func, three_d=True), optional_text(title, func, "title")
@@ -196,7 +196,7 @@ def plot_entities_3d(scene, estimates: dict, rig=None, ax=None, title=None, elev
         try:
             _entities(ax, ent, _COLORS[(2 * i + 1) % 10], "-" if i == 0 else "--", str(label))
         except (KeyError, TypeError, IndexError, ValueError, AttributeError) as exc:
-            raise fail(func, f"estimates[{label!r}]", f"not an entity dict of reconstruct_entities ({exc})") from None
+            raise fail(func, f"estimates[{label!r}]", f"not the entities of reconstruct_entities ({exc})") from None
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
     ax.set_zlabel("z (m)")
@@ -213,7 +213,8 @@ def plot_entities_3d(scene, estimates: dict, rig=None, ax=None, title=None, elev
 def plot_plane_segmentation(image, labels, fits, names=None, figsize=(5.4, 3.9)):
     """Planes found in a real scene, painted over the (greyed) left image, with a legend (name, points, RMS).
 
-    ``labels`` (H, W): the plane of each pixel (-1: none); ``fits``: one dict with ``inliers`` and ``rms`` per plane.
+    ``labels`` (H, W): the plane of each pixel (-1: none); ``fits``: one :class:`~cga_lessons.conformal.PlaneFit` per
+    plane (:func:`~cga_lessons.conformal.segment_planes`; its ``inliers`` and ``rms`` are shown).
     """
     from matplotlib.patches import Patch
 
@@ -223,11 +224,10 @@ def plot_plane_segmentation(image, labels, fits, names=None, figsize=(5.4, 3.9))
         raise fail(func, "image", f"expected an RGB image (H, W, 3) of values 0..255, got {image.shape}")
     labels = array(labels, func, "labels", image.shape[:2])
     if not isinstance(fits, (list, tuple)):
-        raise fail(func, "fits", f"expected a list of plane fits (dicts: inliers, rms), got {type(fits).__name__}")
+        raise fail(func, "fits", f"expected a list of plane fits (PlaneFit), got {type(fits).__name__}")
     for i, f in enumerate(fits):
-        if not isinstance(f, dict) or "inliers" not in f or "rms" not in f:
-            raise fail(func, f"fits[{i}]", "expected a dict with 'inliers' and 'rms'")
-        real(f["inliers"], func, f"fits[{i}]", low=0), real(f["rms"], func, f"fits[{i}]", low=0)
+        instance(f, func, f"fits[{i}]", cga.PlaneFit, "a PlaneFit (segment_planes)")
+        real(f.inliers, func, f"fits[{i}]", low=0), real(f.rms, func, f"fits[{i}]", low=0)
     names = None if names is None else texts(names, func, "names", len(fits))
     fig, ax = plt.subplots(figsize=fig_size(figsize, func))
     grey = image.astype(float).mean(axis=2, keepdims=True) / 255.0  # grey photo: colours read as planes
@@ -238,7 +238,7 @@ def plot_plane_segmentation(image, labels, fits, names=None, figsize=(5.4, 3.9))
         col = _COLORS[i % 10][:3]
         over[m] = 0.45 * over[m] + 0.55 * col
         name = names[i] if names else f"plane {i}"
-        handles.append(Patch(color=col, label=f"{name}: {f['inliers']} pts, rms {1e3 * f['rms']:.1f} mm"))
+        handles.append(Patch(color=col, label=f"{name}: {f.inliers} pts, rms {1e3 * f.rms:.1f} mm"))
     ax.imshow(over)
     ax.set_axis_off()
     ax.set_title("RANSAC + conformal least-squares planes")

@@ -34,10 +34,15 @@ SCENE_RIG = st.load_rig()
 SAMPLES = st.sample_scene(SCENE, SCENE_RIG, np.random.default_rng(1), n_circle=6, n_board=6, n_sphere=6)
 KEYS = ("points", "segment", "circle_key", "plane_key", "sphere_key")
 VIEWS = {k: SCENE_RIG.project(SAMPLES[k]) for k in KEYS}
-TRUTH = SCENE.truth()
 _S, _R = SCENE.sphere_center, np.eye(3)
 AROUND_BALL = st.StereoRig(SCENE_RIG.K, _R, _S - [0.0, 0.0, 1.0], _R, _S + [0.0, 0.0, 1.0], (64, 48))  # ball between
-ESTIMATE = st.reconstruct_entities(SCENE_RIG, VIEWS)
+
+
+
+def _fields(record) -> dict:
+    """A typed result as keyword arguments of its class."""
+    return {k: getattr(record, k) for k in type(record).__dataclass_fields__}
+
 
 A3, B3, C3 = [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]
 CIRCLE = cga.circle_from_points(A3, B3, C3)
@@ -253,7 +258,11 @@ CASES = [
         },
     ),
     Case(st.circle_center_via_plane, lambda: {"Z": CIRCLE}, kinds={"Z": [LINE, PAIR, SPHERE, PLANE]}),
-    Case(st.entity_errors, {"truth": TRUTH, "est": ESTIMATE}, extra={"est": [{"line": {"direction": 1.0}}]}),
+    Case(
+        st.entity_errors,
+        lambda: {"truth": SCENE.truth(), "est": st.reconstruct_entities(SCENE_RIG, VIEWS)},
+        extra={"est": [{"line": {"direction": 1.0}}, {"plane": cga.fit_sphere(SAMPLES["sphere"])}]},
+    ),
     Case(st.line_polyline, lambda: {"L": LINE, "PP": PAIR}, kinds={"L": [CIRCLE, PAIR, PLANE], "PP": [LINE, CIRCLE]}),
     Case(
         st.circle_polyline,
@@ -368,6 +377,70 @@ CASES = [
         kinds={"scene": [SCENE, RIG]},
         extra={"position_tol": [-1.0], "detections": [[1.0], [SCENE]]},
     ),
+    # the typed results, as the package builds them
+    *[
+        Case(type(record), (lambda name=name: _fields(st.reconstruct_entities(SCENE_RIG, VIEWS)[name])), strict=True)
+        for name, record in st.reconstruct_entities(SCENE_RIG, VIEWS).items()
+    ],
+    *[
+        Case(type(error), _fields(error), strict=True)
+        for error in st.entity_errors(SCENE.truth(), st.reconstruct_entities(SCENE_RIG, VIEWS)).values()
+    ],
+    # the detector's typed results
+    Case(
+        st.PatchParameters,
+        {"normal": [0.0, 0.0, 1.0], "distance": 1.0, "center": [0.1, 0.2, 1.0], "sides": (0.3, 0.4)},
+        strict=True,
+        extra={"sides": [(0.3, -0.4)]},
+    ),
+    Case(
+        st.DetectedEntity,
+        lambda: _fields(DETECTIONS[0]),
+        strict=True,
+        allow={"blade": ["None"]},
+        extra={"params": [{"normal": [0.0, 0.0, 1.0], "distance": 0.0}], "covariance": [np.eye(2)]},
+        kinds={"params": [cga.SphereParameters(center=[0.0, 0.0, 0.0], radius=1.0)]},
+    ),
+    Case(
+        st.SelectionEvidence,
+        {"support": {"plane": 40, "sphere": 38}, "lr": 1.5},
+        strict=True,
+        allow={"lr": ["None"]},
+        extra={"support": [{"cube": 3}, {"plane": -1}]},
+    ),
+    Case(
+        st.TruthEntity,
+        lambda: _fields(DETECT_SCENE.truth[0]),
+        strict=True,
+        extra={"indices": [[-1, 2]]},
+        kinds={"params": [cga.LineParameters(direction=[1.0, 0.0, 0.0], point=[0.0, 0.0, 0.0])]},
+    ),
+    Case(
+        st.DetectionError,
+        {"center": 0.01, "angle": 1.0, "offset": 0.002, "radius": None},
+        strict=True,
+        allow={"angle": ["None"], "offset": ["None"], "radius": ["None"]},
+    ),
+    Case(st.DetectionMatch, lambda: _fields(_score().matches[0]), strict=True),
+    Case(st.KindScore, lambda: _fields(_score().all), strict=True, extra={"precision": [1.5]}),
+    Case(st.DetectionScore, lambda: _fields(_score()), strict=True, extra={"kinds": [{"cube": None}]}),
+    Case(
+        st.TriangulationCurve,
+        lambda: _fields(st.triangulation_error_curve(RIG, np.random.default_rng(0), [0.0, 1.0], n_points=4)),
+        strict=True,
+        extra={"dlt": [[1.0]]},
+    ),
 ]
+
+
+
+def _score():
+    """The score of the scene's own truth, detected perfectly: one match per true entity."""
+    found = [
+        st.DetectedEntity(t.kind, t.params, None, t.indices, np.zeros((0, 0)), (), 0.001, 1.0)
+        for t in DETECT_SCENE.truth
+    ]
+    return st.evaluate(DETECT_SCENE, found)
+
 
 EXEMPT: dict = {}

@@ -696,6 +696,19 @@ def _state():
 
 
 @functools.cache
+def _curve():
+    from cga_lessons import stereo as st
+
+    a = np.array([1e-3, 2e-3])
+    return st.TriangulationCurve(noise_px=np.array([0.5, 1.0]), midpoint=a, dlt=a, difference=np.zeros(2), predicted=a)
+
+
+def _plane_fit():
+    from cga_lessons import conformal as cga
+
+    return cga.fit_plane([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]])
+
+
 def _stereo():
     from cga_lessons import stereo as st
 
@@ -732,10 +745,8 @@ _MAP3D_CASES = [
                                                       "F": [[0.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]],
                                                       "figsize": (3.0, 2.0)}, strict=True,
          extra={"F": [np.zeros((3, 3))], "x2": [[[1.0, 1.0]]]}),
-    Case(_viz("stereo").plot_triangulation_curve, lambda: {"curve": {"noise_px": np.array([0.5, 1.0]),
-                                                                     "midpoint": np.array([1e-3, 2e-3]),
-                                                                     "dlt": np.array([1e-3, 2e-3])},
-                                                           "theory": [1e-3, 2e-3], "figsize": (3.0, 2.0)},
+    Case(_viz("stereo").plot_triangulation_curve, lambda: {"curve": _curve(), "theory": [1e-3, 2e-3],
+                                                           "figsize": (3.0, 2.0)},
          strict=True, allow={"theory": ["None"]},
          extra={"curve": [{}, {"noise_px": [1.0], "midpoint": [1.0, 2.0], "dlt": [1.0]}], "theory": [[1.0]]}),
     Case(_viz("stereo").plot_entities_3d, lambda: {"scene": _stereo()[0], "estimates": {"4.1": _stereo()[2]},
@@ -745,7 +756,7 @@ _MAP3D_CASES = [
          kinds={"scene": [_room(), _WALLS], "rig": [_room()]},
          extra={"estimates": [{"a": {"sphere": {"center": 1.0}}}, {"a": 3}]}),
     Case(_viz("stereo").plot_plane_segmentation, lambda: {"image": _IMG, "labels": np.zeros((4, 5), int),
-                                                          "fits": [{"inliers": 20, "rms": 0.001}], "names": ["floor"],
+                                                          "fits": [_plane_fit()], "names": ["floor"],
                                                           "figsize": (3.0, 2.0)}, strict=True,
          allow={"names": ["None"]}, extra={"fits": [[{"rms": 1.0}], [3]], "names": [["a", "b"]],
                                            "labels": [np.zeros((4, 4))]}),
