@@ -18,7 +18,7 @@ import pytest  # noqa: E402
 from cga_lessons import conformal as cga  # noqa: E402
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError  # noqa: E402
 from cga_lessons.map3d import build_fused_map, entity_parameters, stereo_depth_limit  # noqa: E402
-from cga_lessons.map3d.eval import COLUMNS, match_board_segment, residual_table, view_errors  # noqa: E402
+from cga_lessons.map3d.eval import COLUMNS, ResidualRow, match_board_segment, residual_table, view_errors  # noqa: E402
 from cga_lessons.map3d.laser import fit_post_center, laser_posts, virtual_wall  # noqa: E402
 from cga_lessons.map3d.robot import Robot  # noqa: E402
 from cga_lessons.map3d.state import RobotGeometry, RobotState  # noqa: E402
@@ -59,39 +59,38 @@ def test_noise_free_tour_recovers_the_truth(exact):
             assert np.allclose(p.point[:2], t.point[:2], atol=1e-6)
     # the laser: posts to the polygon's approximation of the circle (0.1 mm); the walls come from chapter 3's
     # map, whose corrections move even exact poses by up to 2 cm in this scene but keep its lines within mm
-    rows = {r["object"]: r for r in residual_table(exact)}
+    rows = {r.object: r for r in residual_table(exact)}
     for post in ("post_west", "post_east"):
-        assert rows[post]["laser_pos_cm"] < 0.05 and rows[post]["laser_stereo_cm"] < 0.05
-    assert rows["board"]["laser_pos_cm"] < 0.3 and rows["walls"]["laser_pos_cm"] < 0.5
+        assert rows[post].laser_pos_cm < 0.05 and rows[post].laser_stereo_cm < 0.05
+    assert rows["board"].laser_pos_cm < 0.3 and rows["walls"].laser_pos_cm < 0.5
 
 
 def test_default_tour_meets_the_targets(fused):
-    rows = {r["object"]: r for r in residual_table(fused)}
-    both = [k for k, r in rows.items() if r["seen_by"] == "stereo + laser"]
+    rows = {r.object: r for r in residual_table(fused)}
+    both = [k for k, r in rows.items() if r.seen_by == "stereo + laser"]
     assert set(both) == {"board", "post_west", "post_east"}
     for k in both:
-        assert rows[k]["laser_stereo_cm"] < 3.0, (k, rows[k]["laser_stereo_cm"])  # the 3 cm target
-    assert rows["board"]["laser_stereo_deg"] < 2.0
-    assert rows["ball"]["seen_by"] == "stereo" and rows["pedestal"]["seen_by"] == "laser"
+        assert rows[k].laser_stereo_cm < 3.0, (k, rows[k].laser_stereo_cm)  # the 3 cm target
+    assert rows["board"].laser_stereo_deg < 2.0
+    assert rows["ball"].seen_by == "stereo" and rows["pedestal"].seen_by == "laser"
     for k in ("ball", "board", "plate", "post_west", "post_east"):
-        assert rows[k]["views"] >= 2 and rows[k]["stereo_pos_cm"] < 6.0, k
-    assert rows["walls"]["laser_pos_cm"] < 6.0
-    assert list(rows["ball"]) == COLUMNS
+        assert rows[k].views >= 2 and rows[k].stereo_pos_cm < 6.0, k
+    assert rows["walls"].laser_pos_cm < 6.0
+    assert isinstance(rows["ball"], ResidualRow) and np.isnan(rows["pedestal"].stereo_pos_cm)
+    assert COLUMNS == [f.name for f in dataclasses.fields(ResidualRow)]
 
 
 def test_laser_and_stereo_agree_on_another_seed():
-    rows = {r["object"]: r for r in residual_table(build_fused_map(simulate_tour(np.random.default_rng(5))))}
+    rows = {r.object: r for r in residual_table(build_fused_map(simulate_tour(np.random.default_rng(5))))}
     for k in ("board", "post_west", "post_east"):
-        assert rows[k]["laser_stereo_cm"] < 3.0, (k, rows[k]["laser_stereo_cm"])
+        assert rows[k].laser_stereo_cm < 3.0, (k, rows[k].laser_stereo_cm)
 
 
 def test_odometry_alone_misplaces_the_objects(fused):
-    raw = {
-        r["object"]: r for r in residual_table(build_fused_map(fused.tour, poses_from="odometry", laser=fused.laser))
-    }
-    good = {r["object"]: r for r in residual_table(fused)}
-    assert np.nanmean([raw[k]["stereo_pos_cm"] for k in raw if k != "walls"]) > 2 * np.nanmean(
-        [good[k]["stereo_pos_cm"] for k in good if k != "walls"]
+    raw = {r.object: r for r in residual_table(build_fused_map(fused.tour, poses_from="odometry", laser=fused.laser))}
+    good = {r.object: r for r in residual_table(fused)}
+    assert np.nanmean([raw[k].stereo_pos_cm for k in raw if k != "walls"]) > 2 * np.nanmean(
+        [good[k].stereo_pos_cm for k in good if k != "walls"]
     )
 
 
@@ -130,9 +129,10 @@ def test_scan_segments_land_at_laser_height_on_the_walls(fused):
 
 def test_every_view_is_reported(fused):
     rows = view_errors(fused)
-    assert len(rows) == len(fused.views) and all(r["distance_m"] > 0.3 for r in rows)
-    near = [r for r in rows if r["entity"] == "plane"]
-    assert all(r["stereo_pos_cm"] < 5 for r in near)
+    assert len(rows) == len(fused.views) and all(r.distance_m > 0.3 for r in rows)
+    near = [r for r in rows if r.entity == "plane"]
+    assert all(r.stereo_pos_cm < 5 for r in near)
+    assert all(np.isnan(r.stereo_radius_cm) for r in near) and not any(np.isnan(r.stereo_angle_deg) for r in near)
 
 
 # ---------------------------------------------------------------- building blocks

@@ -295,17 +295,17 @@ def test_fits_reject_degenerate_points():
 def test_least_squares_beats_minimal_sets_at_half_a_pixel():
     rig, scene, _ = bundled()
     rows = ex.entity_error_table(rig, scene, np.random.default_rng(3), noise_px=0.5, trials=15)
-    err = {(r["entity"], r["estimator"].split(",")[0].split(":")[0]): r for r in rows}
+    err = {(r.entity, r.estimator.split(",")[0].split(":")[0]): r for r in rows}
     for entity in ("circle", "plane", "sphere"):
         ls, minimal = err[(entity, "conformal LS")], err[(entity, "4.1")]
-        assert ls["position_mm"] < minimal["position_mm"]
+        assert ls.position_mm < minimal.position_mm
         if entity != "sphere":
-            assert ls["angle_deg"] < minimal["angle_deg"]
-    assert err[("plane", "conformal LS")]["angle_deg"] == pytest.approx(
-        err[("plane", "Euclidean LS (SVD)")]["angle_deg"]
-    )
+            assert ls.angle_deg < minimal.angle_deg
+    assert err[("plane", "conformal LS")].angle_deg == pytest.approx(err[("plane", "Euclidean LS (SVD)")].angle_deg)
     clean = ex.entity_error_table(rig, scene, np.random.default_rng(3), noise_px=0.0, trials=1)
-    assert max(v for r in clean for k, v in r.items() if k.endswith(("mm", "deg")) and v == v) < 1e-6
+    assert all(isinstance(r, st.EntityErrorRow) for r in clean)
+    assert max(v for r in clean for v in (r.position_mm, r.radius_mm, r.angle_deg) if v == v) < 1e-6
+    assert clean[0].entity == "point" and np.isnan(clean[0].radius_mm) and np.isnan(clean[0].angle_deg)
 
 
 def test_ransac_planes_in_a_synthetic_cloud():
@@ -324,17 +324,25 @@ def test_ransac_planes_in_a_synthetic_cloud():
 # ------------------------------------------------------------ experiments
 def test_fundamental_comparison_and_triangulation_curve():
     rig = st.load_rig()
-    rows = {
-        (r["normalize"], r["rank2"]): r for r in ex.fundamental_comparison(rig, np.random.default_rng(1), trials=10)
-    }
-    assert rows[(True, True)]["epipolar_px"] < 0.5 * rows[(False, True)]["epipolar_px"]
-    assert rows[(True, True)]["cond_Z"] < 1e-3 * rows[(False, True)]["cond_Z"]
-    assert rows[(True, True)]["s3_over_s2"] < 1e-14 < rows[(True, False)]["s3_over_s2"]
+    rows = {(r.normalize, r.rank2): r for r in ex.fundamental_comparison(rig, np.random.default_rng(1), trials=10)}
+    assert rows[(True, True)].epipolar_px < 0.5 * rows[(False, True)].epipolar_px
+    assert rows[(True, True)].cond_Z < 1e-3 * rows[(False, True)].cond_Z
+    assert rows[(True, True)].s3_over_s2 < 1e-14 < rows[(True, False)].s3_over_s2
     c = ex.triangulation_error_curve(rig, np.random.default_rng(2), [0.0, 0.5, 1.0], n_points=100)
     assert c.midpoint[0] < 1e-9 and c.dlt[0] < 1e-9
     np.testing.assert_allclose(c.midpoint[1:], c.predicted[1:], rtol=0.3)  # first-order theory
     text = ex.format_table([{"a": "x", "b": 1.23456, "c": float("nan")}], ["a", "b", "c"], {"b": ".2f"})
     assert text.splitlines()[2].split() == ["x", "1.23", "-"]
+    # typed rows print by field name, exactly as the dicts of their fields
+    row = st.EntityErrorRow("plane", "fit", position_mm=1.23456, angle_deg=0.5)
+    cols = ["entity", "estimator", "position_mm", "radius_mm", "angle_deg"]
+    as_dict = dict(zip(cols, ["plane", "fit", 1.23456, float("nan"), 0.5]))
+    fmt = {"position_mm": ".2f"}
+    assert ex.format_table([row], cols, fmt) == ex.format_table([as_dict], cols, fmt)
+    assert ex.format_table([row], cols, fmt).splitlines()[2].split() == ["plane", "fit", "1.23", "-", "0.5"]
+    assert all(isinstance(r, st.FundamentalRow) for r in rows.values()) and len(rows) == 4
+    with pytest.raises(InvalidInputError, match="format_table: rows, columns: row 0 has no 'zzz'"):
+        ex.format_table([row], ["entity", "zzz"])
 
 
 def test_render_views_paints_the_objects_where_they_project():

@@ -32,7 +32,7 @@ and widgets are in :mod:`cga_lessons.viz`).  This facade exports the names in ``
 """
 
 from .chains import base_motor_as_printed, base_rotor, base_translator, laser_chain_as_printed, stereo_chain_as_printed
-from .eval import COLUMNS, residual_table, view_errors
+from .eval import COLUMNS, ResidualRow, ViewErrorRow, residual_table, view_errors
 from .fits import entity_parameters
 from .fuse import build_fused_map, stereo_depth_limit
 from .fused_map import FusedMap, FusedObject, PostGroup, StereoEntity
@@ -75,6 +75,8 @@ __all__ = [
     "homogeneous_chains",
     "laser_chain_as_printed",
     "residual_table",
+    "ResidualRow",
+    "ViewErrorRow",
     "simulate_tour",
     "stereo_chain_as_printed",
     "view_errors",

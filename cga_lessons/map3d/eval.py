@@ -6,10 +6,14 @@ against the ground truth, and the *residual between the two sensors* where
 both saw the object: a board (the laser's line of its face against the
 stereo plane) and the posts (the laser's circle centre at its height against
 the stereo axis at that height).  Distances in centimetres, angles in
-degrees, so the table reads at a glance.
+degrees, so the table reads at a glance.  Rows are frozen records (:class:`ResidualRow`, and
+:class:`ViewErrorRow` of :func:`view_errors`); NaN marks an entry that does not apply or was not measured.
 """
 
 from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -18,22 +22,89 @@ from cga_lessons.conformal import LineParameters
 
 from .fused_map import FusedMap
 
-__all__ = ["residual_table", "match_board_segment", "line_at_height", "wall_errors", "view_errors", "COLUMNS"]
-
-#: Column order of :func:`residual_table` (for :func:`cga_lessons.stereo.experiments.format_table`).
-COLUMNS = [
-    "object",
-    "entity",
-    "seen_by",
-    "views",
-    "laser_n",
-    "stereo_pos_cm",
-    "stereo_angle_deg",
-    "stereo_radius_cm",
-    "laser_pos_cm",
-    "laser_stereo_cm",
-    "laser_stereo_deg",
+__all__ = [
+    "residual_table",
+    "match_board_segment",
+    "line_at_height",
+    "wall_errors",
+    "view_errors",
+    "COLUMNS",
+    "ResidualRow",
+    "ViewErrorRow",
 ]
+
+_NAN = float("nan")
+
+
+def _measure(value, func: str, name: str) -> float:
+    """A finite real, or NaN (the marker of an entry that does not apply)."""
+    if isinstance(value, float | np.floating) and np.isnan(value):
+        return _NAN
+    return checks.real(value, func, name)
+
+
+@dataclass(frozen=True)
+class ViewErrorRow:
+    """One object in one stereo view (:func:`view_errors`): ``view`` (its index), ``object`` (the world object's
+    name), ``entity`` (the kind fitted), ``distance_m`` (robot to the object's points, metres), ``points`` (how many
+    the view fitted), and the stereo entity against the truth as in :class:`ResidualRow`: ``stereo_pos_cm``,
+    ``stereo_angle_deg`` and ``stereo_radius_cm`` (NaN where the entity has no such quantity)."""
+
+    view: int
+    object: str
+    entity: str
+    distance_m: float
+    points: int
+    stereo_pos_cm: float
+    stereo_angle_deg: float = _NAN
+    stereo_radius_cm: float = _NAN
+
+    def __post_init__(self):
+        f = "ViewErrorRow"
+        for name in ("view", "points"):
+            object.__setattr__(self, name, checks.integer(getattr(self, name), f, name, low=0))
+        for name in ("object", "entity"):
+            checks.text(getattr(self, name), f, name)
+        object.__setattr__(self, "distance_m", checks.real(self.distance_m, f, "distance_m", low=0.0))
+        for name in ("stereo_pos_cm", "stereo_angle_deg", "stereo_radius_cm"):
+            object.__setattr__(self, name, _measure(getattr(self, name), f, name))
+
+
+@dataclass(frozen=True)
+class ResidualRow:
+    """One object of the world (or the room's walls) in :func:`residual_table`: ``object`` (its name), ``entity``
+    (its true kind), ``seen_by`` (``"stereo"``, ``"laser"``, ``"stereo + laser"`` or ``"-"``), ``views`` (stereo
+    views fused), ``laser_n`` (the laser's support), and in centimetres and degrees ``stereo_pos_cm``,
+    ``stereo_angle_deg``, ``stereo_radius_cm`` (stereo vs truth), ``laser_pos_cm`` (laser vs truth),
+    ``laser_stereo_cm`` and ``laser_stereo_deg`` (laser vs stereo); NaN where an entry does not apply.  Each
+    quantity is defined in :func:`residual_table`."""
+
+    object: str
+    entity: str
+    seen_by: str
+    views: int
+    laser_n: int
+    stereo_pos_cm: float = _NAN
+    stereo_angle_deg: float = _NAN
+    stereo_radius_cm: float = _NAN
+    laser_pos_cm: float = _NAN
+    laser_stereo_cm: float = _NAN
+    laser_stereo_deg: float = _NAN
+
+    def __post_init__(self):
+        f = "ResidualRow"
+        for name in ("object", "entity", "seen_by"):
+            checks.text(getattr(self, name), f, name)
+        for name in ("views", "laser_n"):
+            object.__setattr__(self, name, checks.integer(getattr(self, name), f, name, low=0))
+        for name in ("stereo_pos_cm", "stereo_angle_deg", "stereo_radius_cm", "laser_pos_cm", "laser_stereo_cm",
+                     "laser_stereo_deg"):  # fmt: skip
+            object.__setattr__(self, name, _measure(getattr(self, name), f, name))
+
+
+#: Column order of :func:`residual_table`: the fields of :class:`ResidualRow` (for
+#: :func:`cga_lessons.stereo.format_table`).
+COLUMNS = [fld.name for fld in dataclasses.fields(ResidualRow)]
 
 
 def _angle(u, v) -> float:
@@ -127,9 +198,9 @@ def view_errors(fused: FusedMap) -> list:
 
     Returns
     -------
-    list of dict
-        ``view``, ``object``, ``entity``, ``distance_m`` (robot to object), ``points``,
-        ``pos_cm`` and ``angle_deg`` or ``radius_cm`` as in :func:`residual_table`.
+    list of ViewErrorRow
+        One row per object seen in a view; ``stereo_angle_deg`` or ``stereo_radius_cm`` NaN where the entity has
+        no direction or no radius.
     """
     checks.instance(fused, "view_errors", "fused", FusedMap, "a FusedMap (build_fused_map)")
     rows = []
@@ -138,7 +209,7 @@ def view_errors(fused: FusedMap) -> list:
         row = {"view": e.view, "object": e.name, "entity": e.kind, "points": len(e.points_world),
                "distance_m": float(np.linalg.norm(e.points_world.mean(axis=0)[:2] - e.state.pose[:2]))}  # fmt: skip
         row.update(_stereo_vs_truth(e.kind, e.params, t, fused.laser_height))
-        rows.append(row)
+        rows.append(ViewErrorRow(**row))
     return rows
 
 
@@ -175,6 +246,11 @@ def residual_table(fused: FusedMap) -> list:
     stereo plane.  ``laser_n``: the laser's support: points on the board's
     segment, scans that found the post, map segments on the pedestal or the
     walls.  Missing entries are NaN (``format_table`` prints '-').
+
+    Returns
+    -------
+    list of ResidualRow
+        One row per object of the world, then one for the walls.
     """
     checks.instance(fused, "residual_table", "fused", FusedMap, "a FusedMap (build_fused_map)")
     h = fused.laser_height
@@ -220,10 +296,10 @@ def residual_table(fused: FusedMap) -> list:
             row["laser_n"] = len(werr[o.name])
             laser_seen = True
         row["seen_by"] = " + ".join(s for s, ok in (("stereo", obj is not None), ("laser", laser_seen)) if ok) or "-"
-        rows.append(row)
+        rows.append(ResidualRow(**row))
     walls = dict.fromkeys(COLUMNS, np.nan)
     w = werr.get("walls", np.zeros(0))
     walls.update(object="walls", entity="virtual walls", seen_by="laser", views=0, laser_n=len(w),
                  laser_pos_cm=100 * float(np.sqrt(np.mean(w**2))) if len(w) else np.nan)  # fmt: skip
-    rows.append(walls)
+    rows.append(ResidualRow(**walls))
     return rows

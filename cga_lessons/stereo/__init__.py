@@ -67,6 +67,8 @@ from .epipolar import (
     fundamental_8point,
 )
 from .experiments import (
+    EntityErrorRow,
+    FundamentalRow,
     TriangulationCurve,
     entity_error_table,
     format_table,
@@ -132,6 +134,8 @@ __all__ = [
     "triangulation_covariance",
     "triangulation_error_curve",
     "TriangulationCurve",
+    "FundamentalRow",
+    "EntityErrorRow",
     "ScenePoints",
     "ScenePair",
     "SceneLine",

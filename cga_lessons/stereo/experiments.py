@@ -7,10 +7,14 @@
 * :func:`entity_error_table`: the entities of 4.1 from their minimal point
   sets and from least-squares fits, against the truth.
 * :func:`format_table`: fixed-width text for the notebook (stable for nbval).
+
+Each table is a list of frozen records (:class:`FundamentalRow`, :class:`EntityErrorRow`); NaN marks a quantity
+that does not apply to a row.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -30,11 +34,65 @@ from .triangulation import triangulate
 __all__ = [
     "random_points_in_view",
     "fundamental_comparison",
+    "FundamentalRow",
     "TriangulationCurve",
     "triangulation_error_curve",
     "entity_error_table",
+    "EntityErrorRow",
     "format_table",
 ]
+
+
+def _measure(value, func: str, name: str) -> float:
+    """A finite real, or NaN (the marker of a quantity that does not apply)."""
+    if isinstance(value, float | np.floating) and np.isnan(value):
+        return float("nan")
+    return checks.real(value, func, name)
+
+
+@dataclass(frozen=True)
+class FundamentalRow:
+    """One variant of the 8-point algorithm in :func:`fundamental_comparison`: ``normalize`` (Hartley's
+    normalisation used), ``rank2`` (rank 2 enforced), and the medians over the trials of ``epipolar_px`` (mean
+    symmetric epipolar distance of the held-out points, pixels), ``F_error`` (Frobenius distance to the true F, both
+    of unit norm), ``s3_over_s2`` (the smallest singular value of F relative to the middle one) and ``cond_Z``
+    (condition number sigma_1/sigma_8 of the system (A.9) that was solved)."""
+
+    normalize: bool
+    rank2: bool
+    epipolar_px: float
+    F_error: float
+    s3_over_s2: float
+    cond_Z: float
+
+    def __post_init__(self):
+        f = "FundamentalRow"
+        for name in ("normalize", "rank2"):
+            object.__setattr__(self, name, checks.flag(getattr(self, name), f, name))
+        for name in ("epipolar_px", "F_error", "s3_over_s2", "cond_Z"):
+            object.__setattr__(self, name, checks.real(getattr(self, name), f, name, low=0.0))
+
+
+@dataclass(frozen=True)
+class EntityErrorRow:
+    """One estimator of one entity in :func:`entity_error_table`: ``entity`` (``"point"``, ``"pair"``, ``"line"``,
+    ``"circle"``, ``"plane"``, ``"sphere"``), ``estimator`` (its description), and median errors over the trials:
+    ``position_mm`` (centre or endpoint error; for lines and planes the distance of the true object's centre from
+    the estimated line or plane), ``radius_mm`` and ``angle_deg`` (normal or direction); NaN where a quantity does
+    not apply."""
+
+    entity: str
+    estimator: str
+    position_mm: float
+    radius_mm: float = float("nan")
+    angle_deg: float = float("nan")
+
+    def __post_init__(self):
+        f = "EntityErrorRow"
+        for name in ("entity", "estimator"):
+            checks.text(getattr(self, name), f, name)
+        for name in ("position_mm", "radius_mm", "angle_deg"):
+            object.__setattr__(self, name, _measure(getattr(self, name), f, name))
 
 
 def random_points_in_view(rig: StereoRig, n: int, rng: np.random.Generator, depth=(1.0, 6.0)) -> np.ndarray:
@@ -84,13 +142,8 @@ def fundamental_comparison(rig: StereoRig, rng: np.random.Generator, n_points=20
 
     Returns
     -------
-    list of dict
-        One row per variant: ``normalize``, ``rank2``, ``epipolar_px`` (mean
-        symmetric epipolar distance of the held-out points, median over
-        trials), ``F_error`` (Frobenius distance to the true F, both of unit
-        norm; median), ``s3_over_s2`` (the smallest singular value of F
-        relative to the middle one; median), ``cond_Z`` (condition number
-        sigma_1/sigma_8 of the system (A.9) that was solved; median).
+    list of FundamentalRow
+        One row per variant (normalised or not, rank 2 or not), medians over the trials.
     """
     f = "fundamental_comparison"
     rig, rng, trials = _rig(rig, f), checks.generator(rng, f), _count(trials, f, "trials")
@@ -123,7 +176,7 @@ def _comparison(rig, rng, n_points, noise_px, trials, n_test, func):
                 row["s3_over_s2"].append(float(sv[2] / sv[1]))
                 row["cond_Z"].append(float(s[0] / s[7]))
     return [
-        {"normalize": k[0], "rank2": k[1], **{q: float(np.median(v)) for q, v in vals.items()}}
+        FundamentalRow(normalize=k[0], rank2=k[1], **{q: float(np.median(v)) for q, v in vals.items()})
         for k, vals in res.items()
     ]
 
@@ -206,11 +259,8 @@ def entity_error_table(rig: StereoRig, scene: st.StereoScene, rng: np.random.Gen
 
     Returns
     -------
-    list of dict
-        ``entity``, ``estimator``, ``position_mm`` (centre or endpoint error;
-        for lines and planes the distance of the true object's centre from the
-        estimated line or plane), ``radius_mm``, ``angle_deg`` (normal or direction); NaN where
-        a quantity does not apply.
+    list of EntityErrorRow
+        One row per entity and estimator; NaN where a quantity does not apply.
     """
     f = "entity_error_table"
     rig, scene, rng = (
@@ -261,28 +311,29 @@ def _error_table(rig, scene, rng, noise_px, trials):
     table = []
     for (entity, estimator), vals in errs.items():
         med = {k: float(np.median(v)) if v else float("nan") for k, v in vals.items()}
-        table.append({"entity": entity, "estimator": estimator, **med})
+        table.append(EntityErrorRow(entity=entity, estimator=estimator, **med))
     return table
 
 
 def format_table(rows, columns, formats=None) -> str:
-    """Rows of dicts as a fixed-width text table (NaN printed as '-').
+    """Rows as a fixed-width text table (NaN printed as '-').
 
     Parameters
     ----------
-    rows : list of dict
+    rows : list of records or dicts
+        Typed rows (dataclass instances such as :class:`FundamentalRow`, read by field name) or dicts.
     columns : list of str
-        Keys to print, in order.
+        Field names (or keys) to print, in order.
     formats : dict, optional
         ``key -> format spec`` (e.g. ``".2f"``); strings and bools print as they are.
     """
     f = "format_table"
-    rows = checks.instance(rows, f, "rows", (list, tuple), "a list of dicts")
+    rows = checks.instance(rows, f, "rows", (list, tuple), "a list of records or dicts")
     columns = checks.instance(columns, f, "columns", (list, tuple), "a list of keys (strings)")
     columns = [checks.text(k, f, "columns", empty=True) for k in columns]
     formats = {} if formats is None else checks.instance(formats, f, "formats", dict, "a dict key -> format spec")
+    rows = [_as_mapping(row, i, f) for i, row in enumerate(rows)]
     for i, row in enumerate(rows):
-        checks.instance(row, f, "rows", dict, f"a dict in row {i}")
         missing = [k for k in columns if k not in row]
         if missing:
             raise fail(f, "rows, columns", f"row {i} has no {', '.join(map(repr, missing))}")
@@ -306,3 +357,10 @@ def format_table(rows, columns, formats=None) -> str:
     for c in cells:
         lines.append("  ".join(v.ljust(w) if i < 2 else v.rjust(w) for i, (v, w) in enumerate(zip(c, widths))))
     return "\n".join(lines)
+
+
+def _as_mapping(row, i: int, func: str) -> dict:
+    """A table row as a dict: a dataclass record by its field names, a dict as it is."""
+    if dataclasses.is_dataclass(row) and not isinstance(row, type):
+        return {fld.name: getattr(row, fld.name) for fld in dataclasses.fields(row)}
+    return checks.instance(row, func, "rows", dict, f"a record (dataclass) or a dict in row {i}")

@@ -38,7 +38,6 @@ _S, _R = SCENE.sphere_center, np.eye(3)
 AROUND_BALL = st.StereoRig(SCENE_RIG.K, _R, _S - [0.0, 0.0, 1.0], _R, _S + [0.0, 0.0, 1.0], (64, 48))  # ball between
 
 
-
 def _fields(record) -> dict:
     """A typed result as keyword arguments of its class."""
     return {k: getattr(record, k) for k in type(record).__dataclass_fields__}
@@ -321,6 +320,27 @@ CASES = [
         {"rows": [{"a": "x", "b": 1.5, "c": float("nan")}], "columns": ["a", "b", "c"], "formats": {"b": ".2f"}},
         extra={"columns": [["a", "zzz"]], "formats": [{"b": "no-such-format"}], "rows": [[{"a": 1}], [3]]},
     ),
+    Case(
+        st.format_table,
+        {"rows": [st.EntityErrorRow("plane", "fit", 1.5)], "columns": ["entity", "radius_mm"], "formats": None},
+        name="format_table (records)",
+        allow={"formats": ["None"]},
+        extra={"columns": [["entity", "zzz"]], "rows": [[st.EntityErrorRow], [st.FundamentalRow, 3]]},
+    ),
+    Case(
+        st.FundamentalRow,
+        {"normalize": True, "rank2": False, "epipolar_px": 0.3, "F_error": 0.01, "s3_over_s2": 1e-3, "cond_Z": 2.0},
+        strict=True,
+        extra={"epipolar_px": [-1.0], "cond_Z": [float("nan")]},
+    ),
+    Case(
+        st.EntityErrorRow,
+        {"entity": "circle", "estimator": "conformal LS", "position_mm": 1.5, "radius_mm": 0.4, "angle_deg": 2.0},
+        strict=True,
+        allow={"position_mm": ["nan"], "radius_mm": ["nan"], "angle_deg": ["nan"]},
+        nonfinite_ok="documented: NaN marks a quantity that does not apply",
+        extra={"entity": [""], "position_mm": [float("inf")]},
+    ),
     # ----------------------------------------------------------------- the real pair
     Case(st.load_motorcycle, {}),
     Case(
@@ -431,7 +451,6 @@ CASES = [
         extra={"dlt": [[1.0]]},
     ),
 ]
-
 
 
 def _score():
