@@ -26,29 +26,9 @@ import numpy as np
 
 from cga_lessons.errors import DegenerateGeometryError, GeometryError, InvalidInputError
 
-__all__ = [
-    "fail",
-    "degenerate",
-    "is_symbolic",
-    "real",
-    "integer",
-    "flag",
-    "choice",
-    "text",
-    "array",
-    "batch",
-    "rows",
-    "same_length",
-    "instance",
-    "finite_result",
-    "magnitude",
-    "MAX_MAGNITUDE",
-    "generator",
-    "seed",
-    "relabel",
-    "existing_path",
-    "new_path",
-]
+__all__ = ["fail", "degenerate", "is_symbolic", "real", "integer", "flag", "choice", "text", "array", "batch", "rows",
+           "same_length", "instance", "finite_result", "magnitude", "MAX_MAGNITUDE", "generator", "seed", "relabel",
+           "existing_path", "new_path", "record", "vector3", "length"]  # fmt: skip
 
 #: The largest coordinate a geometric computation accepts by default: a float's range ends near 1.8e308, so the
 #: square of a number beyond about 1.3e154 overflows, and sums of a few such squares (a squared distance, the
@@ -313,6 +293,29 @@ def instance(value, func: str, name: str, types, what: str):
     if not isinstance(value, types):
         raise fail(func, name, f"expected {what}, got {type(value).__name__} {_short(value)}")
     return value
+
+
+def record(obj, **checkers) -> None:
+    """Check and normalise fields of the frozen dataclass ``obj`` from its ``__post_init__``: for each
+    ``name=check``, the field becomes ``check(value, func, name)``, ``func`` the class's name; a field whose default
+    is None is left alone while it is None (an optional field)."""
+    func = type(obj).__name__
+    fields = getattr(type(obj), "__dataclass_fields__", {})
+    for name, check in checkers.items():
+        value = getattr(obj, name)
+        if value is None and name in fields and fields[name].default is None:
+            continue
+        object.__setattr__(obj, name, check(value, func, name))
+
+
+def vector3(value, func: str, name: str) -> np.ndarray:
+    """A finite 3-vector as a float array (3,)."""
+    return array(value, func, name, (3,))
+
+
+def length(value, func: str, name: str) -> float:
+    """A finite length (or radius, or count of units), at least 0."""
+    return real(value, func, name, low=0.0)
 
 
 def finite_result(value, func: str, what: str = "the result"):

@@ -89,3 +89,35 @@ def test_a_config_of_the_wrong_kind_is_refused():
 def test_a_stage_of_the_wrong_kind_is_refused_when_the_configuration_is_made():
     with pytest.raises(InvalidInputError, match=r"^Params: check: expected a Check, got Search"):
         Params(check=Search())
+
+
+# ------------------------------------------------------------ records checked when made (checks.record)
+@dataclass(frozen=True)
+class Disc:
+    center: object
+    radius: object
+    label: object = None
+
+    def __post_init__(self):
+        checks.record(self, center=checks.vector3, radius=checks.length, label=checks.text)
+
+
+def test_a_record_normalises_its_fields_and_skips_an_optional_field_left_unset():
+    d = Disc([1, 2, 3], 2)
+    assert d.center.dtype == float and d.center.tolist() == [1.0, 2.0, 3.0] and d.radius == 2.0
+    assert d.label is None and Disc([0, 0, 0], 1.0, "a").label == "a"
+
+
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (([1, 2], 1.0), "Disc: center:"),
+        (([0, 0, float("nan")], 1.0), "Disc: center:"),
+        ((None, 1.0), "Disc: center:"),  # required: None is refused, not skipped
+        (([0, 0, 0], -1.0), "Disc: radius: must be >= 0"),
+        (([0, 0, 0], 1.0, 3), "Disc: label:"),
+    ],
+)
+def test_a_record_refuses_bad_fields_in_its_own_name(args, words):
+    with pytest.raises(InvalidInputError, match="^" + words):
+        Disc(*args)

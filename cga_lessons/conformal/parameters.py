@@ -33,32 +33,10 @@ from cga_lessons import checks
 __all__ = ["SphereParameters", "PlaneParameters", "CircleParameters", "LineParameters", "ENTITY_PARAMETERS"]
 
 
-def _vector(value, func: str, name: str) -> np.ndarray:
-    return checks.array(value, func, name, (3,))
-
-
-def _length(value, func: str, name: str) -> float:
-    return checks.real(value, func, name, low=0.0)
-
-
-def _number(value, func: str, name: str) -> float:
-    return checks.real(value, func, name)
-
-
 class _Parameters:
     """What the four parameter classes share: checking their fields, and unchecked batches."""
 
     kind: ClassVar[str]
-
-    def _check(self, **checkers) -> None:
-        """Check (and normalise) the fields named: ``name=check(value, func, name)``; an optional field (default
-        None) is checked only when it is set."""
-        func = type(self).__name__
-        optional = {f.name for f in fields(self) if f.default is None}
-        for name, check in checkers.items():
-            value = getattr(self, name)
-            if value is not None or name not in optional:
-                object.__setattr__(self, name, check(value, func, name))
 
     @classmethod
     def unchecked(cls, **values):
@@ -79,7 +57,7 @@ class SphereParameters(_Parameters):
     radius: float
 
     def __post_init__(self):
-        self._check(center=_vector, radius=_length)
+        checks.record(self, center=checks.vector3, radius=checks.length)
 
 
 @dataclass(frozen=True, eq=False)
@@ -96,7 +74,7 @@ class PlaneParameters(_Parameters):
     center: np.ndarray | None = None
 
     def __post_init__(self):
-        self._check(normal=_vector, distance=_number, center=_vector)
+        checks.record(self, normal=checks.vector3, distance=checks.real, center=checks.vector3)
 
 
 @dataclass(frozen=True, eq=False)
@@ -109,7 +87,7 @@ class CircleParameters(_Parameters):
     normal: np.ndarray
 
     def __post_init__(self):
-        self._check(center=_vector, radius=_length, normal=_vector)
+        checks.record(self, center=checks.vector3, radius=checks.length, normal=checks.vector3)
 
 
 @dataclass(frozen=True, eq=False)
@@ -126,7 +104,7 @@ class LineParameters(_Parameters):
     length: float | None = None
 
     def __post_init__(self):
-        self._check(direction=_vector, point=_vector, length=_length)
+        checks.record(self, direction=checks.vector3, point=checks.vector3, length=checks.length)
 
 
 #: The parameters class of each kind of entity.

@@ -14,7 +14,7 @@ from cga_lessons.mapping2d import MapResult
 
 from .chains import check_entity
 from .fits import ENTITY_KINDS, check_kind
-from .parameters import check_fields, corner_points, count, end_points, length, vector
+from .parameters import corner_points, count, end_points
 from .robot import Robot
 from .state import RobotState
 from .tour import Tour
@@ -63,7 +63,7 @@ class PostGroup:
     spread: float
 
     def __post_init__(self):
-        check_fields(self, center=vector, n=count, spread=length)
+        checks.record(self, center=checks.vector3, n=count, spread=checks.length)
 
 
 @dataclass(frozen=True, eq=False)
@@ -104,13 +104,13 @@ class FusedObject:
         kind = checks.choice(self.kind, f, "kind", ENTITY_KINDS)
         checks.instance(self.params, f, "kind, params", ENTITY_PARAMETERS[kind], f"the {kind}'s parameters")
         check_kind(self.blade, kind, f, "kind, blade")
-        check_fields(self, n_views=count, points=lambda v, f, n: checks.rows(v, f, n, 3), rms=length)
+        checks.record(self, n_views=count, points=lambda v, f, n: checks.rows(v, f, n, 3), rms=checks.length)
         for name, check, owner in (("ends", end_points, "line"), ("corners", corner_points, "plane")):
             if (getattr(self, name) is None) != (kind != owner):
                 has, got = "has" if kind == owner else "has no", type(getattr(self, name)).__name__
                 raise checks.fail(f, f"kind, {name}", f"a {kind} {has} {name}, got {got}")
             if kind == owner:
-                check_fields(self, **{name: check})
+                checks.record(self, **{name: check})
 
 
 @dataclass

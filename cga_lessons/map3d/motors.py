@@ -36,7 +36,6 @@ from .chains import (
     turned_laser_mount,
 )
 from .fits import check_kind
-from .parameters import check_fields, vector
 from .state import RobotGeometry
 
 __all__ = ["MOTOR_INPUTS", "FIXED_PARTS", "MOTOR_DOFS", "fixed_parts", "build_motor", "ChainMotors", "chain_motors"]
@@ -182,7 +181,7 @@ class ChainMotors:
             _even(getattr(self, name), f, name)
         for name in ("L_pan", "L_tilt"):
             check_kind(getattr(self, name), "line", f, name)
-        check_fields(self, pan_axis=vector, tilt_axis=vector)
+        checks.record(self, pan_axis=checks.vector3, tilt_axis=checks.vector3)
         # one batch for all (the robot's configurations), or single motors (those that no batched value reaches)
         same_batch(f, **{name: getattr(self, name) for name in MOTOR_INPUTS})
 

@@ -6,13 +6,14 @@ SphereParameters`, :class:`~cga_lessons.conformal.PlaneParameters`, :class:`~cga
 :class:`~cga_lessons.conformal.LineParameters`): what :func:`~cga_lessons.map3d.entity_parameters` reads from an
 entity, and the truth of the ball and the rings (:meth:`~cga_lessons.map3d.world.Ball.truth`, ...).  The board and
 the posts give theirs with what a drawing of them needs besides (:class:`BoardTruth`, :class:`PostTruth`), the
-pedestal as a box (:class:`BoxTruth`).  Every class checks its fields when it is made, with :func:`check_fields`
-and the checks here that the package's other results (fits, motors, poses, the fused map's records) use too.
+pedestal as a box (:class:`BoxTruth`).  Every class checks its fields when it is made, with
+:func:`cga_lessons.checks.record` and the checks here that the package's other results (fits, motors, poses, the
+fused map's records) use too.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import ClassVar
 
 import numpy as np
@@ -24,10 +25,6 @@ __all__ = [
     "BoardTruth",
     "PostTruth",
     "BoxTruth",
-    "check_fields",
-    "vector",
-    "length",
-    "number",
     "count",
     "corner_points",
     "end_points",
@@ -36,28 +33,6 @@ __all__ = [
 
 
 # ----------------------------------------------------------------- checking a result's fields
-def check_fields(obj, **checkers) -> None:
-    """Check (and normalise) fields of a frozen dataclass ``obj``: ``name=check(value, func, name)`` for each."""
-    func = type(obj).__name__
-    for name, check in checkers.items():
-        object.__setattr__(obj, name, check(getattr(obj, name), func, name))
-
-
-def vector(value, func: str, name: str) -> np.ndarray:
-    """A finite 3-vector as a float array (3,)."""
-    return checks.array(value, func, name, (3,))
-
-
-def length(value, func: str, name: str) -> float:
-    """A finite length (metres), at least 0."""
-    return checks.real(value, func, name, low=0.0)
-
-
-def number(value, func: str, name: str) -> float:
-    """A finite real number."""
-    return checks.real(value, func, name)
-
-
 def count(value, func: str, name: str) -> int:
     """A whole number, at least 0."""
     return checks.integer(value, func, name, low=0)
@@ -85,12 +60,12 @@ class BoardTruth(PlaneParameters):
     """A board's true face: its plane (``normal``, ``distance``), the face's ``center`` (3,), required here, and
     ``corners`` (4, 3), given by keyword."""
 
-    center: np.ndarray
+    center: np.ndarray = field()  # required here (a plane's is optional): no inherited default
     corners: np.ndarray
 
     def __post_init__(self):
         super().__post_init__()
-        check_fields(self, center=vector, corners=corner_points)
+        checks.record(self, center=checks.vector3, corners=corner_points)
 
 
 @dataclass(frozen=True, eq=False, kw_only=True)
@@ -103,7 +78,7 @@ class PostTruth(LineParameters):
 
     def __post_init__(self):
         super().__post_init__()
-        check_fields(self, radius=length, ends=end_points)
+        checks.record(self, radius=checks.length, ends=end_points)
 
 
 @dataclass(frozen=True, eq=False)
@@ -115,4 +90,4 @@ class BoxTruth:
     size: np.ndarray
 
     def __post_init__(self):
-        check_fields(self, center=vector, size=vector)
+        checks.record(self, center=checks.vector3, size=checks.vector3)

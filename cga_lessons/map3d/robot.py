@@ -60,7 +60,7 @@ from cga_lessons.algebra import Multivector
 
 from .chains import check_entity, unified
 from .motors import FIXED_PARTS, MOTOR_DOFS, MOTOR_INPUTS, build_motor, fixed_parts
-from .parameters import check_fields, pose_matrix
+from .parameters import pose_matrix
 from .state import DOFS, RobotGeometry, RobotState, check_changes
 
 __all__ = ["Robot", "RobotFrames"]
@@ -78,7 +78,7 @@ class RobotFrames:
     camera_right: np.ndarray
 
     def __post_init__(self):
-        check_fields(self, **{f.name: pose_matrix for f in fields(self)})
+        checks.record(self, **{f.name: pose_matrix for f in fields(self)})
 
 
 # ----------------------------------------------------------------- the robot

@@ -20,7 +20,7 @@ from cga_lessons import checks, stereo
 from cga_lessons.mapping2d import OdometryModel, simulate_odometry, simulate_scan
 
 from .chains import check_dofs
-from .parameters import check_fields, pose_matrix
+from .parameters import pose_matrix
 from .robot import Robot
 from .state import RobotGeometry, RobotState
 from .world import World3D, default_world
@@ -65,7 +65,7 @@ class HomogeneousChains:
     camera_left: np.ndarray
 
     def __post_init__(self):
-        check_fields(self, **{f.name: pose_matrix for f in fields(self)})
+        checks.record(self, **{f.name: pose_matrix for f in fields(self)})
 
 
 def homogeneous_chains(

@@ -17,7 +17,7 @@ batch, like a trial step of the polish, is the search's working form and is made
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 
@@ -42,12 +42,12 @@ class PatchParameters(PlaneParameters):
     """A true rectangular patch of a plane: its plane (``normal``, ``distance``, 2.89), its ``center`` (3,), required
     here, and its two side lengths ``sides`` (m), given by keyword."""
 
+    center: np.ndarray = field()  # required here (a plane's is optional): no inherited default
     sides: tuple
 
     def __post_init__(self):
         super().__post_init__()
-        object.__setattr__(self, "center", checks.array(self.center, "PatchParameters", "center", (3,)))
-        self._check(sides=_sides)
+        checks.record(self, center=checks.vector3, sides=_sides)
 
 
 def rows(params, index):
