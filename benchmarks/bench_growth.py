@@ -34,7 +34,6 @@ from cga_lessons import data_path, mapping2d
 from cga_lessons.mapping2d import builder as builder_mod
 from cga_lessons.mapping2d import correction as correction_mod
 from cga_lessons.mapping2d import graph as graph_mod
-from cga_lessons.mapping2d import laser
 from cga_lessons.mapping2d import loops as loops_mod
 
 LOGS = ("intel", "aces", "csail", "freiburg-101", "seattle", "orebro")
@@ -117,7 +116,7 @@ def load(name, laps=1, seed=0, limit=None):
     log = mapping2d.read_carmen_log(data_path("carmen", f"{name}-corrected.log.gz"))
     n = len(log) if limit is None else min(limit, len(log))
     scans, truth = log.scans[:n] * laps, np.tile(log.poses[:n], (laps, 1))
-    odometry = laser.simulate_odometry(truth, np.random.default_rng(seed))
+    odometry = mapping2d.simulate_odometry(truth, np.random.default_rng(seed))
     return scans, truth, odometry
 
 

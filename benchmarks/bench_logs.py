@@ -41,7 +41,6 @@ from pathlib import Path
 import numpy as np
 
 from cga_lessons import data_path, mapping2d
-from cga_lessons.mapping2d import laser
 from cga_lessons.mapping2d.trajectories import absolute_trajectory_error, relative_pose_error
 
 LOGS = ("intel", "aces", "csail", "freiburg-101", "seattle", "orebro")
@@ -91,7 +90,7 @@ def run_job(job):
     """One row: ``(name, seed, limit)``; ``seed`` None is the truth-as-odometry row."""
     name, seed, limit = job
     scans, truth, cloud = load(name, limit)
-    odometry = truth if seed is None else laser.simulate_odometry(truth, np.random.default_rng(seed))
+    odometry = truth if seed is None else mapping2d.simulate_odometry(truth, np.random.default_rng(seed))
     t0 = time.perf_counter()
     result = mapping2d.build_map(scans, odometry, max_range=MAX_RANGE)
     ms = 1000 * (time.perf_counter() - t0) / len(truth)

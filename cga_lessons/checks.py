@@ -28,7 +28,7 @@ from cga_lessons.errors import DegenerateGeometryError, GeometryError, InvalidIn
 
 __all__ = ["fail", "degenerate", "is_symbolic", "real", "integer", "flag", "choice", "text", "array", "batch", "rows",
            "same_length", "instance", "finite_result", "magnitude", "MAX_MAGNITUDE", "generator", "seed", "relabel",
-           "existing_path", "new_path", "record", "vector3", "length"]  # fmt: skip
+           "existing_path", "new_path", "record", "vector3", "length", "measure", "short"]  # fmt: skip
 
 #: The largest coordinate a geometric computation accepts by default: a float's range ends near 1.8e308, so the
 #: square of a number beyond about 1.3e154 overflows, and sums of a few such squares (a squared distance, the
@@ -55,7 +55,12 @@ def is_symbolic(value) -> bool:
     return type(value).__module__.split(".")[0] == "sympy"
 
 
-def _short(value) -> str:
+def short(value) -> str:
+    """``repr(value)``, cut to 40 characters: how an error message quotes a bad value.
+
+    >>> short("x" * 50)
+    "'xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx..."
+    """
     r = repr(value)
     return r if len(r) <= 40 else r[:37] + "..."
 
@@ -94,17 +99,17 @@ def real(
     if isinstance(value, np.ndarray) and value.ndim == 0:
         value = value[()]
     if isinstance(value, (complex, np.complexfloating)) or not isinstance(value, numbers.Real):
-        raise fail(func, name, f"must be a real number, got {type(value).__name__} {_short(value)}")
+        raise fail(func, name, f"must be a real number, got {type(value).__name__} {short(value)}")
     try:
         x = float(value)
     except OverflowError:
         x = math.inf
     if not math.isfinite(x):
-        raise fail(func, name, f"is NaN or inf ({_short(value)})")
+        raise fail(func, name, f"is NaN or inf ({short(value)})")
     if low is not None and (x < low or (strict_low and x == low)):
-        raise fail(func, name, f"must be {'>' if strict_low else '>='} {low}, got {_short(value)}")
+        raise fail(func, name, f"must be {'>' if strict_low else '>='} {low}, got {short(value)}")
     if high is not None and (x > high or (strict_high and x == high)):
-        raise fail(func, name, f"must be {'<' if strict_high else '<='} {high}, got {_short(value)}")
+        raise fail(func, name, f"must be {'<' if strict_high else '<='} {high}, got {short(value)}")
     return x
 
 
@@ -125,7 +130,7 @@ def integer(value, func: str, name: str, *, low: int | None = None, high: int | 
     else:
         x = real(value, func, name)
         if x != int(x):
-            raise fail(func, name, f"must be a whole number, got {_short(value)}")
+            raise fail(func, name, f"must be a whole number, got {short(value)}")
         n = int(x)
     if low is not None and n < low:
         raise fail(func, name, f"must be >= {low}, got {n}")
@@ -137,7 +142,7 @@ def integer(value, func: str, name: str, *, low: int | None = None, high: int | 
 def flag(value, func: str, name: str) -> bool:
     """``value`` as a bool; only True/False (or NumPy's bools) are accepted."""
     if not _is_bool(value):
-        raise fail(func, name, f"must be True or False, got {_short(value)}")
+        raise fail(func, name, f"must be True or False, got {short(value)}")
     return bool(value)
 
 
@@ -145,14 +150,14 @@ def choice(value, func: str, name: str, options) -> str:
     """``value`` if it is one of ``options`` (strings), else an error listing them."""
     options = tuple(options)
     if not isinstance(value, str) or value not in options:
-        raise fail(func, name, f"must be one of {', '.join(map(repr, options))}; got {_short(value)}")
+        raise fail(func, name, f"must be one of {', '.join(map(repr, options))}; got {short(value)}")
     return value
 
 
 def text(value, func: str, name: str, *, empty: bool = False) -> str:
     """``value`` as a string (non-empty unless ``empty``)."""
     if not isinstance(value, str):
-        raise fail(func, name, f"must be a string, got {type(value).__name__} {_short(value)}")
+        raise fail(func, name, f"must be a string, got {type(value).__name__} {short(value)}")
     if not empty and not value.strip():
         raise fail(func, name, "must not be empty")
     return value
@@ -160,7 +165,7 @@ def text(value, func: str, name: str, *, empty: bool = False) -> str:
 
 def _as_float_array(value, func: str, name: str) -> np.ndarray:
     if value is None or isinstance(value, (str, bytes)):
-        raise fail(func, name, f"must be numbers, got {_short(value)}")
+        raise fail(func, name, f"must be numbers, got {short(value)}")
     try:
         raw = np.asarray(value)
         if raw.dtype.kind == "c":
@@ -171,7 +176,7 @@ def _as_float_array(value, func: str, name: str) -> np.ndarray:
     except (TypeError, ValueError) as exc:
         if isinstance(exc, InvalidInputError):
             raise
-        what = "rows of different lengths" if "inhomogeneous" in str(exc) else _short(value)
+        what = "rows of different lengths" if "inhomogeneous" in str(exc) else short(value)
         raise fail(func, name, f"must be an array of numbers, got {what}") from None
     return a
 
@@ -291,7 +296,7 @@ def same_length(func: str, **named) -> int:
 def instance(value, func: str, name: str, types, what: str):
     """``value`` if it is an instance of ``types``; else an error saying ``what`` was expected."""
     if not isinstance(value, types):
-        raise fail(func, name, f"expected {what}, got {type(value).__name__} {_short(value)}")
+        raise fail(func, name, f"expected {what}, got {type(value).__name__} {short(value)}")
     return value
 
 
@@ -318,6 +323,13 @@ def length(value, func: str, name: str) -> float:
     return real(value, func, name, low=0.0)
 
 
+def measure(value, func: str, name: str) -> float:
+    """A finite real, or NaN: the marker of a table entry that does not apply (a radius error for a plane)."""
+    if isinstance(value, float | np.floating) and math.isnan(value):
+        return math.nan
+    return real(value, func, name)
+
+
 def finite_result(value, func: str, what: str = "the result"):
     """``value`` (a number or an array) if finite; else an error: the input overflowed the computation.
 
@@ -333,7 +345,7 @@ def finite_result(value, func: str, what: str = "the result"):
 def existing_path(value, func: str, name: str, *, kind: str = "file") -> Path:
     """``value`` (str or path) as a :class:`Path` to an existing ``kind`` ("file" or "folder")."""
     if not isinstance(value, (str, Path)) or (isinstance(value, str) and not value):
-        raise fail(func, name, f"expected a path, got {_short(value)}")
+        raise fail(func, name, f"expected a path, got {short(value)}")
     p = Path(value)
     if kind == "file" and not p.is_file():
         raise fail(func, name, f"no such file: {p}" if not p.exists() else f"is not a file: {p}")
@@ -345,7 +357,7 @@ def existing_path(value, func: str, name: str, *, kind: str = "file") -> Path:
 def new_path(value, func: str, name: str, *, overwrite: bool = False) -> Path:
     """``value`` as a :class:`Path` to write; an existing file is refused unless ``overwrite``."""
     if not isinstance(value, (str, Path)) or (isinstance(value, str) and not value):
-        raise fail(func, name, f"expected a path, got {_short(value)}")
+        raise fail(func, name, f"expected a path, got {short(value)}")
     p = Path(value)
     if p.is_dir():
         raise fail(func, name, f"is a folder: {p}")
@@ -383,7 +395,7 @@ def generator(value, func: str, name: str = "rng", *, seeds: bool = False, optio
     what = "a numpy.random.Generator (numpy.random.default_rng(seed))"
     what += ", an int seed >= 0" if seeds else ""
     what += " or None" if optional else ""
-    raise fail(func, name, f"expected {what}, got {type(value).__name__} {_short(value)}")
+    raise fail(func, name, f"expected {what}, got {type(value).__name__} {short(value)}")
 
 
 def seed(value, func: str, name: str = "seed"):

@@ -61,6 +61,14 @@ def check_stages(config) -> None:
         checks.instance(getattr(config, stage), type(config).__name__, stage, cls, f"{article} {cls.__name__}")
 
 
+def _replaced(base, values: Mapping, func: str, prefix: str = ""):
+    """``base`` with ``values`` put in one field at a time, so that a refused value is named (``prefix`` + field)."""
+    for key, value in values.items():
+        with checks.relabel(func, prefix + key):
+            base = dataclasses.replace(base, **{key: value})
+    return base
+
+
 def _stage_value(value, stage: str, cls: type, base, func: str):
     """A stage given as an instance of its class or as a mapping of some of its fields."""
     if isinstance(value, cls):
@@ -70,10 +78,7 @@ def _stage_value(value, stage: str, cls: type, base, func: str):
         bad = sorted(map(str, set(value) - names))
         if bad:
             raise checks.fail(func, stage, f"unknown field(s) {bad} of {cls.__name__}")
-        for key, field_value in value.items():
-            with checks.relabel(func, f"{stage}.{key}"):
-                base = dataclasses.replace(base, **{key: field_value})
-        return base
+        return _replaced(base, value, func, f"{stage}.")
     raise checks.fail(func, stage, f"expected a {cls.__name__} or a dict of its fields, got {value!r}")
 
 
@@ -108,11 +113,7 @@ def merged(config, overrides: Mapping, func: str, kind: type, name: str = "param
         else:
             per_stage.setdefault(stage, {})[key] = value
     for stage, values in per_stage.items():
-        for key, value in values.items():
-            with checks.relabel(func, key):
-                top[stage] = dataclasses.replace(top.get(stage, getattr(config, stage)), **{key: value})
-    for key in [key for key in top if key not in own]:
-        with checks.relabel(func, key):
-            config = dataclasses.replace(config, **{key: top.pop(key)})
+        top[stage] = _replaced(top.get(stage, getattr(config, stage)), values, func)
+    config = _replaced(config, {key: top.pop(key) for key in list(top) if key not in own}, func)
     with checks.relabel(func, name):
         return dataclasses.replace(config, **top)

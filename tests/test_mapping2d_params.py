@@ -94,3 +94,18 @@ def test_extraction_settings_are_one_dataclass_whose_defaults_are_extract_segmen
     assert np.array_equal(as_dict.poses, as_params.poses) and len(as_dict.segments) == len(as_params.segments)
     with pytest.raises(InvalidInputError, match="build_map: extraction: xi: must be > 0"):
         build_map(scans, odometry, extraction={"xi": 0.0})
+
+
+def test_stages_hold_their_fields_as_plain_numbers_as_relocalizations_stages_do():
+    # checks.record converts as it checks: a whole float count becomes an int, a NumPy number a float, and an
+    # optional field left None stays None
+    from cga_lessons.relocalization import RelocSearch
+
+    c = CorrectionParams(n_iterations=3.0, gate=np.float64(4.0), range_noise=None)
+    assert type(c.n_iterations) is int and c.n_iterations == 3
+    assert type(c.gate) is float and c.gate == 4.0 and c.range_noise is None
+    assert type(LoopParams(loop_max_shift=np.float64(np.inf)).loop_max_shift) is float
+    assert type(ExtractionParams(min_points=7.0).min_points) is int
+    assert type(RelocSearch(n_rotations=8.0).n_rotations) is int
+    with pytest.raises(InvalidInputError, match="CorrectionParams: n_iterations"):
+        CorrectionParams(n_iterations=2.5)

@@ -391,3 +391,24 @@ def test_motorcycle_planes():
     assert floor.normal @ [0.0, 1.0, 0.0] > 0.9 or floor.normal @ [0.0, -1.0, 0.0] > 0.9  # image "down"
     angles = [np.degrees(np.arccos(abs(floor.normal @ f.normal))) for f in fits[1:]]
     assert max(angles) > 80  # a wall or shelf front stands on the floor
+
+
+def test_every_function_taking_a_rig_or_a_scene_refuses_another_object_in_the_same_words():
+    rig = st.stereo_head()
+    scene = st.load_scene()
+    rng = np.random.default_rng(0)
+    calls = {
+        "random_scene": lambda: st.random_scene(rng, "rig"),
+        "observe": lambda: st.observe("rig", np.zeros((1, 3))),
+        "reconstruct_entities": lambda: st.reconstruct_entities("rig", {}),
+        "random_points_in_view": lambda: ex.random_points_in_view("rig", 3, rng),
+        "render_views": lambda: render_views("rig", scene),
+    }
+    expected = r"a StereoRig \(stereo_head, random_rig, load_rig\)"
+    for func, call in calls.items():
+        with pytest.raises(InvalidInputError, match=rf"^{func}: rig: .*{expected}"):
+            call()
+    with pytest.raises(InvalidInputError, match=r"^sample_scene: scene: .*a StereoScene \(load_scene, random_scene\)"):
+        st.sample_scene("scene", rig, rng)
+    with pytest.raises(InvalidInputError, match=r"^render_views: scene: .*a StereoScene \(load_scene, random_scene\)"):
+        render_views(rig, "scene")

@@ -25,7 +25,7 @@ import numbers
 
 import numpy as np
 
-from cga_lessons.checks import array, degenerate, fail, instance, integer, is_symbolic, real
+from cga_lessons.checks import array, degenerate, fail, instance, integer, is_symbolic, real, short
 from cga_lessons.errors import InvalidInputError
 
 from .coefficients import all_finite, is_sympy
@@ -55,11 +55,6 @@ _BIG = 1 << 1000  # ints below this convert to a float
 _F64, _NDARRAY = np.float64, np.ndarray  # looked up once: finite_out runs on every operator's result
 
 
-def _short(value) -> str:
-    r = repr(value)
-    return r if len(r) <= 40 else r[:37] + "..."
-
-
 def scalar_operand(value, func: str, name: str = "other", *, divisor: bool = False):
     """``value`` (unchanged) if it is a finite real number, a finite real array or a SymPy expression.
 
@@ -80,7 +75,7 @@ def scalar_operand(value, func: str, name: str = "other", *, divisor: bool = Fal
             raise fail(func, name, "division by zero")
         return value
     if isinstance(value, FOREIGN):
-        raise fail(func, name, f"expected a Multivector, a real number or an array, got {t.__name__} {_short(value)}")
+        raise fail(func, name, f"expected a Multivector, a real number or an array, got {t.__name__} {short(value)}")
     if is_sympy(value) or is_symbolic(value):
         if divisor and value == 0:
             raise fail(func, name, "division by zero")
@@ -180,15 +175,10 @@ def same_algebra(X, algebra, func: str, name: str, mv_type):
     return X
 
 
-def grade_number(k, func: str, n: int, name: str = "k") -> int:
-    """``k`` as a grade of an algebra of dimension ``n`` (0..n)."""
-    return integer(k, func, name, low=0, high=n)
-
-
 def blade_bitmaps(blades, func: str, name: str, dim: int) -> list:
     """``blades`` as a list of blade bitmaps (ints in 0..dim-1)."""
     if isinstance(blades, (str, bytes)) or not hasattr(blades, "__iter__"):
-        raise fail(func, name, f"expected a sequence of blade bitmaps (ints 0..{dim - 1}), got {_short(blades)}")
+        raise fail(func, name, f"expected a sequence of blade bitmaps (ints 0..{dim - 1}), got {short(blades)}")
     out = [integer(b, func, name, low=0, high=dim - 1) for b in blades]
     if not out:
         raise fail(func, name, "expected at least one blade")
@@ -240,12 +230,12 @@ def nonnegative(value, func: str, name: str, *, positive: bool = False):
 def matrices_per_grade(mats, grade_blades: list, func: str) -> dict:
     """``mats`` if it is ``{grade: k x k finite real matrix}`` (k blades of that grade), else the error."""
     if not isinstance(mats, dict) or not mats:
-        raise fail(func, "mats", f"expected {{grade: matrix}} (from versor_matrices), got {_short(mats)}")
+        raise fail(func, "mats", f"expected {{grade: matrix}} (from versor_matrices), got {short(mats)}")
     for g, m in mats.items():
         g = integer(g, func, "mats", low=0, high=len(grade_blades) - 1)
         k = len(grade_blades[g])
         if not isinstance(m, np.ndarray) or m.shape != (k, k) or m.dtype.kind not in "iuf":
-            raise fail(func, "mats", f"grade {g} needs a real {k} x {k} matrix, got {_short(m)}")
+            raise fail(func, "mats", f"grade {g} needs a real {k} x {k} matrix, got {short(m)}")
         if not np.all(np.isfinite(m)):
             raise fail(func, "mats", f"the matrix of grade {g} contains NaN or inf")
     return mats

@@ -66,7 +66,7 @@ class SphereFit:
     blade: Multivector
 
     def __post_init__(self):
-        _checked(self, "SphereFit", center=(3,), radius=0.0, rms=0.0)
+        checks.record(self, center=checks.vector3, radius=checks.length, rms=checks.length, blade=_blade)
 
 
 @dataclass(frozen=True)
@@ -85,8 +85,16 @@ class PlaneFit:
     inliers: int
 
     def __post_init__(self):
-        _checked(self, "PlaneFit", normal=(3,), distance=None, rms=0.0, center=(3,), radius=0.0)
-        object.__setattr__(self, "inliers", checks.integer(self.inliers, "PlaneFit", "inliers", low=0))
+        checks.record(
+            self,
+            normal=checks.vector3,
+            distance=checks.real,
+            rms=checks.length,
+            center=checks.vector3,
+            radius=checks.length,
+            blade=_blade,
+            inliers=_count,
+        )
 
 
 @dataclass(frozen=True)
@@ -102,19 +110,20 @@ class CircleFit:
     blade: Multivector
 
     def __post_init__(self):
-        _checked(self, "CircleFit", center=(3,), radius=0.0, normal=(3,), rms=0.0)
+        checks.record(
+            self, center=checks.vector3, radius=checks.length, normal=checks.vector3, rms=checks.length, blade=_blade
+        )
 
 
-def _checked(fit, func: str, **fields) -> None:
-    """Check a fit's fields: a shape (a finite array), a lower bound or None (a finite number); and its blade."""
-    for name, spec in fields.items():
-        value = getattr(fit, name)
-        if isinstance(spec, tuple):
-            value = checks.array(value, func, name, spec)
-        else:
-            value = checks.real(value, func, name, low=spec)
-        object.__setattr__(fit, name, value)
-    multivector(fit.blade, func, "blade", single=True, numeric=True)
+def _blade(value, func: str, name: str) -> Multivector:
+    """A fit's blade (for :func:`cga_lessons.checks.record`): one multivector of G(4,1), finite, numeric."""
+    return multivector(value, func, name, single=True, numeric=True)
+
+
+def _count(value, func: str, name: str) -> int:
+    """A number of points (for :func:`cga_lessons.checks.record`): a whole number, at least 0."""
+    return checks.integer(value, func, name, low=0)
+
 
 #: The metric of G(4,1)'s vectors on (e1, e2, e3, e+, e-), and those vectors' blade indices: a fit's linear algebra
 #: works on the 5 coefficients of conformal vectors.

@@ -26,6 +26,7 @@ from .points import up
 
 __all__ = ["LineFit", "fit_line"]
 
+
 def _entity(X, func: str, name: str, kind: str, dimension: int) -> Multivector:
     """``X`` if it is one real entity of that kind ("flat": a line; "round" of dimension 0: a point pair)."""
     X = multivector(X, func, name, single=True, numeric=True)
@@ -36,6 +37,18 @@ def _entity(X, func: str, name: str, kind: str, dimension: int) -> Multivector:
         what = "a line" if kind == "flat" else "a point pair"
         raise checks.fail(func, name, f"expected {what}, got a {got.kind} of dimension {got.dimension}")
     return X
+
+
+def _line(X, func: str, name: str) -> Multivector:
+    return _entity(X, func, name, "flat", 1)
+
+
+def _point_pair(X, func: str, name: str) -> Multivector:
+    return _entity(X, func, name, "round", 0)
+
+
+def _ends(value, func: str, name: str) -> np.ndarray:
+    return checks.array(value, func, name, (2, 3))
 
 
 @dataclass(frozen=True, eq=False)
@@ -66,13 +79,8 @@ class LineFit:
     rms: float
 
     def __post_init__(self):
-        f, put = "LineFit", lambda name, value: object.__setattr__(self, name, value)
-        put("direction", checks.array(self.direction, f, "direction", (3,)))
-        put("point", checks.array(self.point, f, "point", (3,)))
-        put("ends", checks.array(self.ends, f, "ends", (2, 3)))
-        put("rms", checks.real(self.rms, f, "rms", low=0.0))
-        put("blade", _entity(self.blade, f, "blade", "flat", 1))
-        put("pair", _entity(self.pair, f, "pair", "round", 0))
+        checks.record(self, direction=checks.vector3, point=checks.vector3, ends=_ends, rms=checks.length,
+                      blade=_line, pair=_point_pair)  # fmt: skip
 
 
 def fit_line(X) -> LineFit:

@@ -38,7 +38,7 @@ def _real(x, func: str, name: str, *, array: bool = False, limit: float | None =
     """
     if is_sympy(x):
         if x.is_real is False or x.is_finite is False or x.has(_sympy_nan()):
-            raise checks.fail(func, name, f"must be a finite real number, got {_short(x)}")
+            raise checks.fail(func, name, f"must be a finite real number, got {checks.short(x)}")
         return x
     if array and (isinstance(x, (list, tuple)) or isinstance(x, np.ndarray) and x.ndim):
         a = checks.array(x, func, name, (None,), at_least=1)
@@ -47,11 +47,6 @@ def _real(x, func: str, name: str, *, array: bool = False, limit: float | None =
     if limit is not None:
         checks.magnitude(a, func, name, limit=limit, why="no float precision is left for its sine and cosine")
     return a
-
-
-def _short(x) -> str:
-    r = repr(x)
-    return r if len(r) <= 40 else r[:37] + "..."
 
 
 def _sympy_nan():

@@ -213,14 +213,20 @@ def def_lines(path: str) -> dict[str, int]:
     return out
 
 
-def _test_exists(node_id: str, root: Path) -> bool:
+def node_parts(node_id: str, root: Path) -> tuple[str, Path, str | None]:
+    """A test's node id (``tests/test_x.py::Class::test_y[case]``) as its path as written, that file under ``root``
+    and the qualified name of its def (``Class.test_y``; None for a whole file)."""
     path, _, rest = node_id.partition("::")
-    file = root / path
+    name = ".".join(part.split("[")[0] for part in rest.split("::")) if rest else None
+    return path, root / path, name
+
+
+def _test_exists(node_id: str, root: Path) -> bool:
+    _, file, name = node_parts(node_id, root)
     if not file.is_file():
         return False
-    if not rest:
+    if name is None:
         return True
-    name = ".".join(part.split("[")[0] for part in rest.split("::"))
     return name in def_lines(str(file.resolve()))  # each test file is parsed once
 
 

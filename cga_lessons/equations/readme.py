@@ -16,7 +16,7 @@ from cga_lessons import checks
 from cga_lessons.files import atomic_write
 from cga_lessons.paths import PROJECT_ROOT
 
-from .core import REGISTRY, STATUSES, THESIS_LABELS, Coverage, Entry, coverage_summary, def_lines, resolve
+from .core import REGISTRY, STATUSES, THESIS_LABELS, Coverage, Entry, coverage_summary, def_lines, node_parts, resolve
 
 __all__ = [
     "PARTS",
@@ -107,11 +107,9 @@ def _source_location(dotted: str, root: Path) -> tuple[str, int | None] | None:
 
 
 def _test_location(node_id: str, root: Path) -> tuple[str, int | None]:
-    path, _, rest = node_id.partition("::")
-    file = root / path
-    if not rest or not file.is_file() or file.suffix != ".py":
+    path, file, name = node_parts(node_id, root)
+    if name is None or not file.is_file() or file.suffix != ".py":
         return path, None
-    name = ".".join(part.split("[")[0] for part in rest.split("::"))
     return path, def_lines(str(file.resolve())).get(name)
 
 

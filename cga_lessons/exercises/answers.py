@@ -74,10 +74,6 @@ def _sympy():
     return sympy
 
 
-def is_sympy(x) -> bool:
-    return type(x).__module__.startswith("sympy")
-
-
 def shape_text(shape) -> str:
     return "(" + ", ".join("n" if s is None else str(s) for s in shape) + ("," if len(shape) == 1 else "") + ")"
 
@@ -131,7 +127,7 @@ def as_float(answer, what: str = "the answer") -> float:
         if extra:
             raise Wrong(f"the grade is wrong: {what} should be a scalar, but your multivector has blades {extra}")
         answer = answer.scalar()
-    if is_sympy(answer):
+    if checks.is_symbolic(answer):
         if getattr(answer, "free_symbols", None):
             raise Malformed(f"{what} still contains symbols {sorted(map(str, answer.free_symbols))}; give a number")
         try:
@@ -217,7 +213,7 @@ def as_expression(value, symbols: dict, what: str = "the answer"):
             value = sp.sympify(value, locals=dict(symbols))
         except (sp.SympifyError, SyntaxError, TypeError) as exc:
             raise Malformed(f"the string {value!r} is not a formula SymPy can read ({exc})") from None
-    if isinstance(value, bool) or not (is_sympy(value) or isinstance(value, numbers.Number)):
+    if isinstance(value, bool) or not (checks.is_symbolic(value) or isinstance(value, numbers.Number)):
         raise Malformed(f"{what} should be a SymPy expression, not a {type(value).__name__}")
     expr = sp.sympify(value)
     if not isinstance(expr, sp.Expr):

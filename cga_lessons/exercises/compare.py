@@ -24,7 +24,6 @@ from .answers import (
     as_expression,
     as_float,
     hint_pairs,
-    is_sympy,
     names_the_answer,
     settings,
     symbol_table,
@@ -179,7 +178,7 @@ def compare_matrix(
     if truth.shape[1] == 0:
         raise checks.fail(func, "truth", f"expected a matrix with at least one column, got shape {truth.shape}")
     hints = hint_pairs(hints, func, lambda c: checks.array(c, func, "hints", truth.shape))
-    if is_sympy(value):
+    if checks.is_symbolic(value):
         try:
             value = np.array(value.tolist(), dtype=float)
         except (TypeError, ValueError) as exc:
@@ -223,7 +222,7 @@ def _mv_arrays(value: Multivector, truth: Multivector, what: str):
     out = np.zeros(len(names))
     for i, name in enumerate(names):
         c = value[name]
-        if is_sympy(c):
+        if checks.is_symbolic(c):
             if getattr(c, "free_symbols", None):
                 raise Malformed(f"the {name} coefficient still contains symbols {sorted(map(str, c.free_symbols))}")
             c = float(c)
@@ -243,7 +242,7 @@ def _truth_multivector(truth, func: str):
     if truth.shape:
         raise checks.fail(func, "truth", f"expected one multivector, got a batch of shape {truth.shape}")
     for name, c in truth.items():
-        if is_sympy(c) or not np.isfinite(c):
+        if checks.is_symbolic(c) or not np.isfinite(c):
             raise checks.fail(func, "truth", f"the {name} coefficient is not a finite number ({c!r:.40})")
     return truth
 
@@ -317,7 +316,7 @@ def _truth_expression(truth, symbols: dict, func: str):
     """``truth`` as a finite SymPy expression in the exercise's ``symbols``."""
     import sympy as sp
 
-    if isinstance(truth, bool) or not (is_sympy(truth) or isinstance(truth, (int, float))):
+    if isinstance(truth, bool) or not (checks.is_symbolic(truth) or isinstance(truth, (int, float))):
         raise checks.fail(func, "truth", f"expected a SymPy expression, got {type(truth).__name__} {truth!r:.40}")
     truth = sp.sympify(truth)
     if not isinstance(truth, sp.Expr) or truth.has(sp.zoo, sp.nan, sp.oo, -sp.oo):

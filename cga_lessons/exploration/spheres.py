@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from cga_lessons import checks
+from cga_lessons import conformal as cga
 from cga_lessons.algebra import DegenerateGeometryError
 
 from .grid import check_point, check_points, check_positive
@@ -22,14 +23,12 @@ _MAX_SAMPLES = 10**7  # the most points box_surface_points makes
 # ------------------------------------------------------------ enclosing sphere
 def _sphere_fit(P: np.ndarray, func: str):
     """The conformal least-squares sphere of checked points P (N, 3), or a degenerate-geometry error."""
-    from cga_lessons.conformal import fit_sphere as _conformal_sphere_fit
-
     if len(P) < 4:
         raise checks.degenerate(func, "points", f"need at least 4 points, got {len(P)}")
     sv = np.linalg.svd(P - P.mean(axis=0), compute_uv=False)
     if sv[0] == 0 or sv[-1] <= 1e-9 * sv[0]:
         raise checks.degenerate(func, "points", "the points are coplanar (or coincide): no unique sphere")
-    fit = _conformal_sphere_fit(P)
+    fit = cga.fit_sphere(P)
     return fit.center, float(fit.radius)
 
 

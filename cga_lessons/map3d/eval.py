@@ -21,6 +21,7 @@ from cga_lessons import checks
 from cga_lessons.conformal import LineParameters
 
 from .fused_map import FusedMap
+from .parameters import count
 
 __all__ = [
     "residual_table",
@@ -34,13 +35,6 @@ __all__ = [
 ]
 
 _NAN = float("nan")
-
-
-def _measure(value, func: str, name: str) -> float:
-    """A finite real, or NaN (the marker of an entry that does not apply)."""
-    if isinstance(value, float | np.floating) and np.isnan(value):
-        return _NAN
-    return checks.real(value, func, name)
 
 
 @dataclass(frozen=True)
@@ -60,14 +54,9 @@ class ViewErrorRow:
     stereo_radius_cm: float = _NAN
 
     def __post_init__(self):
-        f = "ViewErrorRow"
-        for name in ("view", "points"):
-            object.__setattr__(self, name, checks.integer(getattr(self, name), f, name, low=0))
-        for name in ("object", "entity"):
-            checks.text(getattr(self, name), f, name)
-        object.__setattr__(self, "distance_m", checks.real(self.distance_m, f, "distance_m", low=0.0))
-        for name in ("stereo_pos_cm", "stereo_angle_deg", "stereo_radius_cm"):
-            object.__setattr__(self, name, _measure(getattr(self, name), f, name))
+        checks.record(self, view=count, points=count, object=checks.text, entity=checks.text, distance_m=checks.length,
+                      stereo_pos_cm=checks.measure, stereo_angle_deg=checks.measure,
+                      stereo_radius_cm=checks.measure)  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -92,14 +81,10 @@ class ResidualRow:
     laser_stereo_deg: float = _NAN
 
     def __post_init__(self):
-        f = "ResidualRow"
-        for name in ("object", "entity", "seen_by"):
-            checks.text(getattr(self, name), f, name)
-        for name in ("views", "laser_n"):
-            object.__setattr__(self, name, checks.integer(getattr(self, name), f, name, low=0))
-        for name in ("stereo_pos_cm", "stereo_angle_deg", "stereo_radius_cm", "laser_pos_cm", "laser_stereo_cm",
-                     "laser_stereo_deg"):  # fmt: skip
-            object.__setattr__(self, name, _measure(getattr(self, name), f, name))
+        measures = ("stereo_pos_cm", "stereo_angle_deg", "stereo_radius_cm", "laser_pos_cm", "laser_stereo_cm",
+                    "laser_stereo_deg")  # fmt: skip
+        checks.record(self, object=checks.text, entity=checks.text, seen_by=checks.text, views=count, laser_n=count,
+                      **dict.fromkeys(measures, checks.measure))  # fmt: skip
 
 
 #: Column order of :func:`residual_table`: the fields of :class:`ResidualRow` (for

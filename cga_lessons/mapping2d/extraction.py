@@ -19,20 +19,25 @@ EXTRACTION = ("xi", "phi_xi", "min_points", "min_length", "max_gap", "jump_ratio
 def extraction_settings(settings: dict, func: str, prefix: str = "") -> dict:
     """The checked settings of :func:`~cga_lessons.mapping2d.extract_segments` (names from :data:`EXTRACTION`); an
     unknown name or a bad value is an error of ``func``'s argument ``prefix + name``."""
-    out = {}
-    for name, value in settings.items():
-        arg = prefix + str(name)
-        if name in ("xi", "phi_xi", "max_gap"):
-            out[name] = checks.real(value, func, arg, low=0.0, strict_low=True)
-        elif name in ("min_length", "jump_ratio", "edge_tolerance"):
-            out[name] = checks.real(value, func, arg, low=0.0)
-        elif name == "min_points":
-            out[name] = checks.integer(value, func, arg, low=2)
-        elif name == "max_range":
-            out[name] = reach(value, func, arg)
-        else:
-            raise checks.fail(func, arg, f"unknown setting; the settings are {', '.join(EXTRACTION)}")
-    return out
+    return {name: _setting(name, value, func, prefix + str(name)) for name, value in settings.items()}
+
+
+def _setting(name, value, func: str, arg: str):
+    """One setting ``name`` checked (and converted: plain floats and ints) as ``func``'s argument ``arg``."""
+    if name in ("xi", "phi_xi", "max_gap"):
+        return checks.real(value, func, arg, low=0.0, strict_low=True)
+    if name in ("min_length", "jump_ratio", "edge_tolerance"):
+        return checks.real(value, func, arg, low=0.0)
+    if name == "min_points":
+        return checks.integer(value, func, arg, low=2)
+    if name == "max_range":
+        return reach(value, func, arg)
+    raise checks.fail(func, arg, f"unknown setting; the settings are {', '.join(EXTRACTION)}")
+
+
+def _field(value, func: str, name: str):
+    """A field of :class:`ExtractionParams` checked by :func:`cga_lessons.checks.record`."""
+    return _setting(name, value, func, name)
 
 
 @dataclass(frozen=True)
@@ -73,6 +78,4 @@ class ExtractionParams:
     edge_tolerance: float = 0.15
 
     def __post_init__(self):
-        checked = extraction_settings({f.name: getattr(self, f.name) for f in fields(self)}, "ExtractionParams")
-        for name, value in checked.items():
-            object.__setattr__(self, name, value)  # as plain floats and ints
+        checks.record(self, **{f.name: _field for f in fields(self)})  # as plain floats and ints

@@ -38,27 +38,31 @@ _NO_BOUND = {"loop_max_shift"}
 _SIGNED = {"odo_heading_bias"}  # a drift either way
 
 
+def _check_field(value, f: str, name: str):
+    """One field of a stage checked (and converted: plain ints, floats and bools) by its kind (the sets above),
+    in the name ``f`` of the stage's class."""
+    if name in _COUNTS:
+        return checks.integer(value, f, name, low=_COUNTS[name])
+    if name in _FLAGS:
+        return checks.flag(value, f, name)
+    if name in _FRACTIONS:
+        strict = name == "significance"  # a quantile: neither 0 nor 1
+        return checks.real(value, f, name, low=0.0, high=1.0, strict_low=strict, strict_high=strict)
+    if name == "range_noise":  # None (estimated from each scan) is left alone by checks.record
+        return checks.real(value, f, name, low=0.0, strict_low=True)
+    if name in _SIGNED:
+        return checks.real(value, f, name)
+    if name == "loop_max_angle":
+        return checks.real(value, f, name, low=0.0, high=math.pi)
+    if name in _NO_BOUND and isinstance(value, (float, np.floating)) and value == math.inf:
+        return float(value)
+    return checks.real(value, f, name, low=0.0)
+
+
 def _check_fields(stage) -> None:
-    """Check every field of a stage by its kind (the sets above); errors name the stage's class."""
-    f = type(stage).__name__
-    for fld in fields(stage):
-        name, value = fld.name, getattr(stage, fld.name)
-        if name in _COUNTS:
-            checks.integer(value, f, name, low=_COUNTS[name])
-        elif name in _FLAGS:
-            checks.flag(value, f, name)
-        elif name in _FRACTIONS:
-            strict = name == "significance"  # a quantile: neither 0 nor 1
-            checks.real(value, f, name, low=0.0, high=1.0, strict_low=strict, strict_high=strict)
-        elif name == "range_noise":
-            if value is not None:
-                checks.real(value, f, name, low=0.0, strict_low=True)
-        elif name in _SIGNED:
-            checks.real(value, f, name)
-        elif name == "loop_max_angle":
-            checks.real(value, f, name, low=0.0, high=math.pi)
-        elif not (name in _NO_BOUND and isinstance(value, (float, np.floating)) and value == math.inf):
-            checks.real(value, f, name, low=0.0)
+    """Check and convert every field of a stage by its kind (:func:`cga_lessons.checks.record`); errors name the
+    stage's class."""
+    checks.record(stage, **{fld.name: _check_field for fld in fields(stage)})
 
 
 @dataclass(frozen=True)

@@ -14,6 +14,7 @@ model on a grid for many particles at once.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 
@@ -86,14 +87,15 @@ class BeamModel:
     max_silent_beams: int = 12
 
     def __post_init__(self):
-        f = "BeamModel"
-        for name in ("max_range", "sigma_hit", "resolution", "ray_step", "beam_weight"):
-            object.__setattr__(self, name, checks.real(getattr(self, name), f, name, low=0.0, strict_low=True))
-        for name in ("z_rand", "p_dropout"):
-            v = checks.real(getattr(self, name), f, name, low=0.0, high=1.0, strict_low=True, strict_high=True)
-            object.__setattr__(self, name, v)
-        for name in ("max_beams", "max_silent_beams"):
-            object.__setattr__(self, name, checks.integer(getattr(self, name), f, name, low=1))
+        positive = partial(checks.real, low=0.0, strict_low=True)
+        fraction = partial(checks.real, low=0.0, high=1.0, strict_low=True, strict_high=True)
+        count = partial(checks.integer, low=1)
+        checks.record(
+            self,
+            **dict.fromkeys(("max_range", "sigma_hit", "resolution", "ray_step", "beam_weight"), positive),
+            **dict.fromkeys(("z_rand", "p_dropout"), fraction),
+            **dict.fromkeys(("max_beams", "max_silent_beams"), count),
+        )
 
     @property
     def log_unknown(self) -> float:

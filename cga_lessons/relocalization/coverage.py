@@ -24,6 +24,7 @@ of :mod:`cga_lessons.relocalization.verify`).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 
@@ -59,9 +60,8 @@ class CoverageFractions:
     wall: float
 
     def __post_init__(self):
-        for name in ("unknown", "free", "wall"):
-            value = checks.real(getattr(self, name), "CoverageFractions", name, low=0.0, high=1.0)
-            object.__setattr__(self, name, value)
+        fraction = partial(checks.real, low=0.0, high=1.0)
+        checks.record(self, unknown=fraction, free=fraction, wall=fraction)
 
 
 @dataclass

@@ -25,6 +25,7 @@ section 8.3.7: sampling from the measurement model).
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import partial
 
 import numpy as np
 from scipy import ndimage
@@ -70,10 +71,12 @@ class SearchConfig:
     ess: float = 0.05
 
     def __post_init__(self):
-        f = "SearchConfig"
-        object.__setattr__(self, "cell", checks.real(self.cell, f, "cell", low=0.0, strict_low=True))
-        object.__setattr__(self, "pool", checks.integer(self.pool, f, "pool", low=0))
-        object.__setattr__(self, "ess", checks.real(self.ess, f, "ess", low=0.0, high=1.0, strict_low=True))
+        checks.record(
+            self,
+            cell=partial(checks.real, low=0.0, strict_low=True),
+            pool=partial(checks.integer, low=0),
+            ess=partial(checks.real, low=0.0, high=1.0, strict_low=True),
+        )
 
 
 class CoarseSearch:

@@ -11,14 +11,13 @@ noise.
 from __future__ import annotations
 
 import dataclasses
-import inspect
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from cga_lessons import checks, config
 from cga_lessons.config import check_stages
-from cga_lessons.mapping2d import extract_segments
+from cga_lessons.mapping2d import ExtractionParams
 
 __all__ = [
     "STATUSES",
@@ -225,8 +224,12 @@ def check_param(name: str, value, func: str):
 
 def check_fields(stage) -> None:
     """Check (and convert) every field of a stage (:class:`RelocSearch`, :class:`RelocCheck`) in its own name."""
-    for f in dataclasses.fields(stage):
-        object.__setattr__(stage, f.name, check_param(f.name, getattr(stage, f.name), type(stage).__name__))
+    checks.record(stage, **{f.name: _as_field for f in dataclasses.fields(stage)})
+
+
+def _as_field(value, func: str, name: str):
+    """:func:`check_param` as a checker of :func:`cga_lessons.checks.record`."""
+    return check_param(name, value, func)
 
 
 def check_score(value, func: str, name: str = "score", *, failed: bool = False) -> float:
@@ -264,7 +267,7 @@ def check_extraction(extraction, func: str) -> dict:
     if extraction is None:
         return {}
     checks.instance(extraction, func, "extraction", dict, "a dict of extract_segments' settings or None")
-    known = set(inspect.signature(extract_segments).parameters) - {"ranges", "angles"}
+    known = {f.name for f in dataclasses.fields(ExtractionParams)}  # extract_segments' settings
     bad = sorted(map(str, set(extraction) - known))
     if bad:
         raise checks.fail(func, "extraction", f"unknown setting(s) of extract_segments: {', '.join(bad)}")

@@ -22,6 +22,7 @@ them, where no particle is.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 
@@ -72,13 +73,11 @@ class KLDConfig:
     bin_theta: float = np.radians(10.0)
 
     def __post_init__(self):
-        f = "KLDConfig"
-        for name in ("n_min", "n_max"):
-            object.__setattr__(self, name, checks.integer(getattr(self, name), f, name, low=1))
+        checks.record(self, n_min=partial(checks.integer, low=1), n_max=partial(checks.integer, low=1))
         if self.n_min > self.n_max:
-            raise checks.fail(f, "n_min, n_max", f"n_min ({self.n_min}) must not exceed n_max ({self.n_max})")
-        for name in ("epsilon", "z", "bin_xy", "bin_theta"):
-            object.__setattr__(self, name, checks.real(getattr(self, name), f, name, low=0.0, strict_low=True))
+            raise checks.fail("KLDConfig", "n_min, n_max", f"n_min ({self.n_min}) must not exceed n_max ({self.n_max})")
+        positive = partial(checks.real, low=0.0, strict_low=True)
+        checks.record(self, epsilon=positive, z=positive, bin_xy=positive, bin_theta=positive)
 
 
 def kld_bound(k, epsilon: float = 0.05, z: float = 2.326):

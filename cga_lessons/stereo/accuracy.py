@@ -28,10 +28,9 @@ def _angle(u, v, signed=True) -> float:
     return float(np.arctan2(np.linalg.norm(np.cross(u, v)), c))
 
 
-def _errors(record, func: str) -> None:
+def _errors(record) -> None:
     """Every field of an error record: a finite number >= 0 (metres or radians)."""
-    for name in record.__dataclass_fields__:
-        object.__setattr__(record, name, checks.real(getattr(record, name), func, name, low=0.0))
+    checks.record(record, **dict.fromkeys(record.__dataclass_fields__, checks.length))
 
 
 @dataclass(frozen=True)
@@ -41,7 +40,7 @@ class PositionError:
     position: float
 
     def __post_init__(self):
-        _errors(self, "PositionError")
+        _errors(self)
 
 
 @dataclass(frozen=True)
@@ -54,7 +53,7 @@ class LineError:
     offset: float
 
     def __post_init__(self):
-        _errors(self, "LineError")
+        _errors(self)
 
 
 @dataclass(frozen=True)
@@ -66,7 +65,7 @@ class PlaneError:
     offset: float
 
     def __post_init__(self):
-        _errors(self, "PlaneError")
+        _errors(self)
 
 
 @dataclass(frozen=True)
@@ -78,7 +77,7 @@ class CircleError:
     normal: float
 
     def __post_init__(self):
-        _errors(self, "CircleError")
+        _errors(self)
 
 
 @dataclass(frozen=True)
@@ -89,7 +88,7 @@ class SphereError:
     radius: float
 
     def __post_init__(self):
-        _errors(self, "SphereError")
+        _errors(self)
 
 
 _POINTS, _VEC, _NUM = (None, 3), (3,), ()

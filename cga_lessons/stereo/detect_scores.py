@@ -21,10 +21,6 @@ from .detect_search import DetectedEntity
 __all__ = ["DetectionError", "DetectionMatch", "KindScore", "DetectionScore", "entity_errors", "evaluate"]
 
 
-def _optional(value, func: str, name: str):
-    return None if value is None else checks.real(value, func, name, low=0.0)
-
-
 @dataclass(frozen=True)
 class DetectionError:
     """Position errors of a detection against a true entity of its kind (metres, degrees; None: not of the kind).
@@ -42,10 +38,7 @@ class DetectionError:
     radius: float | None = None
 
     def __post_init__(self):
-        f = "DetectionError"
-        object.__setattr__(self, "center", checks.real(self.center, f, "center", low=0.0))
-        for name in ("angle", "offset", "radius"):
-            object.__setattr__(self, name, _optional(getattr(self, name), f, name))
+        checks.record(self, center=checks.length, angle=checks.length, offset=checks.length, radius=checks.length)
 
 
 @dataclass(frozen=True)

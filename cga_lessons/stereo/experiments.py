@@ -28,7 +28,7 @@ from . import head as st
 from . import validate as vd
 from .accuracy import entity_errors
 from .reconstruct import reconstruct_entities
-from .rig import StereoRig
+from .rig import StereoRig, check_rig
 from .triangulation import triangulate
 
 __all__ = [
@@ -41,13 +41,6 @@ __all__ = [
     "EntityErrorRow",
     "format_table",
 ]
-
-
-def _measure(value, func: str, name: str) -> float:
-    """A finite real, or NaN (the marker of a quantity that does not apply)."""
-    if isinstance(value, float | np.floating) and np.isnan(value):
-        return float("nan")
-    return checks.real(value, func, name)
 
 
 @dataclass(frozen=True)
@@ -66,11 +59,8 @@ class FundamentalRow:
     cond_Z: float
 
     def __post_init__(self):
-        f = "FundamentalRow"
-        for name in ("normalize", "rank2"):
-            object.__setattr__(self, name, checks.flag(getattr(self, name), f, name))
-        for name in ("epipolar_px", "F_error", "s3_over_s2", "cond_Z"):
-            object.__setattr__(self, name, checks.real(getattr(self, name), f, name, low=0.0))
+        checks.record(self, normalize=checks.flag, rank2=checks.flag, epipolar_px=checks.length, F_error=checks.length,
+                      s3_over_s2=checks.length, cond_Z=checks.length)  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -88,11 +78,8 @@ class EntityErrorRow:
     angle_deg: float = float("nan")
 
     def __post_init__(self):
-        f = "EntityErrorRow"
-        for name in ("entity", "estimator"):
-            checks.text(getattr(self, name), f, name)
-        for name in ("position_mm", "radius_mm", "angle_deg"):
-            object.__setattr__(self, name, _measure(getattr(self, name), f, name))
+        checks.record(self, entity=checks.text, estimator=checks.text, position_mm=checks.measure,
+                      radius_mm=checks.measure, angle_deg=checks.measure)  # fmt: skip
 
 
 def random_points_in_view(rig: StereoRig, n: int, rng: np.random.Generator, depth=(1.0, 6.0)) -> np.ndarray:
@@ -103,13 +90,9 @@ def random_points_in_view(rig: StereoRig, n: int, rng: np.random.Generator, dept
     ndarray, shape (n, 3)
     """
     f = "random_points_in_view"
-    rig, rng = _rig(rig, f), checks.generator(rng, f)
+    rig, rng = check_rig(rig, f), checks.generator(rng, f)
     n, depth = checks.integer(n, f, "n", low=0, high=10**7), vd.depth_range(depth, f)
     return _in_view(rig, n, rng, depth, f)
-
-
-def _rig(rig, func: str) -> StereoRig:
-    return checks.instance(rig, func, "rig", StereoRig, "a StereoRig (stereo_head, random_rig, load_rig)")
 
 
 def _count(n, func: str, name: str, low: int = 1) -> int:
@@ -146,7 +129,7 @@ def fundamental_comparison(rig: StereoRig, rng: np.random.Generator, n_points=20
         One row per variant (normalised or not, rank 2 or not), medians over the trials.
     """
     f = "fundamental_comparison"
-    rig, rng, trials = _rig(rig, f), checks.generator(rng, f), _count(trials, f, "trials")
+    rig, rng, trials = check_rig(rig, f), checks.generator(rng, f), _count(trials, f, "trials")
     n_points, n_test = _count(n_points, f, "n_points", 8), _count(n_test, f, "n_test")
     noise_px = checks.real(noise_px, f, "noise_px", low=0.0, high=1e6)
     try:
@@ -211,7 +194,7 @@ def triangulation_error_curve(rig: StereoRig, rng: np.random.Generator, noise_le
     """
     f = "triangulation_error_curve"
     rig, rng, n_points, depth = (
-        _rig(rig, f),
+        check_rig(rig, f),
         checks.generator(rng, f),
         _count(n_points, f, "n_points"),
         vd.depth_range(depth, f),
@@ -264,7 +247,7 @@ def entity_error_table(rig: StereoRig, scene: st.StereoScene, rng: np.random.Gen
     """
     f = "entity_error_table"
     rig, scene, rng = (
-        _rig(rig, f),
+        check_rig(rig, f),
         checks.instance(scene, f, "scene", st.StereoScene, "a StereoScene"),
         checks.generator(rng, f),
     )

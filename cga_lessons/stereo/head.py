@@ -34,7 +34,7 @@ from . import camera as cam
 from . import validate as vd
 from .entities import SceneCircle, SceneLine, ScenePair, ScenePlane, ScenePoints, SceneSphere
 from .polylines import frame
-from .rig import StereoRig
+from .rig import StereoRig, check_rig
 
 __all__ = [
     "StereoScene",
@@ -50,11 +50,8 @@ def _unit(v, func: str = "stereo", name: str = "direction") -> np.ndarray:
     return vd.direction(v, func, name)
 
 
-def _rig(rig, func: str, name: str = "rig") -> StereoRig:
-    return checks.instance(rig, func, name, StereoRig, "a StereoRig (stereo_head, random_rig, load_rig)")
-
-
-def _scene(scene, func: str, name: str = "scene"):
+def check_scene(scene, func: str, name: str = "scene"):
+    """``scene`` if it is a :class:`StereoScene` (the argument check of every function taking one)."""
     return checks.instance(scene, func, name, StereoScene, "a StereoScene (load_scene, random_scene)")
 
 
@@ -162,7 +159,7 @@ def random_scene(rng: np.random.Generator, rig: StereoRig, depth=(1.5, 4.0)) -> 
     they are seen at a usable angle.
     """
     f = "random_scene"
-    rng, rig, depth = checks.generator(rng, f), _rig(rig, f), vd.depth_range(depth, f)
+    rng, rig, depth = checks.generator(rng, f), check_rig(rig, f), vd.depth_range(depth, f)
     mid = 0.5 * (rig.C1 + rig.C2)
     Kinv = np.linalg.inv(rig.K)
     w, h = rig.image_size
@@ -212,7 +209,7 @@ def sample_scene(scene: StereoScene, rig: StereoRig, rng: np.random.Generator, n
         visible cap), ``"sphere"``.
     """
     f = "sample_scene"
-    scene, rig, rng = _scene(scene, f), _rig(rig, f), checks.generator(rng, f)
+    scene, rig, rng = check_scene(scene, f), check_rig(rig, f), checks.generator(rng, f)
     n_circle, n_board, n_sphere = (
         checks.integer(n, f, name, low=0, high=10**8)
         for n, name in ((n_circle, "n_circle"), (n_board, "n_board"), (n_sphere, "n_sphere"))
@@ -260,7 +257,7 @@ def observe(rig: StereoRig, X, noise_px: float = 0.0, rng: np.random.Generator |
     x1, x2 : ndarray, shape (N, 2)
     """
     f = "observe"
-    rig, (X, _) = _rig(rig, f), vd.batch(X, f, "X", (3,))
+    rig, (X, _) = check_rig(rig, f), vd.batch(X, f, "X", (3,))
     noise_px = checks.real(noise_px, f, "noise_px", low=0.0, high=vd.LIMIT)
     rng = checks.generator(rng, f, optional=True)
     x1, x2 = seen(rig, X, f)

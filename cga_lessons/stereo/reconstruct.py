@@ -16,7 +16,7 @@ from cga_lessons.checks import degenerate, fail
 
 from . import validate as vd
 from .entities import SceneCircle, SceneLine, ScenePair, ScenePlane, ScenePoints, SceneSphere
-from .rig import StereoRig
+from .rig import StereoRig, check_rig
 from .triangulation import triangulate
 
 __all__ = ["reconstruct_entities", "circle_center_via_plane"]
@@ -82,7 +82,7 @@ def reconstruct_entities(rig: StereoRig, views: dict, method: str = "midpoint") 
         2.73).  Each holds its conformal ``blade``.
     """
     f = "reconstruct_entities"
-    rig = checks.instance(rig, f, "rig", StereoRig, "a StereoRig (stereo_head, random_rig, load_rig)")
+    rig = check_rig(rig, f)
     method = checks.choice(method, f, "method", ("midpoint", "dlt"))
     views = checks.instance(views, f, "views", dict, "a dict name -> (x1, x2)")
     tri = {}

@@ -16,9 +16,9 @@ from cga_lessons.checks import degenerate
 
 from . import camera as cam
 from . import validate as vd
-from .head import StereoScene, seen
+from .head import StereoScene, check_scene, seen
 from .polylines import circle_polyline
-from .rig import StereoRig
+from .rig import StereoRig, check_rig
 
 __all__ = ["render_views"]
 
@@ -112,8 +112,8 @@ def render_views(rig: StereoRig, scene: StereoScene, samples: dict | None = None
     left, right : ndarray, shape (h, w, 3), uint8, RGB
     """
     f = "render_views"
-    rig = checks.instance(rig, f, "rig", StereoRig, "a StereoRig (stereo_head, random_rig, load_rig)")
-    scene = checks.instance(scene, f, "scene", StereoScene, "a StereoScene (load_scene, random_scene)")
+    rig = check_rig(rig, f)
+    scene = check_scene(scene, f)
     _in_front(rig, scene, samples, f)
     import cv2
 

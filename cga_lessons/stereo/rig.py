@@ -193,6 +193,11 @@ def stereo_head(
     return _rig(K, R, C1, R.copy(), C2, (w, h), f, "position")
 
 
+def check_rig(rig, func: str, name: str = "rig") -> StereoRig:
+    """``rig`` if it is a :class:`StereoRig` (the argument check of every function taking one)."""
+    return checks.instance(rig, func, name, StereoRig, "a StereoRig (stereo_head, random_rig, load_rig)")
+
+
 def _length(value, func: str, name: str) -> float:
     """A positive length within the camera model's range."""
     return checks.real(value, func, name, low=0.0, strict_low=True, high=vd.LIMIT)

@@ -33,7 +33,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from cga_lessons.algebra import GeometryError
-from cga_lessons.checks import array, degenerate, fail, real, text
+from cga_lessons.checks import array, degenerate, fail, real, record, text
 
 from .inputs import LIMIT, coords, slash_path
 
@@ -67,34 +67,53 @@ def _naming(obj):
         raise type(exc)(f"{exc} (primitive {obj.name!r})") from None
 
 
-def _array(obj, fld, shape, *, at_least: int = 0):
-    """Copy ``obj.fld`` to a read-only float array of ``shape`` (``None`` = any length), finite and drawable."""
-    arr = coords(getattr(obj, fld), type(obj).__name__, fld, shape, at_least=at_least).copy()
-    arr.setflags(write=False)
-    object.__setattr__(obj, fld, arr)
-    return arr
+# The checkers of the fields, for :func:`cga_lessons.checks.record` (``check(value, func, name)``, ``func`` the
+# primitive's class).
+def _drawn(shape):
+    """A checker: a read-only float copy of shape ``shape`` (``None`` = any length), finite and drawable."""
+
+    def check(value, func: str, name: str) -> np.ndarray:
+        arr = coords(value, func, name, shape).copy()
+        arr.setflags(write=False)
+        return arr
+
+    return check
 
 
-def _scalar(obj, fld, *, positive=False, lo=None, hi=None):
-    func = type(obj).__name__
-    x = real(getattr(obj, fld), func, fld, low=lo, high=LIMIT if hi is None else hi)
-    if positive and x <= 0:
-        raise degenerate(func, fld, f"must be > 0, got {x}")
-    object.__setattr__(obj, fld, x)
+def _positive(value, func: str, name: str) -> float:
+    x = real(value, func, name, high=LIMIT)
+    if x <= 0:
+        raise degenerate(func, name, f"must be > 0, got {x}")
     return x
 
 
-def _color(obj, fld="color"):
-    func = type(obj).__name__
-    arr = array(getattr(obj, fld), func, fld, (3,))
+def _opacity(value, func: str, name: str) -> float:
+    return real(value, func, name, low=0.0, high=1.0)
+
+
+def _color(value, func: str, name: str) -> tuple:
+    arr = array(value, func, name, (3,))
     if np.any(arr < 0) or np.any(arr > 1):
-        raise fail(func, fld, f"colour components must be floats in [0, 1], got {arr.tolist()}")
-    object.__setattr__(obj, fld, tuple(float(c) for c in arr))
+        raise fail(func, name, f"colour components must be floats in [0, 1], got {arr.tolist()}")
+    return tuple(float(c) for c in arr)
 
 
-def _rotation(obj, fld, R):
+def _rotation(func: str, name: str, R):
     if np.abs(R.T @ R - np.eye(3)).max() > _ORTHO_TOL or np.linalg.det(R) < 0:
-        raise fail(type(obj).__name__, fld, "not a proper rotation (R^T R != I or det R < 0)")
+        raise fail(func, name, "not a proper rotation (R^T R != I or det R < 0)")
+
+
+def _edge_lengths(value, func: str, name: str) -> np.ndarray:
+    size = _drawn((3,))(value, func, name)
+    if np.any(size <= 0):
+        raise degenerate(func, name, f"edge lengths must be > 0, got {size.tolist()}")
+    return size
+
+
+def _rotation_matrix(value, func: str, name: str) -> np.ndarray:
+    R = _drawn((3, 3))(value, func, name)
+    _rotation(func, name, R)
+    return R
 
 
 # ---------------------------------------------------------------- primitives
@@ -112,13 +131,8 @@ class Box:
     def __post_init__(self):
         _check_name(self)
         with _naming(self):
-            _array(self, "center", (3,))
-            size = _array(self, "size", (3,))
-            if np.any(size <= 0):
-                raise degenerate("Box", "size", f"edge lengths must be > 0, got {size.tolist()}")
-            _rotation(self, "rotation", _array(self, "rotation", (3, 3)))
-            _color(self)
-            _scalar(self, "opacity", lo=0.0, hi=1.0)
+            record(self, center=_drawn((3,)), size=_edge_lengths, rotation=_rotation_matrix, color=_color,
+                   opacity=_opacity)  # fmt: skip
 
     def corners(self) -> np.ndarray:
         """The 8 corners (8, 3); index bits (x, y, z) = (i & 1, i & 2, i & 4) pick the + side."""
@@ -142,10 +156,7 @@ class Sphere:
     def __post_init__(self):
         _check_name(self)
         with _naming(self):
-            _array(self, "center", (3,))
-            _scalar(self, "radius", positive=True)
-            _color(self)
-            _scalar(self, "opacity", lo=0.0, hi=1.0)
+            record(self, center=_drawn((3,)), radius=_positive, color=_color, opacity=_opacity)
 
     def extent(self) -> np.ndarray:
         return np.array([self.center - self.radius, self.center + self.radius])
@@ -163,13 +174,13 @@ class Quad:
     def __post_init__(self):
         _check_name(self)
         with _naming(self):
-            c = _array(self, "corners", (4, 3))
+            record(self, corners=_drawn((4, 3)))
+            c = self.corners
             area2 = np.linalg.norm(np.cross(c[2] - c[0], c[3] - c[1]))  # twice the (vector) area
             scale = max(np.ptp(c, axis=0).max(), 1e-300)
             if area2 <= 1e-12 * scale * scale:
                 raise degenerate("Quad", "corners", "the four corners enclose no area")
-            _color(self)
-            _scalar(self, "opacity", lo=0.0, hi=1.0)
+            record(self, color=_color, opacity=_opacity)
 
     def normal(self) -> np.ndarray:
         """Unit normal (3,) from the diagonals, right-handed with the corner order."""
@@ -195,12 +206,11 @@ class Cylinder:
     def __post_init__(self):
         _check_name(self)
         with _naming(self):
-            a, b = _array(self, "start", (3,)), _array(self, "end", (3,))
+            record(self, start=_drawn((3,)), end=_drawn((3,)))
+            a, b = self.start, self.end
             if np.linalg.norm(b - a) <= 1e-12 * max(1.0, np.abs(a).max(), np.abs(b).max()):
                 raise degenerate("Cylinder", "end", "start and end coincide, the axis has no direction")
-            _scalar(self, "radius", positive=True)
-            _color(self)
-            _scalar(self, "opacity", lo=0.0, hi=1.0)
+            record(self, radius=_positive, color=_color, opacity=_opacity)
 
     @property
     def length(self) -> float:
@@ -229,11 +239,10 @@ class Polyline:
     def __post_init__(self):
         _check_name(self)
         with _naming(self):
-            p = _array(self, "points", (None, 3))
-            if len(p) < 2:
-                raise fail("Polyline", "points", f"a polyline needs at least 2 points, got {len(p)}")
-            _color(self)
-            _scalar(self, "width", positive=True)
+            record(self, points=_drawn((None, 3)))
+            if len(self.points) < 2:
+                raise fail("Polyline", "points", f"a polyline needs at least 2 points, got {len(self.points)}")
+            record(self, color=_color, width=_positive)
 
     def extent(self) -> np.ndarray:
         return self.points
@@ -251,11 +260,10 @@ class PointCloud:
     def __post_init__(self):
         _check_name(self)
         with _naming(self):
-            p = _array(self, "points", (None, 3))
-            if len(p) < 1:
+            record(self, points=_drawn((None, 3)))
+            if len(self.points) < 1:
                 raise fail("PointCloud", "points", "a point cloud needs at least one point")
-            _color(self)
-            _scalar(self, "size", positive=True)
+            record(self, color=_color, size=_positive)
 
     def extent(self) -> np.ndarray:
         return self.points
@@ -272,11 +280,12 @@ class Frame:
     def __post_init__(self):
         _check_name(self)
         with _naming(self):
-            T = _array(self, "pose", (4, 4))
+            record(self, pose=_drawn((4, 4)))
+            T = self.pose
             if np.abs(T[3] - [0, 0, 0, 1]).max() > _ORTHO_TOL:
                 raise fail("Frame", "pose", f"last row must be [0, 0, 0, 1], got {T[3].tolist()}")
-            _rotation(self, "pose", T[:3, :3])
-            _scalar(self, "scale", positive=True)
+            _rotation("Frame", "pose", T[:3, :3])
+            record(self, scale=_positive)
 
     def axes(self) -> np.ndarray:
         """Segments (3, 2, 3): origin to the tip of the x, y and z axes."""

@@ -123,6 +123,11 @@ _FILES = Path(tempfile.mkdtemp(prefix="cga-fuzz-"))
 _MISSING = itertools.count()
 
 
+def fresh_path(name: str) -> Path:
+    """A path ``name`` that does not exist yet, in a new folder of its own (for the cases of writers)."""
+    return Path(tempfile.mkdtemp(dir=_FILES)) / name
+
+
 def _bad_files() -> list:
     """A missing file, a folder, an empty file, binary garbage, text garbage, a truncated gzip."""
     empty = _FILES / "empty.log"
