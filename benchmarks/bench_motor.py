@@ -28,6 +28,7 @@ from __future__ import annotations
 import itertools
 import os
 import pathlib
+import resource
 import sys
 import time
 
@@ -55,17 +56,26 @@ def run_rounds(cases: dict, rounds: int, floor: str) -> dict:
         fn()
         fn()
     times = {name: [] for name in cases}
+    faults = dict.fromkeys(cases, 0)
     for _ in range(rounds):
         for name, (fn, number) in cases.items():
+            f0 = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
             t0 = time.perf_counter()
             for _ in range(number):
                 fn()
             times[name].append((time.perf_counter() - t0) / number)
+            faults[name] += resource.getrusage(resource.RUSAGE_SELF).ru_minflt - f0
     base = np.array(times[floor])
     out = {}
     for name, t in times.items():
         t = np.array(t)
-        out[name] = (float(np.median(t)), float(t.min()), float(np.median(t / base)), float(t.min() / base.min()))
+        out[name] = (
+            float(np.median(t)),
+            float(t.min()),
+            float(np.median(t / base)),
+            float(t.min() / base.min()),
+            faults[name] / (rounds * cases[name][1]),
+        )
     return out
 
 
@@ -219,14 +229,14 @@ def main(n: int = 100_000, seed: int = 0, rounds: int = 25):
     res_b = run_rounds(batch, rounds, "numpy 4x4 homogeneous (floor)")
     res_s = run_rounds(single, 8 * rounds, "numpy 4x4 @ homogeneous point (floor)")
     print()
-    head = f"{'median':>9s} {'best':>9s} {'x floor':>8s} {'best':>6s}"
+    head = f"{'median':>9s} {'best':>9s} {'x floor':>8s} {'best':>6s} {'faults':>7s}"
     print(f"{'batch of ' + format(n, ',') + ', per call [ms]':45s} {head}")
-    for name, (t, tb, r, b) in res_b.items():
-        print(f"{name:45s} {t * 1e3:9.3f} {tb * 1e3:9.3f} {r:8.2f} {b:6.2f}")
+    for name, (t, tb, r, b, pf) in res_b.items():
+        print(f"{name:45s} {t * 1e3:9.3f} {tb * 1e3:9.3f} {r:8.2f} {b:6.2f} {pf:7.0f}")
     print()
     print(f"{'one point, per call (loops of ' + str(reps) + ') [us]':45s} {head}")
-    for name, (t, tb, r, b) in res_s.items():
-        print(f"{name:45s} {t * 1e6:9.2f} {tb * 1e6:9.2f} {r:8.1f} {b:6.1f}")
+    for name, (t, tb, r, b, pf) in res_s.items():
+        print(f"{name:45s} {t * 1e6:9.2f} {tb * 1e6:9.2f} {r:8.1f} {b:6.1f} {pf:7.1f}")
     print()
     ours = res_b["cga.apply_to_points(M, x)  [3x4 affine]"]
     conf = res_b["cga.apply(M, X)  [conformal, 5x5]"]
@@ -241,7 +251,7 @@ def main(n: int = 100_000, seed: int = 0, rounds: int = 25):
             f"apply_to_points {kb[2] / ours[2]:.1f}x, apply {kb[2] / conf[2]:.1f}x"
         )
     for name in ("M >> X", "cga.apply(M, X)"):
-        t, tb, r, _ = res_s[name]
+        t, tb, r, *_ = res_s[name]
         floor_t = res_s["numpy 4x4 @ homogeneous point (floor)"][0]
         print(
             f"         one point <= 20 us: {name}: median {t * 1e6:.1f} us, best {tb * 1e6:.1f} us, "

@@ -1,13 +1,13 @@
 """The package's layers, read from its source: every module imports only from layers below its own.
 
-Layer 0 is ``errors``, ``checks``, then ``paths``, ``files`` and ``config`` (a module there may import those of a lower
-rank, ``LAYER0_RANK``); 1 ``algebra``; 2 ``conformal``; 3 ``symbolic``, ``mapping2d``, ``stereo``, ``exploration``,
-``kinematics``; 4 ``map3d``, ``relocalization``; 5 ``equations``, ``exercises``, ``viz``; 6 ``cli``.
+Layer 0 is ``errors`` and ``scratch``, ``checks``, then ``paths``, ``files`` and ``config`` (a module there may import
+those of a lower rank, ``LAYER0_RANK``); 1 ``algebra``; 2 ``conformal``; 3 ``symbolic``, ``mapping2d``, ``stereo``,
+``exploration``, ``kinematics``; 4 ``map3d``, ``relocalization``; 5 ``equations``, ``exercises``, ``viz``; 6 ``cli``.
 A module may import its own package's modules and any package of a lower layer, another package only through its
 facade (its ``__init__``: names, not modules; ``viz`` is the one package whose modules are its face), and no private
-name (``_x``) of another module; layers 0-4 never draw (no matplotlib, meshcat or widgets).  The package's
-``__init__`` (which re-exports ``data_path``) and ``__main__`` (which runs the command line) are its entry points and
-stand above every layer.
+name (``_x``) of another module; layers 0-4 never draw (no matplotlib, meshcat or widgets). The package's ``__init__``
+(which re-exports ``data_path``) and ``__main__`` (which runs the command line) are its entry points and stand above
+every layer.
 """
 
 from __future__ import annotations
@@ -25,6 +25,7 @@ import cga_lessons
 PACKAGE = Path(cga_lessons.__file__).resolve().parent
 LAYERS = {
     "errors": 0,
+    "scratch": 0,
     "checks": 0,
     "paths": 0,
     "files": 0,
@@ -44,7 +45,7 @@ LAYERS = {
     "cli": 6,
 }
 #: The order within layer 0: a module there may import those of a lower rank.
-LAYER0_RANK = {"errors": 0, "checks": 1, "paths": 2, "files": 2, "config": 2}
+LAYER0_RANK = {"errors": 0, "scratch": 0, "checks": 1, "paths": 2, "files": 2, "config": 2}
 DRAWING = ("matplotlib", "meshcat", "ipywidgets", "IPython")
 PACKAGES = {k for k in LAYERS if (PACKAGE / k / "__init__.py").is_file()}
 MODULES_ARE_FACE = {"viz"}

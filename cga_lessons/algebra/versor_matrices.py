@@ -29,11 +29,11 @@ versors) and delegates :meth:`Algebra.versor_matrices <cga_lessons.algebra.Algeb
 from __future__ import annotations
 
 import math
-import threading
 
 import numpy as np
 
 from cga_lessons.checks import fail, integer
+from cga_lessons.scratch import scratch
 
 from .coefficients import is_real_single
 from .multivector import Multivector, mv_from_dict, mv_from_pairs
@@ -80,25 +80,6 @@ VERSOR_TOLERANCE = 1e-12
 #: The rotor blades 1 e12 e13 e23 of a motor M = R + e n of G(4,1) (bitmaps e1=1 e2=2 e3=4 e+=8 e-=16): R = (M ^ E) E
 #: (2.141).  n sits on e1- e2- e3- e123- (negated: e n = (e+ + e-) n, 2.53) and, equal, on e1+ e2+ e3+ e123+.
 ROTOR_BLADES = (0, 3, 5, 6)
-
-#: Batches up to this many coefficients per grade (32 MB) reuse one scratch block per thread (``_scratch``).
-_SCRATCH_LIMIT = 1 << 22
-_LOCAL = threading.local()
-
-
-def _scratch(size: int) -> np.ndarray:
-    """A float scratch array of ``size`` elements, reused by the thread for batches up to ``_SCRATCH_LIMIT``.
-
-    A fresh block of megabytes costs a page fault per 4 kB page on first touch, which on some systems is
-    more than the arithmetic done in it.
-    """
-    if size > _SCRATCH_LIMIT:
-        return np.empty(size)
-    buf = getattr(_LOCAL, "buf", None)
-    if buf is None or buf.size < size:
-        buf = _LOCAL.buf = np.empty(max(size, 1 << 16))
-    return buf[:size]
-
 
 class VersorMatrices(dict):
     """``{grade: k x k matrix}`` of a versor's action in the blade order of (2.9), e+/e- basis.
@@ -339,13 +320,13 @@ class VersorActions:
         grade-g blade (an array of ``shape``, a number, or None when absent).  Returns the (k, prod(shape))
         block of the e+/e- coefficients of the result.
 
-        The input goes into a scratch block reused by the thread (``_scratch``),
+        The input goes into a scratch block reused by the thread (:func:`cga_lessons.scratch.scratch`),
         the e- rows as ``b - a``; after the product the e- rows get ``a' + w'``.
         """
         pairs = self.motors.null_tables(g)[1]
         k = len(rows)
         size = math.prod(shape)
-        z = _scratch(k * size).reshape((k,) + shape)
+        z = scratch(k * size, "versor apply").reshape((k,) + shape)
         minus = {j: i for i, j in pairs}
         for p, v in enumerate(rows):
             i = minus.get(p)

@@ -16,6 +16,7 @@ import numpy as np
 
 from cga_lessons import checks
 from cga_lessons.algebra import REAL_TYPES, Multivector, absmax, all_finite, any_sympy, is_real_single, is_sympy
+from cga_lessons.scratch import scratch
 
 from .model import G41, einf, exact_constants
 from .multivector_checks import check_points, check_vector, multivector
@@ -212,21 +213,21 @@ def _down_one(X: Multivector, func: str, name: str) -> np.ndarray:
 
 
 def _null(x1, x2, x3, xp, xm, work=None):
-    """Whether ``|X . X| <= NULL_RTOL (|X_E|^2 + X_+^2 + X_-^2)`` (floats, or arrays: ``work`` a spare one).
+    """Whether ``|X . X| <= NULL_RTOL (|X_E|^2 + X_+^2 + X_-^2)`` (floats, or arrays: ``work`` three spare ones).
 
     False where the squares overflow or underflow (callers then retry with the coefficients scaled).
     """
     if not isinstance(x1, np.ndarray):
         e2, pp, mm = x1 * x1 + x2 * x2 + x3 * x3, xp * xp, xm * xm
         return abs(e2 + pp - mm) <= NULL_RTOL * (e2 + pp + mm) and e2 + pp + mm > 1e-290
+    e2, sq, dot = (None, None, None) if work is None else work
     with np.errstate(over="ignore", invalid="ignore", under="ignore"):
-        e2 = x1 * x1
-        e2 += x2 * x2
-        e2 += x3 * x3
-        sq = np.multiply(xp, xp, out=work)
-        e2 += sq  # |X_E|^2 + X_+^2
+        e2 = np.multiply(x1, x1, out=e2)
+        e2 += np.multiply(x2, x2, out=sq)
+        e2 += np.multiply(x3, x3, out=sq)
+        e2 += np.multiply(xp, xp, out=sq)  # |X_E|^2 + X_+^2
         sq = np.multiply(xm, xm, out=sq)
-        dot = e2 - sq  # X . X (2.61)
+        dot = np.subtract(e2, sq, out=dot)  # X . X (2.61)
         e2 += sq
         np.abs(dot, out=dot)
         e2 *= NULL_RTOL
@@ -253,16 +254,18 @@ def _down_batch(X: Multivector, func: str, name: str) -> np.ndarray:
         bad = [G41.blade_names[b] for b in other if absmax(c[b]) > 1e-9 * max(scale, 1e-300)]
         if bad:
             raise checks.fail(func, name, f"a conformal point is a vector (grade 1), got blades {bad}")
-    zero = np.zeros(n)
-    x1, x2, x3, xp, xm = (np.broadcast_to(c.get(b, zero), n) for b in (1, 2, 4, 8, 16))
-    w = xm - xp  # -e . X, (2.111)
-    ref = np.abs(xm)
-    ref += np.abs(xp)
-    if not np.all(np.abs(w) > _WEIGHT_ULPS * ref):  # relative to the terms it cancels; also false for a NaN weight
-        if not (all_finite(w) and all_finite(ref)):
+    x1, x2, x3, xp, xm = (c.get(b, 0.0) for b in (1, 2, 4, 8, 16))  # arrays broadcast to n, or 0.0
+    # Working rows kept by the thread (cga_lessons.scratch): fresh megabytes here cost page faults on every call.
+    w, ref, t1, t2 = scratch(4 * math.prod(n), "down").reshape((4,) + n)
+    np.subtract(xm, xp, out=w)  # -e . X, (2.111)
+    np.abs(xm, out=ref)
+    ref += np.abs(xp, out=t1)
+    if not np.all(np.abs(w, out=t2) > np.multiply(ref, _WEIGHT_ULPS, out=t1)):  # relative to the terms it cancels
+        if not (all_finite(w) and all_finite(ref)):  # (also false for a NaN weight)
             raise checks.fail(func, name, "the coefficients contain NaN or inf")
         raise checks.degenerate(func, name, _AT_INFINITY)
-    if not np.all(_null(x1, x2, x3, xp, xm, ref)):  # X . X = 0 (2.61)
+    if not np.all(_null(x1, x2, x3, xp, xm, (ref, t1, t2))):  # X . X = 0 (2.61)
+        x1, x2, x3, xp, xm = (np.broadcast_to(v, n) for v in (x1, x2, x3, xp, xm))
         if not (all_finite(x1) and all_finite(x2) and all_finite(x3)):
             raise checks.fail(func, name, "the coefficients contain NaN or inf")
         big = np.maximum.reduce([np.abs(x1), np.abs(x2), np.abs(x3), np.abs(xp), np.abs(xm)])  # squares overflow?
@@ -275,3 +278,4 @@ def _down_batch(X: Multivector, func: str, name: str) -> np.ndarray:
     if not all_finite(out):
         raise checks.fail(func, name, "the coefficients contain NaN or inf, or are too large to read")
     return out
+
