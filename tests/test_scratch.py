@@ -45,8 +45,10 @@ def test_batch_down_matches_one_point_at_a_time_on_every_layout():
     separate = Multivector(moved.algebra, {b: np.array(v, copy=True) for b, v in moved._c.items()})
     on_axis = cga.up(np.column_stack([pts[:, 0], np.zeros(64), np.zeros(64)]))
     sparse = Multivector(on_axis.algebra, {b: v for b, v in on_axis._c.items() if b in (1, 8, 16)})
+    on_y = cga.up(np.column_stack([np.zeros(64), pts[:, 1], np.zeros(64)]))
+    no_e1 = Multivector(on_y.algebra, {b: v for b, v in on_y._c.items() if b in (2, 8, 16)})  # e1 absent
     scaled = Multivector(moved.algebra, {b: 3.0 * v for b, v in moved._c.items()})  # weight 3: same points
-    for X in (moved, separate, sparse, scaled):
+    for X in (moved, separate, sparse, no_e1, scaled):
         got = cga.down(X)
         one = np.array([cga.down(X.batch_item(i)) for i in range(64)])
         assert np.array_equal(got, one)

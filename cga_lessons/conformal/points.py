@@ -217,7 +217,7 @@ def _null(x1, x2, x3, xp, xm, work=None):
 
     False where the squares overflow or underflow (callers then retry with the coefficients scaled).
     """
-    if not isinstance(x1, np.ndarray):
+    if not any(isinstance(v, np.ndarray) for v in (x1, x2, x3, xp, xm)):
         e2, pp, mm = x1 * x1 + x2 * x2 + x3 * x3, xp * xp, xm * xm
         return abs(e2 + pp - mm) <= NULL_RTOL * (e2 + pp + mm) and e2 + pp + mm > 1e-290
     e2, sq, dot = (None, None, None) if work is None else work
@@ -238,7 +238,7 @@ _NOT_NULL = "X . X != 0: a sphere (or another vector that is not null), not a co
 
 
 def _down_batch(X: Multivector, func: str, name: str) -> np.ndarray:
-    """:func:`down` of a batch of points in one pass over its five coefficient arrays.
+    """:func:`down` of a batch of points, read off its five coefficient arrays (working rows: the thread's scratch).
 
     The weight ``-e . X = X_- - X_+`` (2.111) and the Euclidean part
     ``x_i / w`` (2.114) are read off the coefficients directly; the checks
@@ -278,4 +278,3 @@ def _down_batch(X: Multivector, func: str, name: str) -> np.ndarray:
     if not all_finite(out):
         raise checks.fail(func, name, "the coefficients contain NaN or inf, or are too large to read")
     return out
-
