@@ -6,7 +6,8 @@ import numpy as np
 
 from cga_lessons.mapping2d import CorrespondenceParams, MapParams, PlainGeometry, SegmentSet, compose, relative
 from cga_lessons.mapping2d.builder import MapBuilder
-from cga_lessons.mapping2d.graph import PoseGraph
+from cga_lessons.mapping2d.drift import MapDrift, Relaxation
+from cga_lessons.mapping2d.graph import PoseGraph, chain_uncertainty
 from cga_lessons.mapping2d.observations import Growing, PathLog
 
 
@@ -91,3 +92,93 @@ def test_growing_arrays_and_the_path_log():
         path.append(path[-1] + 0.5)
     assert len(path) == 10 and path[-1] == 4.5 and list(path)[:2] == [0.0, 0.5]
     assert np.array_equal(path.array, np.arange(10) * 0.5)
+
+
+# ---------------------------------------------------------------- issue 14: revisits of a map driven again and again
+
+
+def _laps(n_laps=6, per_lap=80, seed=0):
+    """A robot driving a 5 m circle ``n_laps`` times with drifting odometry (a heading bias of 0.004 rad a step);
+    every 4th pose from the second lap's second on is tied to the first lap's pose at the same place (an old
+    anchor, ever older): the truth, the steps' and the revisits' measurements."""
+    a = np.linspace(0, 2 * np.pi, per_lap, endpoint=False)
+    lap = np.column_stack([5 * np.cos(a), 5 * np.sin(a), np.mod(a + np.pi, 2 * np.pi) - np.pi / 2])
+    truth = np.tile(lap, (n_laps, 1))
+    rng = np.random.default_rng(seed)
+    steps = [relative(truth[k - 1], truth[k]) + rng.normal(0, [0.02, 0.02, 0.01]) + [0, 0, 0.004]
+             for k in range(1, len(truth))]  # fmt: skip
+    revisits = {k: k % per_lap for k in range(per_lap + 1, len(truth), 4)}
+    return truth, steps, revisits
+
+
+def _graph(truth, steps, revisits, k):
+    """The pose graph of the steps and revisits up to scan ``k``."""
+    g = PoseGraph()
+    for i in range(1, k + 1):
+        g.add(i - 1, i, steps[i - 1], np.diag([0.02**2, 0.02**2, 0.01**2]))
+        if i in revisits:
+            j = revisits[i]
+            g.add(j, i, relative(truth[j], truth[i]), np.diag([0.01**2, 0.01**2, 0.002**2]), loop=True)
+    return g
+
+
+def _relaxed_run(horizon, n_laps=6, seed=0):
+    """Poses predicted from the steps, the graph relaxed at each revisit by a Relaxation of ``horizon`` scans:
+    a list of (scan, poses freed, exact?, poses after the relaxation)."""
+    truth, steps, revisits = _laps(n_laps, seed=seed)
+    relax, log = Relaxation(horizon, (0.005, 0.001), 3.0), []
+    poses = np.zeros_like(truth)
+    poses[0] = truth[0]
+    for k in range(1, len(truth)):
+        poses[k] = compose(poses[k - 1], steps[k - 1])
+        if k in revisits:
+            new, first = relax.relax(_graph(truth, steps, revisits, k), poses[: k + 1], revisits[k], [k])
+            log.append((k, k + 1 - first, relax.exact == k, new.copy()))
+            poses[: k + 1] = new
+    return log
+
+
+def test_windowed_relaxation_is_bounded_and_its_scheduled_solves_are_the_optimum():
+    """Revisits of ever older anchors: relaxing every pose since the anchor frees more poses every lap; the
+    windowed relaxation frees a few, no more in the last lap than in the second, and its scheduled exact solves
+    (at scans 81, 165, 333: each at twice the last, from the earliest anchor deferred) give the optimum of the
+    whole graph, computed from the other run's poses (within 1e-4 m and rad, Gauss-Newton's stopping step): the
+    deferred corrections all made."""
+    for seed in (0, 1):
+        windowed, full = _relaxed_run(horizon=40, seed=seed), _relaxed_run(horizon=10**9, seed=seed)
+        assert [k for k, _, exact, _ in windowed if exact] == [81, 165, 333]
+        by_lap = {lap: max(n for k, n, exact, _ in windowed if k // 80 == lap and not exact) for lap in (2, 5)}
+        assert by_lap[5] <= by_lap[2] <= 40  # bounded: no growth with the laps
+        assert max(n for k, n, _, _ in full if k // 80 == 5) > 400  # every pose since the anchor: the history
+        for (k, _, exact, poses), (k2, _, _, other) in zip(windowed, full):
+            assert k == k2
+            if exact and k > 81:
+                truth, steps, revisits = _laps(seed=seed)
+                best = _graph(truth, steps, revisits, k).optimize(other, iterations=50, tol=1e-12)
+                assert np.abs(relative(best, poses)).max() < 1e-4, (seed, k)
+                assert np.abs(relative(best, other)).max() > 1e-3  # (the other run's poses were not the optimum)
+
+
+def test_map_drift_propagates_as_the_chain_and_is_brought_back_by_a_revisit():
+    """Without revisits the drift from the map is the chain's from the first pose: the heading variances summed,
+    the position's trace the steps' variances plus each heading error times its lever (two formulas); a revisit
+    brings the pose back to its anchor's drift plus the revisit's covariance."""
+    truth, _, _ = _laps(n_laps=1)
+    n = len(truth)
+    rng = np.random.default_rng(3)
+    var_xy, var_th = rng.uniform(1e-5, 1e-4, n), rng.uniform(1e-6, 1e-5, n)
+    var_xy[0] = var_th[0] = 0.0
+    drift = MapDrift(n)
+    for k in range(1, n):
+        drift.step(k, truth, var_xy[k], var_th[k])
+    k = n - 1
+    s_xy, s_th = chain_uncertainty(truth, var_xy, var_th, 0, k)
+    assert np.isclose(drift.cov[k][2, 2], s_th**2, rtol=1e-12)
+    assert np.isclose(np.trace(drift.cov[k][:2, :2]), s_xy**2 + var_xy.sum(), rtol=1e-12)
+    assert drift.between(0, k)[0] <= s_xy + 1e-12  # the largest axis of the position's ellipse, within the trace
+    before = drift.between(5, k)
+    tie = np.diag([1e-4, 1e-4, 1e-6])
+    drift.revisit(k, 5, tie)
+    assert np.allclose(drift.cov[k], drift.cov[5] + tie)
+    assert drift.between(5, k)[1] < before[1]
+    assert np.isclose(drift.between(5, k)[1], np.sqrt(2 * drift.cov[5][2, 2] + 1e-6))

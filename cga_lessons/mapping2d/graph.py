@@ -96,7 +96,8 @@ class PoseGraph:
 
     def _poses(self, poses, func: str) -> np.ndarray:
         x = checks.array(poses, func, "poses", (None, 3))
-        last = max(max(self.i, default=-1), max(self.j, default=-1))
+        ei, ej = self._edge_arrays()[:2]
+        last = int(max(ei.max(), ej.max())) if len(ei) else -1
         if len(x) <= last:
             raise checks.fail(func, "poses", f"{len(x)} poses, but an edge ties pose {last}")
         return x

@@ -34,6 +34,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from .drift import MapDrift, Relaxation
 from .graph import PoseGraph, chain_uncertainty, relative_pose_unchecked
 from .hypotheses import loop_hypotheses
 from .poses import compose_unchecked, wrap_unchecked
@@ -211,7 +212,7 @@ def _refined_hypotheses(b, k, pose, hypotheses, L, points, fov, old, hyp_cov, p)
     return results
 
 
-def apply_loop(builder, graph, poses, k, loops, params, robust):
+def apply_loop(builder, graph, poses, k, loops, params, robust, relaxation=None):
     """Add verified revisits to the pose graph; relax the graph and refit the map if they move the poses.
 
     Parameters
@@ -221,6 +222,10 @@ def apply_loop(builder, graph, poses, k, loops, params, robust):
     params : LoopParams
     robust : float
         Scale (standard deviations) of the robust weight of the pose graph's loop edges.
+    relaxation : Relaxation, optional
+        Which poses to free (:class:`~cga_lessons.mapping2d.drift.Relaxation`: every pose since the earliest
+        anchor, or a window of the latest when the anchor lies beyond its horizon).  None: every pose since the
+        earliest anchor.
 
     Returns
     -------
@@ -240,8 +245,11 @@ def apply_loop(builder, graph, poses, k, loops, params, robust):
     if not moved:
         return poses[: k + 1]  # already in place: the edges wait for the next relaxation
     first = min(loop.anchor for _, loop in loops)
-    new = graph.optimize(poses[: k + 1], robust=robust, first_free=first)
-    builder.refit(new)
+    if relaxation is None:
+        new = graph.optimize(poses[: k + 1], robust=robust, first_free=first)
+    else:
+        new, first = relaxation.relax(graph, poses[: k + 1], first, [s for s, _ in loops])
+    builder.refit(new, first=first)
     builder.remove_duplicates()
     return new
 
@@ -284,18 +292,32 @@ class LoopCloser:
         self.floor = np.diag([params.graph_sigma_xy**2, params.graph_sigma_xy**2, params.graph_sigma_theta**2])
         self.next_search = 0.0
         self.pending = None
+        self.drift = MapDrift(n_scans)  # each pose's drift from the map, brought back by revisits
+        self.relaxation = None  # made at the first revisit, with the builder's refit tolerance
 
     def add_step(self, k, poses, cov):
         """Tie pose ``k`` to pose ``k - 1`` by their relative pose, with covariance ``cov`` (plus the model floor)."""
         cov = cov + self.floor
         self.graph.add(k - 1, k, relative_pose_unchecked(poses[k - 1], poses[k]), cov)
         self.var_xy[k], self.var_theta[k] = max(cov[0, 0], cov[1, 1]), cov[2, 2]
+        self.drift.step(k, poses, self.var_xy[k], self.var_theta[k])
+
+    def window(self, poses, j, k):
+        """The drift ``(sigma_xy, sigma_theta)`` between scans ``j`` and ``k``: the smaller of the chain's
+        (:func:`~cga_lessons.mapping2d.graph.chain_uncertainty`) and of the two poses' drifts from the map
+        (:class:`~cga_lessons.mapping2d.drift.MapDrift`, brought back by the revisits made on the way)."""
+        chain = chain_uncertainty(poses, self.var_xy, self.var_theta, j, k)
+        if k - j <= self.params.graph_horizon:
+            return chain
+        held = self.drift.between(j, k)
+        return min(chain[0], held[0]), min(chain[1], held[1])
 
     def plausible(self, loop, poses, k, window) -> bool:
         """Is the correction a revisit asks of pose ``k`` within what the chain since its anchor allows?
 
         The correction's chi-square, against the chain's uncertainty
-        (:func:`~cga_lessons.mapping2d.graph.chain_uncertainty`) plus the
+        (:func:`~cga_lessons.mapping2d.graph.chain_uncertainty`; beyond
+        ``graph_horizon`` scans at most the drift :meth:`window` allows) plus the
         revisit's own covariance, must lie within the 0.999 quantile of the
         chi-square law of 3 degrees of freedom (16.3).  Revisits found by
         :func:`find_loop` already lie within the search window; this guards
@@ -319,7 +341,7 @@ class LoopCloser:
         self.next_search = path + p.loop_every
 
         def window(j):
-            return chain_uncertainty(poses, self.var_xy, self.var_theta, j, k)
+            return self.window(poses, j, k)
 
         loop = find_loop(builder, k, poses, L, points, fov, window, p)
         if loop is None:
@@ -335,6 +357,9 @@ class LoopCloser:
             self.pending = (k, loop, fix, path)
             self.next_search = path  # confirm at the next scan
             return None
-        new = apply_loop(builder, self.graph, poses, k, [self.pending[:2], (k, loop)], p, self.robust)
+        if self.relaxation is None:
+            self.relaxation = Relaxation(p.graph_horizon, builder.refit_tolerance, self.robust)
+        new = apply_loop(builder, self.graph, poses, k, [self.pending[:2], (k, loop)], p, self.robust, self.relaxation)
+        self.drift.revisit(k, loop.anchor, loop.cov + self.floor)
         self.pending = None
         return new, loop.cov
