@@ -212,7 +212,7 @@ def _refined_hypotheses(b, k, pose, hypotheses, L, points, fov, old, hyp_cov, p)
     return results
 
 
-def apply_loop(builder, graph, poses, k, loops, params, robust, relaxation=None):
+def apply_loop(builder, graph, poses, k, loops, params, relaxation):
     """Add verified revisits to the pose graph; relax the graph and refit the map if they move the poses.
 
     Parameters
@@ -220,12 +220,10 @@ def apply_loop(builder, graph, poses, k, loops, params, robust, relaxation=None)
     loops : list of (int, Revisit)
         ``(scan, loop)`` pairs, ``loop`` as returned by :func:`find_loop`.
     params : LoopParams
-    robust : float
-        Scale (standard deviations) of the robust weight of the pose graph's loop edges.
-    relaxation : Relaxation, optional
+    relaxation : Relaxation
         Which poses to free (:class:`~cga_lessons.mapping2d.drift.Relaxation`: every pose since the earliest
-        anchor, or a window of the latest when the anchor lies beyond its horizon).  None: every pose since the
-        earliest anchor.
+        anchor, or a window of the latest when the anchor lies beyond its horizon), with the loop edges' robust
+        weight.
 
     Returns
     -------
@@ -245,10 +243,7 @@ def apply_loop(builder, graph, poses, k, loops, params, robust, relaxation=None)
     if not moved:
         return poses[: k + 1]  # already in place: the edges wait for the next relaxation
     first = min(loop.anchor for _, loop in loops)
-    if relaxation is None:
-        new = graph.optimize(poses[: k + 1], robust=robust, first_free=first)
-    else:
-        new, first = relaxation.relax(graph, poses[: k + 1], first, [s for s, _ in loops])
+    new, first = relaxation.relax(graph, poses[: k + 1], first, [s for s, _ in loops])
     builder.refit(new, first=first)
     builder.remove_duplicates()
     return new
@@ -281,11 +276,13 @@ class LoopCloser:
     robust : float
         Scale (standard deviations) of the robust weight of the loop edges in the pose graph (the correction's
         ``gate``).
+    refit_tolerance : (float, float)
+        ``(m, rad)``: the map builder's refit tolerance, how far a windowed relaxation may leave its first pose
+        moved (:class:`~cga_lessons.mapping2d.drift.Relaxation`).
     """
 
-    def __init__(self, params, n_scans, robust):
+    def __init__(self, params, n_scans, robust, refit_tolerance):
         self.params = params
-        self.robust = robust
         self.graph = PoseGraph()
         self.var_xy = np.zeros(n_scans)
         self.var_theta = np.zeros(n_scans)
@@ -293,7 +290,7 @@ class LoopCloser:
         self.next_search = 0.0
         self.pending = None
         self.drift = MapDrift(n_scans)  # each pose's drift from the map, brought back by revisits
-        self.relaxation = None  # made at the first revisit, with the builder's refit tolerance
+        self.relaxation = Relaxation(params.graph_horizon, refit_tolerance, robust)
 
     def add_step(self, k, poses, cov):
         """Tie pose ``k`` to pose ``k - 1`` by their relative pose, with covariance ``cov`` (plus the model floor)."""
@@ -357,9 +354,7 @@ class LoopCloser:
             self.pending = (k, loop, fix, path)
             self.next_search = path  # confirm at the next scan
             return None
-        if self.relaxation is None:
-            self.relaxation = Relaxation(p.graph_horizon, builder.refit_tolerance, self.robust)
-        new = apply_loop(builder, self.graph, poses, k, [self.pending[:2], (k, loop)], p, self.robust, self.relaxation)
+        new = apply_loop(builder, self.graph, poses, k, [self.pending[:2], (k, loop)], p, self.relaxation)
         self.drift.revisit(k, loop.anchor, loop.cov + self.floor)
         self.pending = None
         return new, loop.cov

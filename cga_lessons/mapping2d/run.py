@@ -81,7 +81,7 @@ class MapRun:
         self.scans, self.odometry, self.params, self.max_range, self.ext = scans, odometry, params, max_range, ext
         T = len(scans)
         self.builder = MapBuilder(geometry, params, mount, max_range)
-        self.loops = LoopCloser(params.loops, T, params.correction.gate)
+        self.loops = LoopCloser(params.loops, T, params.correction.gate, self.builder.refit_tolerance)
         self.poses = np.zeros((T, 3))
         self.predicted = np.zeros((T, 3))
         self.n_matches = np.zeros(T, int)
