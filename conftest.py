@@ -27,3 +27,13 @@ def _close_figures():
 
     if "matplotlib.pyplot" in sys.modules:
         sys.modules["matplotlib.pyplot"].close("all")
+
+
+@pytest.fixture(autouse=True)
+def _doctest_temporary_files(request, tmp_path_factory, monkeypatch):
+    """The folders a doctest makes with ``tempfile`` go in pytest's own temporary tree, which pytest prunes."""
+    if isinstance(request.node, pytest.DoctestItem):
+        import tempfile
+
+        monkeypatch.setattr(tempfile, "tempdir", str(tmp_path_factory.mktemp("doctest")))
+    yield

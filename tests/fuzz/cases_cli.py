@@ -12,9 +12,9 @@ from pathlib import Path
 
 from cga_lessons import cli
 from cga_lessons.mapping2d import Segment, SegmentSet
-from fuzz.harness import Case
+from fuzz.harness import Case, temporary_folder
 
-_DIR = Path(tempfile.mkdtemp(prefix="cga-fuzz-cli-"))
+_DIR = temporary_folder("cga-fuzz-cli-")
 
 SEGS = [Segment([0.0, 0.0], [2.0, 0.0], 10, None, True, False), Segment([2.0, 0.0], [2.0, 1.5], 8)]
 MAP = _DIR / "map.csv"

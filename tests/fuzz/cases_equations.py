@@ -6,14 +6,13 @@ README functions are given a README of their own (a temporary copy with the mark
 
 from __future__ import annotations
 
-import tempfile
 from pathlib import Path
 
 from cga_lessons import equations as eq
 from cga_lessons.paths import PROJECT_ROOT
-from fuzz.harness import Case
+from fuzz.harness import Case, temporary_folder
 
-_DIR = Path(tempfile.mkdtemp(prefix="cga-fuzz-equations-"))
+_DIR = temporary_folder("cga-fuzz-equations-")
 
 
 def _readme() -> Path:

@@ -30,9 +30,9 @@ from cga_lessons.mapping2d import (
     Segment,
     SegmentSet,
 )
-from fuzz.harness import Case
+from fuzz.harness import Case, temporary_folder
 
-_DIR = Path(tempfile.mkdtemp(prefix="cga-fuzz-mapping2d-"))
+_DIR = temporary_folder("cga-fuzz-mapping2d-")
 
 ROOM = np.array([[0.0, 0.0], [4.0, 0.0], [4.0, 3.0], [0.0, 3.0]])
 BOX = np.array([[2.6, 1.8], [3.1, 1.8], [3.1, 2.2], [2.6, 2.2]])

@@ -8,9 +8,9 @@ import tempfile
 from pathlib import Path
 
 from cga_lessons import data_path, files
-from fuzz.harness import Case
+from fuzz.harness import Case, temporary_folder
 
-_DIR = Path(tempfile.mkdtemp(prefix="cga-fuzz-root-"))
+_DIR = temporary_folder("cga-fuzz-root-")
 
 
 def _fresh(name: str) -> Path:

@@ -11,15 +11,13 @@ camera, coincident points, parallel rays.  Cases holding conformal blades build 
 from __future__ import annotations
 
 import json
-import tempfile
-from pathlib import Path
 
 import numpy as np
 
 from cga_lessons import conformal as cga
 from cga_lessons import data_path
 from cga_lessons import stereo as st
-from fuzz.harness import Case
+from fuzz.harness import Case, temporary_folder
 
 RIG = st.stereo_head(baseline=0.2, focal_px=50.0, image_size=(64, 48))
 P1, P2 = RIG.P1, RIG.P2
@@ -78,7 +76,7 @@ DETECTIONS = st.detect_entities(CLOUD, np.random.default_rng(3), DETECT, noise=0
 DISP = np.array([[10.0, 12.0, np.inf, 11.0], [9.0, 10.0, 10.5, np.inf], [8.0, 9.0, 9.5, 10.0]])
 MOTO = dict(st.MOTORCYCLE_CALIBRATION)
 
-_DIR = Path(tempfile.mkdtemp(prefix="cga-fuzz-stereo-"))
+_DIR = temporary_folder("cga-fuzz-stereo-")
 NOT_A_RIG = _DIR / "not_a_rig.json"
 NOT_A_RIG.write_text(json.dumps({"baseline_m": 0.1}), encoding="utf-8")
 BAD_RIG = _DIR / "bad_rig.json"

@@ -10,7 +10,6 @@ value it changes, so that a spoiled call that was accepted leaves nothing behind
 from __future__ import annotations
 
 import functools
-import tempfile
 from pathlib import Path
 
 import matplotlib
@@ -50,9 +49,9 @@ from cga_lessons.viz import relocalization as vz_relocalization  # noqa: E402
 from cga_lessons.viz import scene3d as s3  # noqa: E402
 from cga_lessons.viz import scene3d_matplotlib as s3m  # noqa: E402
 from cga_lessons.viz import stereo as vz_stereo  # noqa: E402
-from fuzz.harness import Case, fresh_path  # noqa: E402
+from fuzz.harness import Case, fresh_path, temporary_folder  # noqa: E402
 
-_TMP = Path(tempfile.mkdtemp(prefix="cga-fuzz-viz-"))
+_TMP = temporary_folder("cga-fuzz-viz-")
 _SPHERE, _PLANE = cga.sphere([0.0, 0.0, 0.0], 1.0), cga.plane([0.0, 0.0, 1.0], 1.0)
 _LINE = cga.line_from_points([0.0, 0.0, 0.0], [1.0, 0.0, 0.0])
 _CIRCLE = cga.circle_from_points([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0])

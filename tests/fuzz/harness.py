@@ -25,6 +25,7 @@ outcome; ``python tests/fuzz/report.py`` lists every input tried and what it did
 
 from __future__ import annotations
 
+import atexit
 import copy
 import dataclasses
 import gzip
@@ -32,6 +33,7 @@ import inspect
 import itertools
 import math
 import numbers
+import shutil
 import signal
 import tempfile
 import warnings
@@ -119,7 +121,14 @@ def time_limit(seconds: float):
 
 
 # ------------------------------------------------------------------ bad values by the type of the valid one
-_FILES = Path(tempfile.mkdtemp(prefix="cga-fuzz-"))
+def temporary_folder(prefix: str) -> Path:
+    """A new folder for the files the cases write and read, removed when the test process ends."""
+    folder = Path(tempfile.mkdtemp(prefix=prefix))
+    atexit.register(shutil.rmtree, folder, ignore_errors=True)
+    return folder
+
+
+_FILES = temporary_folder("cga-fuzz-")
 _MISSING = itertools.count()
 
 
