@@ -121,10 +121,12 @@ def test_point_pair_guards():
     with pytest.raises(DegenerateGeometryError, match="imaginary"):
         cga.point_pair_endpoints(PP)
     a = np.array([4.0, 0.0, 0.0])
-    with pytest.raises(DegenerateGeometryError, match="accuracy guard"):
-        cga.point_pair_endpoints(cga.point_pair(a, a + [0, 5e-5, 0]))
-    p1, _ = cga.point_pair_endpoints(cga.point_pair(a, a + [0, 1e-3, 0]))  # above the guard: accurate
+    with pytest.raises(DegenerateGeometryError, match="accuracy guard"):  # a raw wedge: its coefficients only
+        cga.point_pair_endpoints(cga.up(a) ^ cga.up(a + [0, 5e-5, 0]))
+    p1, _ = cga.point_pair_endpoints(cga.up(a) ^ cga.up(a + [0, 1e-3, 0]))  # above the guard: accurate
     assert np.allclose(p1, a, atol=1e-7)
+    p1, p2 = cga.point_pair_endpoints(cga.point_pair(a, a + [0, 5e-5, 0]))  # anchored: read about a, exact
+    assert np.abs(p1 - a).max() <= 1e-15 and np.abs(p2 - a - [0, 5e-5, 0]).max() <= 1e-15
 
 
 def test_point_pair_sphere_eq_2_134():

@@ -4,7 +4,7 @@
 up/down (:mod:`cga_lessons.conformal.model`, 2.52-2.60, and :mod:`cga_lessons.conformal.points`, 2.61-2.67,
 2.111-2.114), the entities of
 table 2.1 and their properties (:mod:`cga_lessons.conformal.entities`, :mod:`cga_lessons.conformal.lines_circles`,
-section 2.4) and
+section 2.4; exact far from the origin through their local frames, :mod:`cga_lessons.conformal.anchored`) and
 the versors of table 2.2 (:mod:`cga_lessons.conformal.versors`, 2.82-2.110, 2.135-2.145),
 and beyond the thesis the logarithm, roots and interpolation of motors and the
 dilator (:mod:`cga_lessons.conformal.versor_log`, :mod:`cga_lessons.conformal.versor_powers`), contractions,

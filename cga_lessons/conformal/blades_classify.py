@@ -26,6 +26,7 @@ import numpy as np
 from cga_lessons import checks
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
 
+from .anchored import frame
 from .blades import dual, left_contraction, meet, undual
 from .blades_span import require_blade
 from .model import einf
@@ -121,7 +122,9 @@ def classify(X, form: str = "auto", tol: float = 1e-10, tangent_tol: float = 1e-
     to its square (the test of ``X X^``, which tells a small round from a tangent).  Both sit above round-off, but
     floats resolve small rounds far from the origin badly in this representation: for a point pair of separation d
     at distance D, ``|X X^| / |X|^2`` is about ``d^2 / (2 (1 + D^2)^2)``, its round-off about ``eps D / d``, and
-    ``radius2`` has a relative error near ``eps D^5 / d^3`` (measured: 10 % for a pair 1 cm apart, 70 m out).
+    ``radius2`` has a relative error near ``eps D^5 / d^3`` (measured: 10 % for a pair 1 cm apart, 70 m out).  An
+    entity the constructors built carries its local frame (:mod:`~cga_lessons.conformal.anchored`) and is classified
+    by its local blade, which has the same kind and radius (the tests are invariant under translation) at any distance.
 
     >>> from cga_lessons import conformal as cga
     >>> classify(cga.circle_from_points([1, 0, 0], [0, 1, 0], [-1, 0, 0])).name
@@ -134,7 +137,7 @@ def classify(X, form: str = "auto", tol: float = 1e-10, tangent_tol: float = 1e-
     """
     tol = checks.real(tol, "classify", "tol", low=0.0, high=1.0, strict_high=True)
     tangent_tol = checks.real(tangent_tol, "classify", "tangent_tol", low=0.0, high=1.0, strict_high=True)
-    X, k = require_blade(X, "classify", "X")
+    X, k = require_blade(frame(X)[1], "classify", "X")  # an anchored entity: its local blade (the same kind, radius)
     f = _form(form, k, "classify", "form")
     if k == 1 and abs(float((X * X).scalar())) <= tangent_tol * _size(X) ** 2:  # null: a point in both readings
         at_infinity = _size(einf ^ X) <= tol * _size(X)

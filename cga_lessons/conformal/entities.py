@@ -10,15 +10,15 @@ Every function takes NumPy points of shape (3,) or (N, 3) (a batch) or three
 SymPy expressions, and returns NumPy at the Euclidean edge.  SymPy input takes
 the printed formulas, exactly.
 
-**Accuracy far from the origin** (:mod:`cga_lessons.conformal.entities_frame`).  Float
-constructors build each shape at its points in closed form and store the e0
-part of a round exactly; readers take positions from the parts that hold them
-without cancellation.  Flats and centres are good to a few eps at any
-distance.  The squared size of a round (rho^2, a pair's separation^2) at
-distance |c| is held by the float blade only to ``~eps (|c|^2 + size^2 + 1)``
-absolute, a limit of the e+/e- storage (a unit sphere: 1e-10 at 1 km, 1e-4 at
-1000 km); its e0 part (a circle's normal, a pair's a - b) to ``~eps (|c|^2 + 1)``
-relative likewise.
+**Accuracy far from the origin** (:mod:`cga_lessons.conformal.entities_frame`,
+:mod:`cga_lessons.conformal.anchored`).  Float constructors build each shape
+in closed form at its points, and the rounds and lines carry it besides about
+a point of the data (an ``Anchored`` entity): their properties are read there,
+to a few eps of their size at any distance (positions plus the rounding of
+their own coordinates).  A plain blade (the result of products, sums, ...)
+holds a round's rho^2 only to ``~eps (|c|^2 + size^2 + 1)`` absolute at
+distance |c| (a unit sphere: 1e-10 at 1 km, 1e-4 at 1000 km), its e0 part (a
+circle's normal, a pair's a - b) to ``~eps (|c|^2 + 1)`` relative.
 """
 
 from __future__ import annotations
@@ -29,6 +29,7 @@ from cga_lessons import checks
 from cga_lessons.algebra import Multivector, any_sympy, is_sympy
 
 from . import entities_frame as _F
+from .anchored import frame, from_points, pair_about_an_end, sphere_at, times_invariant
 from .entities_read import pair_points, read_pair, read_plane, read_sphere
 from .model import CONSTANTS, G41, ModelConstants, einf, exact_constants
 from .multivector_checks import COORD_LIMIT, check_points, multivector
@@ -79,15 +80,19 @@ def grade_of(X: Multivector, func: str, allowed: tuple[int, ...], arg: str | Non
 
 
 def standard_form(X: Multivector) -> Multivector:
-    """The standard form X = X* Ic of a dual-form entity (inverse of 2.31)."""
+    """The standard form X = X* Ic of a dual-form entity (inverse of 2.31).
+
+    An anchored entity stays anchored (:mod:`~cga_lessons.conformal.anchored`): Ic commutes with the translator
+    (2.100), so the local blade is dualised likewise.
+    """
     multivector(X, "standard_form", "X", nonzero=False)
-    return X * constants_of(X).Ic
+    return times_invariant(X, constants_of(X).Ic)
 
 
 def dual_form(X: Multivector) -> Multivector:
-    """The dual X* = X Ic^-1 (2.31)."""
+    """The dual X* = X Ic^-1 (2.31); an anchored entity stays anchored, as in :func:`standard_form`."""
     multivector(X, "dual_form", "X", nonzero=False)
-    return X * (-constants_of(X).Ic)  # Ic^2 = -1, so Ic^-1 = -Ic
+    return times_invariant(X, -constants_of(X).Ic)  # Ic^2 = -1, so Ic^-1 = -Ic
 
 
 def _per_item(value, func: str, name: str, batch: tuple, *, low: float | None = None):
@@ -130,13 +135,14 @@ def point_pair(a, b) -> Multivector:
 
     Floats: the closed form about the midpoint (or the end nearer the
     origin), its e0 part ``a - b`` put on the grid of its e+/e- coefficients
-    (a change of ``~eps (|m|^2 + 1)`` relative) and stored exactly.  Raises
-    :class:`DegenerateGeometryError` when a and b coincide.
+    (a change of ``~eps (|m|^2 + 1)`` relative), anchored at the end nearer
+    the origin (exact there).  Raises :class:`DegenerateGeometryError` when a
+    and b coincide.
     """
     pts = _F.points("point_pair", "a, b", a, b)
     if pts is None:
         return require_nonzero(exact_up(a) ^ exact_up(b), "point_pair", "a, b", "the two points coincide")
-    return _F.point_pair(*pts, "point_pair")
+    return from_points(_F.point_pair, "point_pair", *pts, local=pair_about_an_end)
 
 
 def point_pair_endpoints(PP: Multivector, min_separation: float | None = None):
@@ -160,14 +166,13 @@ def point_pair_endpoints(PP: Multivector, min_separation: float | None = None):
     PP : Multivector
         Point pair, dual form (grade 2) or standard form (grade 3); a batch is fine.
     min_separation : float, optional
-        Refuse pairs closer than this.  Default: the separation the
-        coefficients resolve to ``entities_frame.PAIR_RTOL`` = 1e-6 of itself, about
-        ``4 |m| sqrt(eps / 1e-6)`` = 6e-5 |m| (h^2 carries a round-off of
-        about ``8 eps (|m|^2 + h^2)``).  The endpoints carry besides the
-        storage limit of the direction a - b, ``~eps (|m|^2 + 1)`` relative:
-        errors of about ``eps (|m|^2 + 1) (s + 1/s)`` for a separation s.
-        ``min_separation=0`` disables the guard.  A pair made by
-        products (``s1 ^ s2 ^ s3``) carries the round-off of those too.
+        Refuse pairs closer than this.  Default: the separation resolved to
+        ``entities_frame.PAIR_RTOL`` = 1e-6 of itself, ``4 |m| sqrt(eps / 1e-6)``
+        (h^2 carries a round-off of ``8 eps (|m|^2 + h^2)``), m the midpoint
+        about the anchor of ``point_pair``'s pairs (never refused, exact), about
+        the origin for a plain blade (whose ends also carry the storage limit
+        of a - b, ``~eps (|m|^2 + 1) (s + 1/s)`` for a separation s, and the
+        round-off of the products that made it).  0 disables the guard.
 
     Returns
     -------
@@ -220,10 +225,13 @@ def point_pair_sphere(PP: Multivector) -> Multivector:
     if any_sympy(B):
         S = (B * (B ^ constants_of(B).einf).inv()).grade(1)
         return normalize_point(S, "point_pair_sphere")
-    m, h2, _, tol = read_pair(B, "point_pair_sphere", "PP")
+    f, loc = frame(B)
+    m, h2, _, tol = read_pair(loc, "point_pair_sphere", "PP")
     if np.any(h2 < -(tol + 1e-12)):
         raise checks.degenerate("point_pair_sphere", "PP", "B B < 0, the point pair is imaginary (no real points)")
-    return _F.sphere_std(m, _F.dot(m, m) - h2, 1.0, "point_pair_sphere", "PP")
+    if f is None:
+        return _F.sphere_std(m, _F.dot(m, m) - h2, 1.0, "point_pair_sphere", "PP")
+    return sphere_at(f, m, h2, "point_pair_sphere", "PP")  # anchored as the pair: exact at any distance
 
 
 # ------------------------------------------------------------------- spheres
@@ -231,9 +239,8 @@ def sphere(center, radius) -> Multivector:
     """Sphere s = p - rho^2 e / 2 in standard form, Eq. (2.72).
 
     ``center`` has shape (3,) or (N, 3); ``radius`` a scalar or (N,) array, >= 0.
-    In floats the weight 1 is stored exactly (``e- - e+`` is 1 to the bit);
-    beyond |p| ~ 1e8 that is impossible and the weight is the smallest power
-    of two that is.
+    In floats the weight 1 is stored exactly (``e- - e+`` is 1 to the bit;
+    beyond |p| ~ 1e8 the smallest power of two that can be), anchored at p.
     """
     pts = _F.points("sphere", "center", center)
     radius = _per_item(radius, "sphere", "radius", ("center", None if pts is None else pts[0]), low=0)
@@ -243,7 +250,7 @@ def sphere(center, radius) -> Multivector:
         checks.magnitude(radius, "sphere", "radius", limit=COORD_LIMIT, why="its square overflows a float"), dtype=float
     )
     p = pts[0]
-    return _F.sphere_std(p, _F.dot(p, p) - r * r, 1.0, "sphere", "center, radius")
+    return sphere_at(p, 0.0 * p, r * r, "sphere", "center, radius")  # anchored at its centre
 
 
 def sphere_from_points(a, b, c, d) -> Multivector:
@@ -262,7 +269,7 @@ def sphere_from_points(a, b, c, d) -> Multivector:
         return require_nonzero(
             S, "sphere_from_points", "a, b, c, d", "the 4 points are coplanar, concyclic or coincident"
         )
-    return dual_form(_F.sphere_from_points(*pts, "sphere_from_points"))
+    return dual_form(from_points(_F.sphere_from_points, "sphere_from_points", *pts))
 
 
 def sphere_center_radius(S: Multivector):
@@ -273,7 +280,8 @@ def sphere_center_radius(S: Multivector):
     the radius from ``s^2 = rho^2`` (2.73).  Floats: ``w = e- - e+`` (2.115),
     centre = Euclidean part / w (a few eps), ``rho^2 = |p|^2 - 2 s_e / w``,
     the factored ``s^2 / w^2`` (never the squares of the e+/e- coefficients),
-    to about ``8 eps (|p|^2 + rho^2 + 1)`` absolute: all the blade holds.
+    to about ``8 eps (|p|^2 + rho^2 + 1)`` absolute, p about the anchor of an
+    anchored sphere (exact), about the origin for a plain blade.
 
     Returns
     -------
@@ -304,10 +312,10 @@ def point_sphere_side(x, S: Multivector, atol: float = 1e-9):
 
     Returns +1 inside, 0 on (|x . s| <= atol, in units of length^2), -1 outside,
     from the sign of ``x . s = (rho^2 - |x - p|^2)/2`` with both normalised,
-    computed as that difference with |x - p| taken at the point.  Far from
-    the origin the sphere's rho^2 is known only to ``8 eps (|p|^2 + rho^2 + 1)``
-    (see :func:`sphere_center_radius`): points closer to the surface than
-    that, in length^2, get an arbitrary sign.
+    computed as that difference with |x - p| taken at the point (x - f first
+    for an anchored sphere, f its anchor).  A plain blade far out holds rho^2
+    only to ``8 eps (|p|^2 + rho^2 + 1)`` (:func:`sphere_center_radius`):
+    points closer to its surface than that, in length^2, get an arbitrary sign.
     """
     g = grade_of(S, "point_sphere_side", (1, 4), "S")
     atol = checks.real(atol, "point_sphere_side", "atol", low=0)
@@ -317,8 +325,10 @@ def point_sphere_side(x, S: Multivector, atol: float = 1e-9):
         X = up(x) if not isinstance(x, Multivector) else normalize_point(x, "point_sphere_side")
         v = np.asarray((X | normalize_point(s, "point_sphere_side")).scalar(), dtype=float)
     else:
-        p, r2, _, _ = read_sphere(s, "point_sphere_side", "S")
-        v = 0.5 * (r2 - _F.dot(xe - p, xe - p))
+        f, loc = frame(s)  # an anchored sphere: x - f first, then the local centre (no |x|-sized rounding)
+        p, r2, _, _ = read_sphere(loc, "point_sphere_side", "S")
+        d = xe - p if f is None else (xe - f) - p
+        v = 0.5 * (r2 - _F.dot(d, d))
     out = np.where(np.abs(v) <= atol, 0, np.sign(v)).astype(int)
     return int(out) if out.ndim == 0 else out
 

@@ -4,7 +4,9 @@
 Each reader splits a blade by its null parts (``E + Xe ^ e + Y ^ e0 + D ^ E_pm``, see
 :mod:`~cga_lessons.conformal.entities_frame`), reads the weight-like part Y as ``M - P`` and the positions from
 the parts that hold them without cancellation, and returns with the result the round-off bound of its one squared
-size.  (The numeric side of :mod:`cga_lessons.conformal.entities` and :mod:`cga_lessons.conformal.lines_circles`;
+size.  An anchored entity (:mod:`cga_lessons.conformal.anchored`) is read from its local blade, about its anchor,
+and the anchor added back to the positions: its round-off bound is then that of the local blade, a few eps of its
+own size.  (The numeric side of :mod:`cga_lessons.conformal.entities` and :mod:`cga_lessons.conformal.lines_circles`;
 import the entities from there.)
 """
 
@@ -15,12 +17,19 @@ import numpy as np
 from cga_lessons.algebra import DegenerateGeometryError, Multivector
 from cga_lessons.checks import degenerate, fail
 
+from .anchored import frame
 from .entities_frame import EPS, PAIR_RTOL, biv, check_flat, check_round, dot, norm, quiet, split, vec
+
+
+def at(p, f):
+    """A position p read about the anchor f, back in global coordinates (p itself without an anchor)."""
+    return p if f is None else f + p
 
 
 @quiet
 def read_sphere(s: Multivector, func: str, arg: str):
     """Centre p, rho^2, weight w and the round-off bound of rho^2 of a standard-form sphere (grade 1)."""
+    f, s = frame(s)
     E, Xe, Y, _, P, M = split(s, func, arg)
     check_round(Y, P, M, func, arg, "s . e = 0, a plane, not a sphere")
     w = Y[..., 0]
@@ -30,12 +39,13 @@ def read_sphere(s: Multivector, func: str, arg: str):
     r2 = pp - q
     if not (np.all(np.isfinite(p)) and np.all(np.isfinite(r2))):
         raise fail(func, arg, "the coefficients are too large: reading them overflows")
-    return p, r2, w, 16 * EPS * (pp + np.abs(q))
+    return at(p, f), r2, w, 16 * EPS * (pp + np.abs(q))
 
 
 @quiet
 def read_pair(B: Multivector, func: str, arg: str):
     """Midpoint m, half separation^2 h2, the unit direction of Y = k (a - b) and the round-off bound of h2."""
+    f, B = frame(B)
     E, Xe, Y, D, P, M = split(B, func, arg)
     check_round(Y, P, M, func, arg, "B . e = 0, the point pair has no finite points")
     y = vec(Y)
@@ -48,12 +58,13 @@ def read_pair(B: Multivector, func: str, arg: str):
     mm = dot(m, m)
     if not (np.all(np.isfinite(m)) and np.all(np.isfinite(h2))):
         raise fail(func, arg, "the coefficients are too large: reading them overflows")
-    return m, h2, u, 8 * EPS * (mm + np.abs(h2))
+    return at(m, f), h2, u, 8 * EPS * (mm + np.abs(h2))
 
 
 @quiet
 def read_circle(Zd: Multivector, func: str, arg: str):
     """Centre p, rho^2, the unit normal along N and the round-off bound of rho^2 of a dual circle (grade 3)."""
+    f, Zd = frame(Zd)
     E, Xe, Y, D, P, M = split(Zd, func, arg)
     check_round(Y, P, M, func, arg, "the e0 part is zero: a line (a circle of infinite radius), not a circle")
     n = biv(Y)
@@ -66,7 +77,7 @@ def read_circle(Zd: Multivector, func: str, arg: str):
     pp = dot(p, p)
     if not (np.all(np.isfinite(p)) and np.all(np.isfinite(r2))):
         raise fail(func, arg, "the coefficients are too large: reading them overflows")
-    return p, r2, u, 16 * EPS * (pp + np.abs(r2))
+    return at(p, f), r2, u, 16 * EPS * (pp + np.abs(r2))
 
 
 @quiet

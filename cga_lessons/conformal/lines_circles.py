@@ -14,6 +14,7 @@ from cga_lessons import checks
 from cga_lessons.algebra import Multivector, any_sympy
 
 from . import entities_frame as _F
+from .anchored import frame, from_points
 from .entities import (
     constants_of,
     dual_form,
@@ -54,7 +55,7 @@ def line_from_points(a, b) -> Multivector:
     if pts is None:
         L = exact_constants().einf ^ exact_up(a) ^ exact_up(b)
         return require_nonzero(L, "line_from_points", "a, b", "the two points coincide")
-    return _F.line(*pts, "line_from_points")
+    return from_points(_F.line, "line_from_points", *pts)
 
 
 def as_dual_line(L: Multivector, func: str) -> Multivector:
@@ -128,16 +129,21 @@ def point_line_distance(x, L: Multivector):
     squared radius.  SymPy input takes that formula; floats take the same
     distance at the point, ``|(x - p0) x r|`` with p0 the line's closest point
     to the origin (2.129) and r its direction (2.127), which loses nothing to
-    the distance from the origin (the formula above loses eps |x|^2 / rho).
+    the distance from the origin (the formula above loses eps |x|^2 / rho);
+    for a line of :func:`line_from_points` (anchored at one of its points f,
+    :mod:`~cga_lessons.conformal.anchored`) ``x - f`` first and p0 about f, so
+    that the distance keeps its relative accuracy even where it is far below
+    the coordinates' own resolution.
     Returns a float (or an (N,) array); 0 for points on the line.
     """
     Ld = as_dual_line(L, "point_line_distance")
     xe = euclid_point(x, "point_line_distance")
     if not (xe is None or any_sympy(Ld)):
-        d, mu = read_line(Ld, "point_line_distance", "L")
+        f, loc = frame(Ld)
+        d, mu = read_line(loc, "point_line_distance", "L")
         nd = _F.norm(d)
         p0 = np.cross(d, mu) / (nd * nd)[..., None]
-        return _F.out(_F.norm(np.cross(xe - p0, d / nd[..., None])))
+        return _F.out(_F.norm(np.cross((xe if f is None else xe - f) - p0, d / nd[..., None])))
     import sympy
 
     Ln = normalize_line(Ld)
@@ -169,7 +175,7 @@ def circle_from_points(a, b, c) -> Multivector:
         if not (Z ^ exact_constants().einf).simplify().coeffs:  # z* ^ e = 0: a flat, the points are collinear
             raise checks.degenerate("circle_from_points", "a, b, c", "the 3 points are collinear (a line, no circle)")
         return Z
-    return _F.circle(*pts, "circle_from_points")
+    return from_points(_F.circle, "circle_from_points", *pts)
 
 
 def circle_plane(Z: Multivector) -> Multivector:
@@ -205,7 +211,9 @@ def circle_center_radius(Z: Multivector):
     route; floats read the same centre and radius from the null parts of z*
     (see :func:`circle_from_points`): ``p = ((p . N) N + N x (p x N)) / |N|^2``
     without cancellation, rho^2 to about ``8 eps (|p|^2 + rho^2 + 1)``
-    absolute and the normal to ``~eps (|p|^2 + 1)``: limits of the storage.
+    absolute and the normal to ``~eps (|p|^2 + 1)``, p about the anchor of an
+    anchored circle (``circle_from_points``'s: exact at any distance), about
+    the origin for a plain blade (limits of its storage).
 
     Returns
     -------

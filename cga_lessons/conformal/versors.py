@@ -47,6 +47,7 @@ from cga_lessons.algebra import (
     is_real_single,
 )
 
+from .anchored import Anchored, frame, moved
 from .model import G41, einf
 from .multivector_checks import COORD_LIMIT, COORD_WHY, check_points, input_error, multivector, mv_is_finite
 from .points import down, up
@@ -141,7 +142,7 @@ def _apply(V, X, func: str, vname: str, xname: str) -> Multivector:
     """:func:`apply` with its checks in the words of the public function ``func`` (arguments ``vname``,
     ``xname``): V and X multivectors of one algebra, V non-zero and invertible of one parity, the result finite
     (a NaN or inf in V or X, or an overflow, is refused; the check of a finite result is one sum)."""
-    if type(V) is not Multivector or type(X) is not Multivector:
+    if type(V) is not Multivector or (type(X) is not Multivector and type(X) is not Anchored):  # checked when made
         multivector(V, func, vname, what="a versor (Multivector)", algebra=None)
         multivector(X, func, xname, what="a Multivector", algebra=None, nonzero=False)
     if not V._c:
@@ -164,12 +165,21 @@ def _apply(V, X, func: str, vname: str, xname: str) -> Multivector:
         raise input_error(func, {vname: V, xname: X}, exc) from None
     try:  # mv_is_finite inlined for one entity (NaN and inf propagate through the sum)
         if math.isfinite(math.fsum(Y._c.values())):
-            return Y
+            return Y if type(X) is Multivector else _keep_frame(V, X, Y)
     except (TypeError, ValueError, OverflowError):  # arrays (a batch), SymPy, inf - inf, or terms near 1e308
         pass
     if mv_is_finite(Y, batches=False):  # a batch of entities is checked where it is made (up, the constructors)
-        return Y
+        return Y if type(X) is Multivector else _keep_frame(V, X, Y)
     raise input_error(func, {vname: V, xname: X})
+
+
+def _keep_frame(V, X, Y) -> Multivector:
+    """Y = apply(V, X) anchored when X is anchored and V a motor T_t R (2.102): the anchor moves as a point and the
+    local blade turns by the rotor part of V (:func:`~cga_lessons.conformal.anchored.moved`; a scaled motor's scale
+    cancels in ``V X V^-1``).  Y as it is otherwise (V not a motor: reflections, inversions, ...)."""
+    f, _ = frame(X, settle=False)
+    motion = G41.rigid_motion(V) if f is not None and V.algebra is G41 else None
+    return Y if motion is None else moved(X, Y, V, *motion)
 
 
 def apply_to_points(V: Multivector, x) -> np.ndarray:

@@ -22,8 +22,10 @@ def point_pair_accuracy(separations, distance, rng, trials=20):
     """The experiment behind the accuracy figure of (2.131).
 
     For each separation, ``trials`` random pairs centred at ``distance`` from
-    the origin (random directions) are built with ``cga.point_pair`` and read
-    back twice with ``cga.point_pair_endpoints``: once with the guard switched
+    the origin (random directions) are built with ``cga.point_pair``, kept as
+    their stored coefficients alone (``.plain()``: without the local frame the
+    library's pairs carry, which reads them exactly) and read back twice with
+    ``cga.point_pair_endpoints``: once with the guard switched
     off (``min_separation=0``) to measure the error of the formula, once with
     the default guard to see which pairs it refuses.
 
@@ -46,7 +48,7 @@ def point_pair_accuracy(separations, distance, rng, trials=20):
             m, d = rng.normal(size=3), rng.normal(size=3)
             m, d = distance * m / np.linalg.norm(m), d / np.linalg.norm(d)
             a, b = m - d * s / 2, m + d * s / 2
-            PP = cga.point_pair(a, b)
+            PP = cga.point_pair(a, b).plain()  # its stored coefficients alone, without the pair's local frame
             try:
                 p1, p2 = cga.point_pair_endpoints(PP, min_separation=0.0)
                 errs.append(max(np.linalg.norm(p1 - a), np.linalg.norm(p2 - b)))

@@ -29,7 +29,8 @@ __all__ = ["PairExplorer", "pair_readback"]
 
 
 def pair_readback(separation: float, distance: float, direction=(0.48, 0.6, 0.64)) -> dict:
-    """Build ``a ^ b`` (2.68) and read the points back (2.131): the error, and whether the default guard refuses.
+    """Build ``a ^ b`` (2.68), keep its stored coefficients alone (without the local frame of ``cga.point_pair``)
+    and read the points back (2.131): the error, and whether the default guard refuses.
 
     ``a`` and ``b`` lie ``separation`` apart along ``direction`` about the midpoint
     ``distance * (1, 1, 1)/sqrt(3)``.  Returns ``{"a", "b", "p1", "p2", "error", "guard"}`` with ``error`` the
@@ -57,7 +58,7 @@ def _readback(separation: float, distance: float, d: np.ndarray) -> dict:
     m = distance * np.ones(3) / np.sqrt(3.0)
     a, b = m - d * separation / 2, m + d * separation / 2
     try:
-        pair = cga.point_pair(a, b)
+        pair = cga.point_pair(a, b).plain()  # its stored coefficients alone, without the pair's local frame
     except DegenerateGeometryError:  # a and b are one float point: no pair, no answer
         nan = np.full(3, np.nan)
         return {"a": a, "b": b, "p1": nan, "p2": nan.copy(), "error": float("nan"), "guard": "refused"}

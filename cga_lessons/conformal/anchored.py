@@ -1,0 +1,318 @@
+"""Entities that carry a local frame, so that their properties are exact at any distance from the origin (section
+2.4, the translator 2.100).
+
+**Why.**  A round (sphere, circle, point pair) at distance |c| from the origin stores |c|^2-sized e+/e- coefficients
+whose difference is its squared size (see :mod:`cga_lessons.conformal.entities_frame`): the 32 float64 coefficients
+of a unit sphere 1e6 out do not hold its radius to better than about 1e-4.  No reader can do better than the blade
+holds, so the entities the library builds carry more: an :class:`Anchored` is a
+:class:`~cga_lessons.algebra.Multivector` (the ordinary global coefficients: every product, dual, meet, ... works on
+them exactly as on a plain multivector, bit for bit) with two read-only slots,
+
+* ``anchor``: a Euclidean point f of the data, shape (3,), or (..., 3) for a batch;
+* ``local``: the same entity about the anchor, ``T_{-f} X ~T_{-f}`` (2.100): a plain multivector with small,
+  well-conditioned coefficients, built in closed form from the data translated by -f (never by translating the
+  global coefficients).
+
+The readers (``sphere_center_radius``, ``circle_center_radius``, ``point_pair_endpoints``, ``point_sphere_side``,
+``point_pair_sphere``, ``classify``) read ``local`` and add the anchor back: sizes and directions to a few eps
+relative, positions to that plus the rounding of the coordinates themselves.  Both describe the same entity; the
+global coefficients are its rounding onto the e+/e- storage (the e0 part of a round is put on the grid of its e+/e-
+coefficients, a change of ~eps |c|^2 relative), ``local`` is the entity of the data.
+
+**What keeps the frame.**  The dual and standard forms (``X Ic``: the pseudoscalar commutes with every motion),
+``apply`` of a motor (``M T_f = T_{M f} R`` for M = T_t R, 2.102: the anchor moves as a point, ``local`` turns by
+the rotor part) and :meth:`Anchored.batch_item`.  Every other operation (products, sums, scaling, negation,
+reverse, grade projection, ``inv``, ``simplify``, ``>>``, reflections and inversions, ...) builds a plain
+:class:`~cga_lessons.algebra.Multivector`: the frame is dropped, never stale.  An :class:`Anchored` cannot be
+changed in place: its coefficient map refuses writes and its arrays are read-only; ``copy.copy`` and
+``copy.deepcopy`` return it as it is.  It prints and compares as the multivector of its global coefficients.
+
+**Cost.**  The local blade and a motion are built when first read (:meth:`Anchored.settle`): a constructor adds
+the choice of the anchor, ``apply`` a few microseconds whatever the batch, a reader one small closed form.
+
+Lines are anchored too (at one of their points), for ``point_line_distance``: ``x - f`` first keeps a distance far
+below the coordinates' resolution to its relative accuracy; the other line readers, and planes (not anchored),
+take every property from parts that hold it without cancellation (:mod:`cga_lessons.conformal.entities_frame`).
+SymPy input is exact and never anchored.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from cga_lessons.algebra import GeometryError, Multivector
+from cga_lessons.checks import fail
+
+from .entities_frame import dot, grid, parts, put_vec, snap, sphere_std
+from .model import G41
+
+__all__ = ["Anchored", "frame", "plain", "times_invariant", "moved", "from_points", "pair_about_an_end", "sphere_at"]
+
+
+class FrozenCoeffs(dict):
+    """The coefficient map of an :class:`Anchored` entity: a dict that refuses writes (its local frame would go
+    stale); ``dict(X.coeffs)`` is a writable copy."""
+
+    __slots__ = ()
+
+    def refuse(self, *args, **kwargs):
+        raise fail("Anchored", "coeffs", "an anchored entity's coefficients are read-only; copy them: dict(X.coeffs)")
+
+    __setitem__ = __delitem__ = update = pop = popitem = clear = setdefault = __ior__ = refuse
+
+    def copy(self) -> dict:
+        return dict(self)
+
+    def __reduce__(self):
+        return (FrozenCoeffs, (dict(self),))
+
+
+def _frozen(c: dict) -> FrozenCoeffs:
+    """``c`` as a :class:`FrozenCoeffs`, its arrays as read-only views."""
+    out = {}
+    for b, v in c.items():
+        if type(v) is np.ndarray and v.flags.writeable:
+            v = v.view()
+            v.flags.writeable = False
+        out[b] = v
+    return FrozenCoeffs(out)
+
+
+def _frozen_mv(X: Multivector) -> Multivector:
+    """A plain multivector with X's coefficients, frozen (:func:`_frozen`); X itself when frozen already."""
+    if type(X) is Multivector and isinstance(X._c, FrozenCoeffs):
+        return X
+    m = Multivector(X.algebra)
+    m._c = _frozen(X._c)
+    return m
+
+
+class Anchored(Multivector):
+    """A conformal entity with its local frame: global coefficients plus ``anchor`` (a Euclidean point) and
+    ``local`` (the entity translated by -anchor, 2.100); see the module docstring.
+
+    Made by the constructors of :mod:`cga_lessons.conformal`.  Called as the operations of
+    :class:`~cga_lessons.algebra.Multivector` call their own type, without an anchor, it builds a plain
+    :class:`~cga_lessons.algebra.Multivector`: that is how every operation drops the frame.
+    """
+
+    __slots__ = ("_anchor", "_local", "_motion")
+
+    def __new__(cls, algebra, coeffs=None, _prune=False, *, anchor=None, local=None):
+        if anchor is None and local is None:
+            return Multivector(algebra, coeffs, _prune)
+        return object.__new__(cls)
+
+    def __init__(self, algebra, coeffs=None, _prune=False, *, anchor=None, local=None):
+        super().__init__(algebra, coeffs, _prune)
+        if not isinstance(local, Multivector) or local.algebra is not algebra:
+            raise fail("Anchored", "local", f"expected a Multivector of {algebra!r}, got {type(local).__name__}")
+        if local.grades_present() != self.grades_present():
+            raise fail(
+                "Anchored", "local", f"grades {local.grades_present()}, the entity's are {self.grades_present()}"
+            )
+        try:
+            f = np.array(anchor, dtype=float)
+        except (TypeError, ValueError):
+            raise fail("Anchored", "anchor", f"expected a Euclidean point, got {anchor!r:.40}") from None
+        if f.shape != self.shape + (3,) or local.shape != self.shape or not np.all(np.isfinite(f)):
+            raise fail(
+                "Anchored",
+                "anchor, local",
+                f"expected finite points of shape {self.shape + (3,)} and a local entity of the batch shape "
+                f"{self.shape}, got {f.shape} and {local.shape}",
+            )
+        f.flags.writeable = False
+        self._c = _frozen(self._c)
+        self._anchor, self._local, self._motion = f, _frozen_mv(local), None
+
+    def settle(self):
+        """Build what is pending: the local blade of a constructor (its closed form on the translated data) and a
+        motion (see :func:`moved`: anchor ``R f + t``, local ``r L ~r``, 2.102, r the unit rotor part).  Fixed by what
+        the entity was made of; computed once, on the first read.  Should the local blade not be storable (the
+        translated data overflow where the data did not: coordinates near 1e102), the frame is dropped."""
+        L = self._local
+        if callable(L):
+            try:
+                self._local = L = _frozen_mv(L())
+            except GeometryError:
+                self._anchor = self._local = self._motion = None
+                return
+        m = self._motion
+        if m is not None:
+            rotor, R, t = m
+            rotor = rotor / float(np.sqrt((rotor * ~rotor).scalar()))
+            f = self._anchor @ R.T + t
+            f.flags.writeable = False
+            self._anchor, self._local, self._motion = f, _frozen_mv(rotor >> L), None
+
+    @property
+    def anchor(self) -> np.ndarray | None:
+        """The Euclidean point the local frame is centred on (read-only), shape (3,) or the batch's (..., 3)."""
+        self.settle()
+        return self._anchor
+
+    @property
+    def local(self) -> Multivector | None:
+        """The entity translated by -anchor, ``T_{-f} X ~T_{-f}`` (2.100), built from the data (read-only)."""
+        self.settle()
+        return self._local
+
+    def plain(self) -> Multivector:
+        """The plain multivector of the global coefficients (a writable copy)."""
+        return plain(self)
+
+    def batch_item(self, index):
+        """One anchored entity of a batch (a slice gives a sub-batch), its frame kept."""
+        X = Multivector.batch_item(plain(self), index)
+        f, local = frame(self)
+        return X if f is None else Anchored(X.algebra, X._c, anchor=f[index], local=local.batch_item(index))
+
+    def reverse(self):
+        """Reverse (2.32-2.33) of the global coefficients: a plain multivector."""
+        return Multivector.reverse(plain(self))
+
+    __invert__ = reverse
+
+    def __copy__(self):
+        return self  # immutable
+
+    def __deepcopy__(self, memo):
+        return self
+
+    def __reduce__(self):
+        f, local = frame(self)
+        if f is None:
+            return (Multivector, (self.algebra, dict(self._c)))
+        return (_rebuild, (self.algebra, dict(self._c), np.array(f), plain(local)))
+
+
+def _rebuild(algebra, coeffs: dict, anchor, local: Multivector) -> Anchored:
+    """An :class:`Anchored` from its parts (unpickling; 2.100 relates them)."""
+    return Anchored(algebra, coeffs, anchor=anchor, local=local)
+
+
+def _made(Y: Multivector, anchor, local, motion=None) -> Anchored:
+    """``Y`` anchored at ``anchor`` (a read-only array of the batch shape + (3,)) with ``local``: a frozen
+    multivector, or a function that builds it (the constructors' closed form on the translated data, 2.100: built
+    when first read), and a pending ``motion`` (:func:`moved`).  The parts are the callers' (not checked here)."""
+    out = object.__new__(Anchored)
+    out.algebra, out._c = Y.algebra, _frozen(Y._c)
+    out._anchor, out._local, out._motion = anchor, local, motion
+    return out
+
+
+def _read_only(f, shape: tuple) -> np.ndarray:
+    """An anchor: f broadcast to ``shape + (3,)`` (one anchor for a whole batch), as a read-only array."""
+    f = np.array(np.broadcast_to(f, shape + (3,)), dtype=float)
+    f.flags.writeable = False
+    return f
+
+
+def times_invariant(X: Multivector, K: Multivector) -> Multivector:
+    """``X K`` for a K that commutes with every translator (the pseudoscalar Ic of 2.60: the dual forms, 2.31,
+    commute with 2.100): an anchored X stays anchored, its local blade times K too (and K commutes with a pending
+    rotor as well); the global coefficients are those of the plain product."""
+    Y = X * K
+    if frame(X, settle=False)[0] is None:
+        return Y
+    L = X._local
+    return _made(Y, X._anchor, (lambda: L() * K) if callable(L) else _frozen_mv(L * K), X._motion)
+
+
+def moved(X: Anchored, Y: Multivector, V: Multivector, R, t) -> Anchored:
+    """``Y = V X V^-1`` for a motor V = T_t R (2.102) with rotation matrix R and translation t (``rigid_motion``),
+    anchored: since ``V T_f = T_{R f + t} R``, the anchor becomes ``R f + t`` and the local blade turns by the rotor
+    part of V (its Euclidean blades).  Both are left pending until read (:meth:`Anchored.settle`), so that moving an
+    anchored batch costs no more than moving a plain one; a second motion composes with the first."""
+    rotor = Multivector(V.algebra, {b: v for b, v in V._c.items() if b < 8})
+    m = X._motion
+    if m is not None:
+        rotor, R, t = rotor * m[0], R @ m[1], R @ m[2] + t
+    return _made(Y, X._anchor, X._local, (rotor, R, t))
+
+
+def frame(X: Multivector, settle: bool = True):
+    """``(anchor, local)`` of an anchored entity, ``(None, X)`` of any other multivector: what a reader reads
+    (``local`` about ``anchor``, 2.100); ``settle=False`` leaves what is pending pending (the parts are then those
+    before it, ``local`` perhaps the function that builds it)."""
+    if isinstance(X, Anchored) and getattr(X, "_anchor", None) is not None:
+        if settle:
+            X.settle()
+            if X._anchor is None:
+                return None, X
+        return X._anchor, X._local
+    return None, X
+
+
+def plain(X: Multivector) -> Multivector:
+    """The plain multivector of X's coefficients (writable copies of its arrays); X itself when plain already."""
+    if type(X) is Multivector:
+        return X
+    return Multivector(X.algebra, {b: v.copy() if type(v) is np.ndarray else v for b, v in X._c.items()})
+
+
+# ------------------------------------------------------------ constructors
+def from_points(build, func: str, *pts, local=None) -> Anchored:
+    """``build(*pts, func)`` (a closed form of :mod:`~cga_lessons.conformal.entities_frame`) anchored at the point of
+    the data nearest the origin, f: its local blade is ``local(*(p - f))`` (default ``build(*(p - f), func)``, the
+    same closed form on the data translated by -f, 2.100; the differences ``p - f`` are the ones the closed forms
+    take anyway), built when first read."""
+    X = build(*pts, func)
+    f = _read_only(_nearest_point(pts), X.shape)
+    rel = [p - f for p in pts]
+    return _made(X, f, (lambda: build(*rel, func)) if local is None else (lambda: local(*rel)))
+
+
+def _nearest_point(pts) -> np.ndarray:
+    """The point of ``pts`` nearest the origin (per batch element; the first of equals), its squared norm summed in
+    one fixed order, so that a batch picks what its single elements pick."""
+    if pts[0].ndim == 1:
+        return min(pts, key=lambda p: float(dot(p, p)))
+    i = np.argmin(np.stack([dot(p, p) for p in pts]), axis=0)
+    return np.take_along_axis(np.stack(pts), i[None, ..., None], axis=0)[0]
+
+
+def pair_about_an_end(a, b) -> Multivector:
+    """The point pair a ^ b (2.68) with one end at the origin (a = 0 or b = 0), in closed form: with y = a - b and
+    s = +1 when b = 0, -1 when a = 0, ``a ^ b = y ^ e0 + s |y|^2 / 2 E`` (no e part), stored as e+/e- parts
+    ``-+ y / 2``, so that ``M - P = y`` exactly: the local blade of an anchored pair."""
+    y = a - b
+    s = np.where(np.all(b == 0, axis=-1), 1.0, -1.0)
+    D = parts(y.shape[:-1])
+    D[..., 0] = 0.5 * s * dot(y, y)
+    return _coefficients(
+        parts(y.shape[:-1]), put_vec(parts(y.shape[:-1]), -0.5 * y), put_vec(parts(y.shape[:-1]), 0.5 * y), D
+    )
+
+
+def sphere_local(c, r2) -> Multivector:
+    """The sphere of centre c and squared radius r2 (2.72, weight 1), stored as :func:`entities_frame.sphere_std
+    <cga_lessons.conformal.entities_frame.sphere_std>` stores it (the same bits): with ``q = c^2 - r2``, e+/e-
+    parts ``P = q/2 - 1/2`` on the grid of ``q/2 +- 1/2`` and ``M = P + 1``, exact for a local blade (|q| < 2^52)."""
+    c = np.asarray(c, dtype=float)
+    xe = 0.5 * (dot(c, c) - r2)
+    g = grid(xe, 1.0)
+    P, M = parts(xe.shape), parts(xe.shape)
+    P[..., 0] = snap(xe - 0.5, g)
+    M[..., 0] = P[..., 0] + 1.0
+    return _coefficients(put_vec(parts(xe.shape), c), P, M, parts(xe.shape))
+
+
+def _coefficients(E, P, M, D) -> Multivector:
+    """The multivector of the parts arrays (..., 8) on (1, e+, e-, E) times the Euclidean blades, zeros left out
+    (as :func:`entities_frame.join <cga_lessons.conformal.entities_frame.join>` leaves them)."""
+    a = np.concatenate([E, P, M, D], axis=-1)
+    if a.ndim == 1:
+        return Multivector(G41, {int(k): float(a[k]) for k in np.flatnonzero(a)})
+    keys = np.flatnonzero(np.any(a != 0, axis=tuple(range(a.ndim - 1))))
+    rows = np.ascontiguousarray(np.moveaxis(a[..., keys], -1, 0))  # one block: each blade contiguous
+    return Multivector(G41, dict(zip(keys.tolist(), rows)))
+
+
+def sphere_at(f, c, r2, func: str, args: str) -> Anchored:
+    """The sphere of centre ``f + c`` and squared radius r2, ``p - r2 e / 2`` (2.72, weight 1), anchored at f:
+    ``local`` is the sphere of centre c (small: the centre's offset from the anchor), built when first read."""
+    p = f + c
+    X = sphere_std(p, dot(p, p) - r2, 1.0, func, args)
+    return _made(X, _read_only(f, X.shape), lambda: sphere_local(c, r2))
