@@ -13,10 +13,12 @@ from __future__ import annotations
 from collections import deque
 
 import numpy as np
+from scipy import stats
 
 from .adjust import adjust_built_map
 from .builder import MapBuilder
 from .corrections import odometry_covariance
+from .frame import map_turn, turn_about
 from .geometry import SegmentSet
 from .lines import extract_unchecked
 from .loops import LoopCloser
@@ -150,8 +152,34 @@ class MapRun:
             builder.remove_duplicates()
 
     def finish(self) -> np.ndarray:
-        """The last duplicates merged and, with ``adjust``, every pose and line adjusted together; the poses."""
+        """The last duplicates merged and, with ``adjust``, every pose and line adjusted together and the map's
+        turn from the odometry's frame taken out (:meth:`untwist`); the poses."""
         self.builder.remove_duplicates()
         if self.params.cleanup.adjust and len(self.scans) > 1:
             self.poses = adjust_built_map(self.builder, self.poses, self.increments, self.step_covs).poses
+            self.poses = self.untwist(self.poses)
         return self.poses
+
+    def untwist(self, poses) -> np.ndarray:
+        """``poses`` and the map turned about the first position by minus the map's turn from the odometry's
+        frame, as every odometry heading tells it (:func:`~cga_lessons.mapping2d.frame.map_turn`: the odometry's
+        drift model scaled by what the builder learnt of it, and its registration error), when the headings
+        establish it: its square over its variance beyond the chi-square quantile of a correction's test
+        (``significance``, one degree of freedom).
+
+        Measured on the six bundled logs: fed their own poses, ACES's and Orebro's maps came out turned by 0.26
+        and 0.42 degrees (4.5 and 5.1 standard deviations of the estimate), the other four's within 1.1; with
+        odometry drifting by the drift model (seeds 0-7) no turn exceeded 0.5 standard deviations, and taking
+        those out anyway, as the shrunk estimate would, made the 48 maps no better (median +0.06 cm, positions
+        +0.15 cm).
+        """
+        corrector = self.builder.corrector
+        model = np.array([odometry_covariance(inc, self.params.odometry_prior)[2, 2] for inc in self.increments])
+        turn, var = map_turn(poses[:, 2], self.odometry[:, 2], corrector.odometry_scale * model,
+                             corrector.registration_cov[2, 2])  # fmt: skip
+        if turn * turn <= stats.chi2.ppf(self.params.correction.significance, 1) * var:
+            return poses
+        poses = turn_about(poses, poses[0, :2], -turn)
+        self.builder.refit(poses)
+        self.builder.remove_duplicates()
+        return poses
