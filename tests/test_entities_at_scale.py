@@ -19,7 +19,7 @@ import mpmath
 import numpy as np
 import pytest
 import sympy as sp
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from cga_lessons import conformal as cga
@@ -238,6 +238,137 @@ def test_point_pair_spanning_far_and_near():
     a, b = np.array([1e100, 0.0, 0.0]), np.array([0.0, 1.0, 0.0])
     p1, p2 = cga.point_pair_endpoints(cga.point_pair(a, b))
     assert np.linalg.norm(p1 - a) <= 1e-9 * 1e100 and np.linalg.norm(p2 - b) <= 1e-9
+
+
+# ----------------------------------------------------- derived entities (anchored_ops)
+def circle_of(c1, r1sq, c2, r2sq):
+    """The exact circle where the spheres (c1, r1^2) and (c2, r2^2) meet (Fractions): centre, rho^2, the centres'
+    difference d (the normal's direction) and a, the distance from c1 to the circle's plane (2.79)."""
+    d = sub(c2, c1)
+    D2 = dot(d, d)
+    k = (D2 + r1sq - r2sq) / (2 * D2)
+    return [x + k * y for x, y in zip(c1, d)], r1sq - k * k * D2, d, k
+
+
+def one_blade(X):
+    """The local blade, translated back by its anchor (2.100), is the global blade: one entity, one orientation,
+    one weight.  To 1e-3 of the coefficient norm: the global coefficients of a product of rounds 1e6 out are the
+    plain products' (|c|^2-sized terms cancel), good to ~1e-4 of their norm; a sign or a factor would be O(1)."""
+    from cga_lessons.conformal.anchored_ops import translated
+
+    W = translated(X.local, X.anchor)
+    G = Multivector(cga.G41, dict(X.coeffs))
+    return np.linalg.norm((W - G).to_array()) <= 1e-3 * np.linalg.norm(G.to_array())
+
+
+def two_spheres(cfg):
+    """A sphere through four points (anchored at one of them) and one from its centre (anchored there), centres
+    0.5-1.2 sizes apart: they meet in a circle."""
+    c, size, pts = layout(*cfg)
+    rng = np.random.default_rng(cfg[0] + 1)
+    u = rng.normal(size=3)
+    c2 = c + size * rng.uniform(0.5, 1.2) * u / np.linalg.norm(u)
+    r2 = size * rng.uniform(0.8, 1.2)
+    return c, size, pts, c2, r2
+
+
+@FAST
+@given(CONFIGS)
+def test_circle_where_two_spheres_meet_far_eq_2_79(cfg):
+    """``s1 ^ s2`` (2.79), the regressive product, ``meet`` and ``intersect``: the circle of two anchored spheres
+    as exact as the spheres (its local blade about the first one's anchor, the second moved in by 2.100)."""
+    c, size, pts, c2, r2 = two_spheres(cfg)
+    tc, tr2 = circumsphere(pts)
+    pc, rho2, d, _ = circle_of(tc, tr2, fr(c2), Fr(r2) ** 2)
+    assume(rho2 > 0)
+    p, rho, u = flt(pc), fsqrt(rho2), unit(d)
+    S1, S2 = cga.standard_form(cga.sphere_from_points(*pts)), cga.sphere(c2, r2)
+    sines_resolved = 1e-15  # the join's decision in the global coefficients: see test_meet_decides_in_the_global..
+    for Z in (
+        S1 ^ S2,
+        cga.regressive_product(cga.dual_form(S2), cga.dual_form(S1)),
+        cga.meet(cga.dual_form(S1), cga.dual_form(S2), sines_resolved),
+        cga.intersect(S1, S2, tol=sines_resolved),
+    ):
+        centre, radius, normal = cga.circle_center_radius(Z)
+        assert close_pos(centre, p, rho, c)
+        assert abs(radius - rho) <= REL * rho
+        assert min(np.linalg.norm(normal - u), np.linalg.norm(normal + u)) <= REL
+        assert one_blade(Z)
+
+
+@FAST
+@given(CONFIGS)
+def test_point_pair_where_a_line_cuts_a_sphere_far_table_2_1(cfg):
+    """``intersect(L, s)`` and ``meet(L, s*)``: the point pair of an anchored line through an anchored sphere."""
+    c, size, pts = layout(*cfg, k=2)
+    rng = np.random.default_rng(cfg[0] + 2)
+    S = cga.sphere(c, size)
+    a = c + 0.5 * size * rng.uniform(-1, 1, size=3) / np.sqrt(3)  # within half the radius of the centre
+    b = a + size * rng.normal(size=3)
+    assume(np.linalg.norm(b - a) > 1e-3 * size)
+    A, B, C = fr(a), fr(b), fr(c)
+    dd, ac = sub(B, A), sub(A, C)
+    qa, qb, qc = dot(dd, dd), dot(ac, dd), dot(ac, ac) - Fr(size) ** 2
+    root = mpmath.sqrt(mpmath.mpf((qb * qb - qa * qc).numerator) / (qb * qb - qa * qc).denominator)
+    ends = [
+        np.array([float(mpmath.mpf(x.numerator) / x.denominator + s * y) for x, y in zip(A, dd)])
+        for s in ((-mpmath.mpf(qb.numerator) / qb.denominator + r) / (mpmath.mpf(qa.numerator) / qa.denominator)
+                  for r in (root, -root))
+    ]  # fmt: skip
+    sep = float(np.linalg.norm(ends[0] - ends[1]))
+    L = cga.line_from_points(a, b)
+    for PP in (cga.intersect(L, S), cga.meet(L, cga.dual_form(S))):
+        p1, p2 = cga.point_pair_endpoints(PP)
+        if np.linalg.norm(p1 - ends[0]) > np.linalg.norm(p1 - ends[1]):
+            p1, p2 = p2, p1
+        assert close_pos(p1, ends[0], sep, c) and close_pos(p2, ends[1], sep, c)
+        assert one_blade(PP)
+
+
+def test_meet_decides_in_the_global_coefficients():
+    """join and meet decide whether the spans overlap in the global coefficients (sines of principal angles below
+    ``tol``), as for the plain blades: 1e6 out the 4-spaces of two unit spheres are 8e-13 apart, which the default
+    1e-10 takes for one subspace.  The global meet is then a blade of grade 4; the local blades decide otherwise
+    and the frame is dropped (it would describe another entity).  ``s1 ^ s2`` or a ``tol`` below the sine give the
+    circle, exact (the test above)."""
+    from cga_lessons.conformal.anchored import frame
+
+    c = 1e6 * np.array([0.6, -0.48, 0.64])
+    S1, S2 = cga.sphere(c, 1.0), cga.sphere(c + [0.5, 0.3, 0.1], 1.1)
+    M = cga.meet(cga.dual_form(S1), cga.dual_form(S2))
+    assert M.grades_present() == [4] and frame(M)[0] is None
+    assert M == cga.meet(cga.dual_form(S1).plain(), cga.dual_form(S2).plain())  # the plain meet, bit for bit
+    assert cga.meet(cga.dual_form(S1), cga.dual_form(S2), 1e-14).grades_present() == [3]
+
+
+@FAST
+@given(CONFIGS)
+def test_other_derived_entities_far(cfg):
+    """A scaled and a negated sphere, the sum of two (a pencil member), a circle's plane (2.119), the line of a
+    point pair (PP ^ e) and the sphere of a meet's point pair (2.134): read about their anchors."""
+    c, size, pts = layout(*cfg)
+    tc, tr2 = circumsphere(pts)
+    p, rho = flt(tc), fsqrt(tr2)
+    S = cga.sphere_from_points(*pts)
+    for X in (2.5 * S, -S, S / 3.0, cga.standard_form(S) * 7.0):
+        centre, radius = cga.sphere_center_radius(X)
+        assert close_pos(centre, p, rho, c) and abs(radius - rho) <= REL * rho
+    s1, s2 = cga.sphere(pts[0], size), cga.sphere(pts[1], size)  # s1 - s2: their radical plane, at the middle
+    n, dist = cga.plane_normal_distance(s1 - s2)
+    nv = sub(fr(pts[0]), fr(pts[1]))
+    assert np.linalg.norm(n - unit(nv)) <= REL
+    mid = [(x + y) / 2 for x, y in zip(fr(pts[0]), fr(pts[1]))]
+    assert close_pos([dist], [float(np.dot(flt(mid), unit(nv)))], size, c)  # the radical plane of equal spheres
+    Z = cga.circle_from_points(*pts[:3])
+    nz, dz = cga.plane_normal_distance(cga.circle_plane(Z))
+    _, _, tn = circumcircle(pts[:3])
+    assert min(np.linalg.norm(nz - unit(tn)), np.linalg.norm(nz + unit(tn))) <= REL
+    assert close_pos([abs(dz)], [abs(float(np.dot(pts[0], unit(tn))))], size, c)
+    r = unit(sub(fr(pts[1]), fr(pts[0])))
+    for L in (cga.point_pair(pts[0], pts[1]) ^ cga.einf, cga.point_pair(pts[1], pts[0]) ^ cga.einf):
+        direction = cga.line_direction(L)
+        assert min(np.linalg.norm(direction - r), np.linalg.norm(direction + r)) <= REL
 
 
 # -------------------------------------------------------------- batches

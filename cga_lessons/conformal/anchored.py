@@ -14,25 +14,49 @@ them exactly as on a plain multivector, bit for bit) with two read-only slots,
   global coefficients).
 
 The readers (``sphere_center_radius``, ``circle_center_radius``, ``point_pair_endpoints``, ``point_sphere_side``,
-``point_pair_sphere``, ``classify``) read ``local`` and add the anchor back: sizes and directions to a few eps
+``point_pair_sphere``, ``classify``, the line readers, ``plane_normal_distance``) read ``local`` and add the anchor
+back: sizes and directions to a few eps
 relative, positions to that plus the rounding of the coordinates themselves.  Both describe the same entity; the
 global coefficients are its rounding onto the e+/e- storage (the e0 part of a round is put on the grid of its e+/e-
 coefficients, a change of ~eps |c|^2 relative), ``local`` is the entity of the data.
 
-**What keeps the frame.**  The dual and standard forms (``X Ic``: the pseudoscalar commutes with every motion),
-``apply`` of a motor (``M T_f = T_{M f} R`` for M = T_t R, 2.102: the anchor moves as a point, ``local`` turns by
-the rotor part) and :meth:`Anchored.batch_item`.  Every other operation (products, sums, scaling, negation,
-reverse, grade projection, ``inv``, ``simplify``, ``>>``, reflections and inversions, ...) builds a plain
-:class:`~cga_lessons.algebra.Multivector`: the frame is dropped, never stale.  An :class:`Anchored` cannot be
-changed in place: its coefficient map refuses writes and its arrays are read-only; ``copy.copy`` and
-``copy.deepcopy`` return it as it is.  It prints and compares as the multivector of its global coefficients.
+**What keeps the frame.**  Every translation-covariant operation (:mod:`~cga_lessons.conformal.anchored_ops`):
+``T (X o Y) ~T = (T X ~T) o (T Y ~T)`` for a translator T (2.100) and each of the geometric, outer and inner
+products, the contractions, sums and differences, scalar multiples, negation, grade projection, the reverse and the
+other involutions, the inverse, powers, normalisation and the dual (Ic commutes with T).  The result of such an
+operation on anchored entities X (anchor f) and Y (anchor g), or on one and a number or a translation-invariant
+multivector (1, e and ``e ^ A``, Ic: :func:`~cga_lessons.conformal.anchored_ops.invariant`), is anchored at f, its
+local blade the same operation on X's local and Y's local moved into f's frame, ``T_{g-f} Y.local ~T_{g-f}``.  So
+the circle ``s1 ^ s2`` of two spheres (2.79), the point pair where a line cuts a sphere, a circle's plane, a scaled
+sphere are as exact as the entities they are made of, at any distance (when those are near each other: ``g - f``
+is their distance, not theirs from the origin).  The functions of :mod:`~cga_lessons.conformal.blades`
+(contractions, ``dual``, ``regressive_product``, ``join``, ``meet``, ``project``, ``reject``) and ``intersect``
+carry it the same way.  The dual and standard forms keep it, and so do ``apply`` of a motor (``M T_f = T_{M f} R``
+for M = T_t R, 2.102: the anchor moves as a point, ``local`` turns by the rotor part) and
+:meth:`Anchored.batch_item`.  An operation with a multivector that translations change (a point, e0, e1, a rotor, a
+motor: move an entity with ``apply``), reflections and inversions, ``map`` and ``simplify`` build a plain
+:class:`~cga_lessons.algebra.Multivector`: the frame is dropped, never stale.
+
+The global coefficients of every result are those of the plain operation, bit for bit, and so are the numbers read
+off them (``scalar()``, ``norm2()``, ``X["e1"]``).  Join and meet decide as before, on the global blades, whether
+the spans overlap (``tol`` bounds the sines of the principal angles in the coefficient space); where they weight the
+result in the coefficient space (a partial overlap, a null join) the local blade is scaled to match the global one,
+and where the local blades decide otherwise (another grade) the frame is dropped.  1e5 out or more, the 4-spaces of
+two unit spheres are less than the default ``tol = 1e-10`` apart (8e-13 times their size at 1e6): their meet is
+then a blade of grade 4, as for plain blades, with no frame; ``s1 ^ s2``, ``regressive_product`` or a ``tol`` below
+the sine give the circle, exact.  An :class:`Anchored` cannot be changed in place: its coefficient map refuses
+writes and its arrays are read-only; ``copy.copy`` and ``copy.deepcopy`` return it as it is.  It prints and compares
+as the multivector of its global coefficients.
 
 **Cost.**  The local blade and a motion are built when first read (:meth:`Anchored.settle`): a constructor adds
-the choice of the anchor, ``apply`` a few microseconds whatever the batch, a reader one small closed form.
+the choice of the anchor, ``apply`` a few microseconds whatever the batch, an operation the closure that will build
+its local blade (a chain of results none of which is read is built from its end, at most 48 deep), a reader one
+small closed form.  Products of plain multivectors do not change at all.
 
-Lines are anchored too (at one of their points), for ``point_line_distance``: ``x - f`` first keeps a distance far
-below the coordinates' resolution to its relative accuracy; the other line readers, and planes (not anchored),
-take every property from parts that hold it without cancellation (:mod:`cga_lessons.conformal.entities_frame`).
+Lines are anchored too (at one of their points): ``point_line_distance`` takes ``x - f`` first, which keeps a
+distance far below the coordinates' resolution to its relative accuracy, and a derived line (``PP ^ e``) keeps the
+direction of its pair.  Planes of ``plane`` and ``plane_from_points`` are not anchored (every property is held by
+parts without cancellation, :mod:`cga_lessons.conformal.entities_frame`); a derived plane (a circle's plane) is.
 SymPy input is exact and never anchored.
 """
 
@@ -43,6 +67,7 @@ import numpy as np
 from cga_lessons.algebra import GeometryError, Multivector
 from cga_lessons.checks import fail
 
+from .anchored_ops import FrameOps, Pending, view
 from .entities_frame import dot, grid, parts, put_vec, snap, sphere_std
 from .model import G41
 
@@ -87,13 +112,20 @@ def _frozen_mv(X: Multivector) -> Multivector:
     return m
 
 
-class Anchored(Multivector):
+#: The anchor of a derived entity before its local blade is built (its ``Pending`` gives both).
+_DERIVED = np.zeros(0)
+_DERIVED.flags.writeable = False
+
+
+class Anchored(FrameOps, Multivector):
     """A conformal entity with its local frame: global coefficients plus ``anchor`` (a Euclidean point) and
     ``local`` (the entity translated by -anchor, 2.100); see the module docstring.
 
-    Made by the constructors of :mod:`cga_lessons.conformal`.  Called as the operations of
+    Made by the constructors of :mod:`cga_lessons.conformal`, and by the operations between anchored entities
+    (:mod:`~cga_lessons.conformal.anchored_ops`).  Called as the operations of
     :class:`~cga_lessons.algebra.Multivector` call their own type, without an anchor, it builds a plain
-    :class:`~cga_lessons.algebra.Multivector`: that is how every operation drops the frame.
+    :class:`~cga_lessons.algebra.Multivector`: that is how an operation that is not translation-covariant drops the
+    frame.
     """
 
     __slots__ = ("_anchor", "_local", "_motion")
@@ -107,7 +139,7 @@ class Anchored(Multivector):
         super().__init__(algebra, coeffs, _prune)
         if not isinstance(local, Multivector) or local.algebra is not algebra:
             raise fail("Anchored", "local", f"expected a Multivector of {algebra!r}, got {type(local).__name__}")
-        if local.grades_present() != self.grades_present():
+        if not set(local.grades_present()) <= set(self.grades_present()):  # exact zeros where the global has round-off
             raise fail(
                 "Anchored", "local", f"grades {local.grades_present()}, the entity's are {self.grades_present()}"
             )
@@ -134,7 +166,10 @@ class Anchored(Multivector):
         L = self._local
         if callable(L):
             try:
-                self._local = L = _frozen_mv(L())
+                L = L()
+                if self._anchor is _DERIVED:  # a derived entity: its anchor comes with its local blade
+                    self._anchor, L = L
+                self._local = L = _frozen_mv(L)
             except GeometryError:
                 self._anchor = self._local = self._motion = None
                 return
@@ -168,11 +203,11 @@ class Anchored(Multivector):
         f, local = frame(self)
         return X if f is None else Anchored(X.algebra, X._c, anchor=f[index], local=local.batch_item(index))
 
-    def reverse(self):
-        """Reverse (2.32-2.33) of the global coefficients: a plain multivector."""
-        return Multivector.reverse(plain(self))
-
-    __invert__ = reverse
+    @staticmethod
+    def derive(Y: Multivector, local: Pending) -> Anchored:
+        """``Y`` (a plain result) anchored with a pending local blade and anchor, both built by ``local`` when first
+        read (:func:`~cga_lessons.conformal.anchored_ops.follow` makes it)."""
+        return _made(Y, _DERIVED, local)
 
     def __copy__(self):
         return self  # immutable
@@ -213,11 +248,20 @@ def times_invariant(X: Multivector, K: Multivector) -> Multivector:
     """``X K`` for a K that commutes with every translator (the pseudoscalar Ic of 2.60: the dual forms, 2.31,
     commute with 2.100): an anchored X stays anchored, its local blade times K too (and K commutes with a pending
     rotor as well); the global coefficients are those of the plain product."""
-    Y = X * K
+    Y = view(X) * K
     if frame(X, settle=False)[0] is None:
         return Y
     L = X._local
-    return _made(Y, X._anchor, (lambda: L() * K) if callable(L) else _frozen_mv(L * K), X._motion)
+    if isinstance(L, Pending):  # derived, not read yet: (anchor, local) when read
+
+        def build():
+            f, loc = L()
+            return f, loc * K
+
+        local = Pending(build, L.depth)
+    else:
+        local = (lambda: L() * K) if callable(L) else _frozen_mv(L * K)
+    return _made(Y, X._anchor, local, X._motion)
 
 
 def moved(X: Anchored, Y: Multivector, V: Multivector, R, t) -> Anchored:

@@ -30,6 +30,7 @@ import numpy as np
 from cga_lessons import checks
 from cga_lessons.algebra import Algebra, DegenerateGeometryError, Multivector
 
+from .anchored_ops import follow, translated
 from .blades_span import (
     blade_span,
     coefficient_norm,
@@ -69,8 +70,19 @@ def left_contraction(A, B) -> Multivector:
     >>> left_contraction(cga.e1, cga.e1 ^ cga.e2), left_contraction(cga.e1 ^ cga.e2, cga.e1)
     (1 e2, 0)
     """
+    A0, B0 = A, B
     A, B = single_multivector(A, "left_contraction", "A"), single_multivector(B, "left_contraction", "B")
-    return result_finite(_left_contraction(A, B), "left_contraction", A=A, B=B)
+    return follow(result_finite(_left_contraction(A, B), "left_contraction", A=A, B=B), _lc, A0, B0)
+
+
+def _lc(a, b) -> Multivector:
+    """:func:`_left_contraction` of two local blades (or a local blade and a number)."""
+    return _left_contraction(_as_mv(a), _as_mv(b))
+
+
+def _as_mv(x) -> Multivector:
+    """A number as a scalar multivector, a multivector as it is."""
+    return x if isinstance(x, Multivector) else Multivector(G41, {0: float(x)} if x else {})
 
 
 def _left_contraction(A: Multivector, B: Multivector) -> Multivector:
@@ -91,8 +103,10 @@ def right_contraction(A, B) -> Multivector:
     >>> right_contraction(cga.e1 ^ cga.e2, cga.e2), right_contraction(cga.e2, cga.e1 ^ cga.e2)
     (1 e1, 0)
     """
+    A0, B0 = A, B
     A, B = single_multivector(A, "right_contraction", "A"), single_multivector(B, "right_contraction", "B")
-    return result_finite(~_left_contraction(~B, ~A), "right_contraction", A=A, B=B)
+    out = result_finite(~_left_contraction(~B, ~A), "right_contraction", A=A, B=B)
+    return follow(out, lambda a, b: ~_lc(~_as_mv(b), ~_as_mv(a)), A0, B0)
 
 
 def scalar_product(A, B) -> float:
@@ -121,7 +135,8 @@ def dual(A) -> Multivector:
     >>> dual(cga.e1)
     -1 e23+-
     """
-    return single_multivector(A, "dual", "A") * _IC_INV  # a signed permutation of the coefficients: finite
+    out = single_multivector(A, "dual", "A") * _IC_INV  # a signed permutation of the coefficients: finite
+    return follow(out, lambda a: _as_mv(a) * _IC_INV, A)
 
 
 def undual(A) -> Multivector:
@@ -131,7 +146,7 @@ def undual(A) -> Multivector:
     >>> undual(dual(cga.e1 ^ cga.e2))
     1 e12
     """
-    return single_multivector(A, "undual", "A") * Ic
+    return follow(single_multivector(A, "undual", "A") * Ic, lambda a: _as_mv(a) * Ic, A)
 
 
 def regressive_product(A, B) -> Multivector:
@@ -146,20 +161,49 @@ def regressive_product(A, B) -> Multivector:
     >>> regressive_product(P, Q)  # -(einf ^ eo ^ e2) = -(E ^ e2): the y axis
     -1 e2+-
     """
+    A0, B0 = A, B
     A, B = single_multivector(A, "regressive_product", "A"), single_multivector(B, "regressive_product", "B")
-    return result_finite(((A * _IC_INV) ^ (B * _IC_INV)) * Ic, "regressive_product", A=A, B=B)
+    out = result_finite(((A * _IC_INV) ^ (B * _IC_INV)) * Ic, "regressive_product", A=A, B=B)
+    return follow(out, lambda a, b: ((_as_mv(a) * _IC_INV) ^ (_as_mv(b) * _IC_INV)) * Ic, A0, B0)
 
 
-def _join(A, ka, B, kb, tol):
+def _join_covariant(A, ka, B, kb, tol):
+    """``(J, covariant)``: the join, and whether it is a covariant expression of A and B (a translation of both
+    translates it, weight included: ``A ^ B``, A or B), not one weighted by a Euclidean-orthonormal basis of the
+    coefficient space (a partial overlap), whose weight depends on the frame."""
     if ka == 0 or kb == 0:
-        return B if ka == 0 else A
+        return (B if ka == 0 else A), True
     UA, UB = blade_span(A, ka)[0], blade_span(B, kb)[0]
     R = UB - UA @ (UA.T @ UB)  # the part of span(B) outside span(A)
     u, s, _ = np.linalg.svd(R)
     m = int(np.sum(s > tol))
     if m == kb:
-        return A ^ B
-    return A ^ wedge_columns(u[:, :m]) if m else A
+        return A ^ B, True
+    return (A ^ wedge_columns(u[:, :m]), False) if m else (A, True)
+
+
+def _local(op, covariant, out: Multivector, ka: int, kb: int):
+    """The local blade of a join or meet ``out`` of anchored blades (``op(A, ka, B, kb) -> (blade, covariant)``, the
+    same routine on the local blades).  When both took the same covariant branch (:func:`_join_covariant`,
+    :func:`_meet`) it is the result about the anchor, exactly.  Otherwise the subspace still is (join and meet are
+    metric-free) but the weight depends on the frame: the local blade is scaled by the least-squares factor that
+    makes it, translated back by the anchor, the global result (whose large coefficients hold it to round-off), so
+    that both are one blade, with one orientation.  A local decision that differs (another grade) drops the frame."""
+
+    def build(f, a, b):
+        L, branch = op(_as_mv(a).grade(ka), ka, _as_mv(b).grade(kb), kb)
+        if L.grades_present() != out.grades_present():
+            raise DegenerateGeometryError("the local blade has another grade: the frames decide differently")
+        if branch and branch == covariant:
+            return L
+        W = translated(L, f)
+        ww = sum(float(v) * float(v) for v in W.coeffs.values())
+        lam = sum(float(v) * float(out.coeffs.get(b, 0.0)) for b, v in W.coeffs.items()) / ww if ww else 0.0
+        if not (math.isfinite(lam) and lam != 0.0):
+            raise DegenerateGeometryError("the local blade does not match the global one")
+        return L * lam
+
+    return build
 
 
 def join(A, B, tol: float = 1e-10) -> Multivector:
@@ -168,7 +212,8 @@ def join(A, B, tol: float = 1e-10) -> Multivector:
     When the spans are disjoint this is ``A ^ B``.  Otherwise it is ``A ^ c1 ^ ... ^ cm`` with ``c`` a
     Euclidean-orthonormal basis of the part of span(B) outside span(A); its weight is then that of A (the join
     has no canonical weight).  ``tol`` bounds the sines of the principal angles counted as zero.  The join does
-    not use the metric; a scalar joins to the other argument.
+    not use the metric; a scalar joins to the other argument.  Anchored blades give an anchored join
+    (:mod:`~cga_lessons.conformal.anchored_ops`; in a partial overlap its local blade is scaled to the global one).
 
     >>> from cga_lessons import conformal as cga
     >>> L1 = cga.line_from_points([0, 0, 0], [1, 0, 0])
@@ -178,9 +223,13 @@ def join(A, B, tol: float = 1e-10) -> Multivector:
     ([4], True)
     """
     tol = relative_tolerance(tol, "join")
+    A0, B0 = A, B
     A, ka = require_blade(A, "join", "A")
     B, kb = require_blade(B, "join", "B")
-    return result_finite(_join(A, ka, B, kb, tol), "join", A=A, B=B)
+    J, covariant = _join_covariant(A, ka, B, kb, tol)
+    J = result_finite(J, "join", A=A, B=B)
+    op = lambda a, ka, b, kb: _join_covariant(a, ka, b, kb, tol)  # noqa: E731
+    return follow(J, _local(op, covariant, J, ka, kb), A0, B0, anchor_arg=True)
 
 
 def meet(A, B, tol: float = 1e-10) -> Multivector:
@@ -198,6 +247,12 @@ def meet(A, B, tol: float = 1e-10) -> Multivector:
     in a multiple of ``einf``, a sphere and a line that miss each other in an imaginary point pair, blades with no
     common subspace in a scalar.
 
+    Anchored blades (:mod:`~cga_lessons.conformal.anchored`) give an anchored meet, exact far from the origin: its
+    local blade is the same meet of the local blades, scaled to the global one where the join's weight depends on
+    the frame.  Which case applies is decided on the global blades, as for plain ones; where the local blades
+    decide otherwise the frame is dropped (1e5 out or more two unit spheres are one subspace to the default
+    ``tol``: pass a smaller one, or take ``s1 ^ s2``).
+
     >>> from cga_lessons import conformal as cga
     >>> L = cga.line_from_points([0, 0, 0], [0, 0, 1])            # the z axis
     >>> P = cga.plane_from_points([0, 0, 2], [1, 0, 2], [0, 1, 2])  # z = 2
@@ -206,18 +261,31 @@ def meet(A, B, tol: float = 1e-10) -> Multivector:
     (True, [2])
     """
     tol = relative_tolerance(tol, "meet")
+    A0, B0 = A, B
     A, ka = require_blade(A, "meet", "A")
     B, kb = require_blade(B, "meet", "B")
-    J = _join(A, ka, B, kb, tol)
+    M, covariant = _meet(A, ka, B, kb, tol)
+    if covariant == "regressive":
+        M = result_finite(M, "meet", A=A, B=B)
+    else:
+        M = single_multivector(result_finite(M, "meet", A=A, B=B), "meet", "A, B")
+    op = lambda a, ka, b, kb: _meet(a, ka, b, kb, tol)  # noqa: E731
+    return follow(M, _local(op, covariant, M, ka, kb), A0, B0, anchor_arg=True)
+
+
+def _meet(A, ka, B, kb, tol):
+    """``(M, covariant)``: the meet of :func:`meet` and how it was made: ``"regressive"`` (the join is the whole
+    space), True (a covariant join, non-null), False (a join weighted in the coefficient space, or a null join
+    taken in the Euclidean metric: the weight depends on the frame)."""
+    J, covariant = _join_covariant(A, ka, B, kb, tol)
     if J.grades_present() == [5]:
-        return result_finite(((B * _IC_INV) ^ (A * _IC_INV)) * Ic, "meet", A=A, B=B)
+        return ((B * _IC_INV) ^ (A * _IC_INV)) * Ic, "regressive"
     JJ = float((J * ~J).scalar())
     if abs(JJ) > tol * coefficient_norm(J) ** 2:
-        M = _left_contraction(_left_contraction(B, ~J * (1.0 / JJ)), A)
-    else:  # a null join: the subspace is metric-free, take it in the Euclidean metric
-        AE, BE, JE = (Multivector(_E5, dict(X.coeffs)) for X in (A, B, J))
-        M = Multivector(G41, dict(((BE << JE.inv()) << AE).coeffs))
-    return single_multivector(result_finite(M, "meet", A=A, B=B), "meet", "A, B")
+        return _left_contraction(_left_contraction(B, ~J * (1.0 / JJ)), A), covariant
+    # a null join: the subspace is metric-free, take it in the Euclidean metric
+    AE, BE, JE = (Multivector(_E5, dict(X.coeffs)) for X in (A, B, J))
+    return Multivector(G41, dict(((BE << JE.inv()) << AE).coeffs)), False
 
 
 def _invertible(B, func: str):
@@ -238,9 +306,17 @@ def project(A, B) -> Multivector:
     >>> project(cga.e1 + 2 * cga.e2 + 3 * cga.ep, cga.E)  # P_E keeps the Minkowski plane, (2.58)
     3 e+
     """
+    A0, B0 = A, B
     A, _ = require_blade(A, "project", "A")
     B, Binv = _invertible(B, "project")
-    return result_finite(_left_contraction(A, B) * Binv, "project", A=A, B=B)
+    out = result_finite(_left_contraction(A, B) * Binv, "project", A=A, B=B)
+    return follow(out, lambda a, b: _lc(a, b) * _blade_inverse(b), A0, B0)
+
+
+def _blade_inverse(b) -> Multivector:
+    """``~B / (B ~B)`` (2.19) of a local blade (or a number)."""
+    b = _as_mv(b)
+    return ~b * (1.0 / float((b * ~b).scalar()))
 
 
 def reject(A, B) -> Multivector:
@@ -253,9 +329,11 @@ def reject(A, B) -> Multivector:
     >>> reject(cga.e1 + 2 * cga.e2 + 3 * cga.ep, cga.E)  # P_E^perp(a) = (a ^ E) E, (2.59)
     1 e1 + 2 e2
     """
+    A0, B0 = A, B
     A, _ = require_blade(A, "reject", "A")
     B, Binv = _invertible(B, "reject")
-    return result_finite((A ^ B) * Binv, "reject", A=A, B=B)
+    out = result_finite((A ^ B) * Binv, "reject", A=A, B=B)
+    return follow(out, lambda a, b: (_as_mv(a) ^ _as_mv(b)) * _blade_inverse(b), A0, B0)
 
 
 def is_versor(V, tol: float = 1e-9) -> bool:

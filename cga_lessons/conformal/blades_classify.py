@@ -27,6 +27,7 @@ from cga_lessons import checks
 from cga_lessons.algebra import DegenerateGeometryError, InvalidInputError
 
 from .anchored import frame
+from .anchored_ops import follow
 from .blades import dual, left_contraction, meet, undual
 from .blades_span import require_blade
 from .model import einf
@@ -190,8 +191,11 @@ def intersect(X, Y, forms=("auto", "auto"), out: str = "auto", tol: float = 1e-1
     if not isinstance(forms, (tuple, list)) or len(forms) != 2:
         raise InvalidInputError(f"intersect: forms: expected a pair of forms, got {forms!r}")
     tol = checks.real(tol, "intersect", "tol", low=0.0, high=1.0, strict_high=True)
+    X0, Y0 = X, Y
     X, kx = require_blade(X, "intersect", "X")
     Y, ky = require_blade(Y, "intersect", "Y")
+    # anchored entities keep their frames (their local blades, at the grade kept); dual, meet and undual carry them
+    X, Y = follow(X, lambda a: a.grade(kx), X0), follow(Y, lambda b: b.grade(ky), Y0)
     fx, fy = _form(forms[0], kx, "intersect", "forms[0]"), _form(forms[1], ky, "intersect", "forms[1]")
     Xo, Yo = (X if fx == "dual" else dual(X)), (Y if fy == "dual" else dual(Y))
     M = meet(Xo, Yo, tol)

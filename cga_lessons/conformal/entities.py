@@ -15,8 +15,11 @@ the printed formulas, exactly.
 in closed form at its points, and the rounds and lines carry it besides about
 a point of the data (an ``Anchored`` entity): their properties are read there,
 to a few eps of their size at any distance (positions plus the rounding of
-their own coordinates).  A plain blade (the result of products, sums, ...)
-holds a round's rho^2 only to ``~eps (|c|^2 + size^2 + 1)`` absolute at
+their own coordinates).  Products, sums, scaling, duals, meet and intersect of
+anchored entities (with each other, numbers, or what translations leave alone:
+e, Ic) carry the frame too (:mod:`cga_lessons.conformal.anchored_ops`).  A
+plain blade (the global coefficients alone, or a product with a point, e0, a
+rotor) holds a round's rho^2 only to ``~eps (|c|^2 + size^2 + 1)`` absolute at
 distance |c| (a unit sphere: 1e-10 at 1 km, 1e-4 at 1000 km), its e0 part (a
 circle's normal, a pair's a - b) to ``~eps (|c|^2 + 1)`` relative.
 """

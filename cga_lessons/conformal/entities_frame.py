@@ -30,8 +30,9 @@ read to better than ~1e-4 from its 32 coefficients.  So the constructors build e
 and on the data translated by -f (f the point of the data nearest the origin; a sphere's centre), and return an
 :class:`~cga_lessons.conformal.anchored.Anchored` entity: the global blade carrying the local one about f.  The
 readers read the local blade and add f back, so that rho^2, a circle's normal and a pair's direction hold to a few
-eps relative at any distance, the positions to that plus the rounding of their own coordinates.  The limit above
-stays that of a *plain* blade: the global coefficients alone, and every result of products, sums or scaling.
+eps relative at any distance, the positions to that plus the rounding of their own coordinates, and the operations
+between anchored entities carry the local blades along (:mod:`~cga_lessons.conformal.anchored_ops`).  The limit
+above stays that of a *plain* blade: the global coefficients alone, and a product with what translations move.
 
 Arrays of the parts have shape (..., 8), indexed by the bitmap of the Euclidean blade (0 scalar, 1 2 4 the
 vectors, 3 5 6 the bivectors e12 e13 e23, 7 e123).

@@ -84,22 +84,29 @@ def read_circle(Zd: Multivector, func: str, arg: str):
 def read_line(Ld: Multivector, func: str, arg: str):
     """Direction d (scaled) and moment mu = a x d of a dual line (grade 3): L* = mu ^ e + d E (2.81).
 
-    NaN coefficients give NaN (callers such as motor_estimation report them in their own words).
+    NaN coefficients give NaN (callers such as motor_estimation report them in their own words).  An anchored line
+    is read from its local blade (d, and the moment ``mu_f`` about the anchor f): ``mu = mu_f + f x d`` (a point
+    a of the line is f + a_f).
     """
+    f, Ld = frame(Ld)
     E, Xe, Y, D, P, M = split(Ld, func, arg, finite=False)
     check_flat(Y, P, M, D, func, arg, "a circle or other round, not a line", extra=E)
     d = vec(D)
     if np.any(norm(d) <= 1e-300):
         raise degenerate(func, arg, "the line has no direction (L* L* = 0: zero or a flat point)")
-    return d, biv(Xe)
+    return d, (biv(Xe) if f is None else biv(Xe) + np.cross(f, d))
 
 
 @quiet
 def read_plane(p: Multivector, func: str, arg: str):
-    """Normal (scaled) and the e coefficient of a standard-form plane (grade 1): P = n + delta e (2.89)."""
+    """Normal (scaled) and the e coefficient of a standard-form plane (grade 1): P = n + delta e (2.89).  An anchored
+    plane (a derived one: a circle's plane, ...) is read from its local blade, ``n + delta_f e`` about its anchor f:
+    ``delta = delta_f + n . f`` (T_f moves n to ``n + (n . f) e``, 2.100)."""
+    f, p = frame(p)
     E, Xe, Y, D, P, M = split(p, func, arg)
     check_flat(Y, P, M, E, func, arg, "e . P != 0: a sphere, not a plane")
-    return vec(E), Xe[..., 0]
+    n = vec(E)
+    return n, (Xe[..., 0] if f is None else Xe[..., 0] + dot(n, f))
 
 
 def pair_points(B: Multivector, min_separation, func: str, arg: str):

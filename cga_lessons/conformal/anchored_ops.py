@@ -1,0 +1,278 @@
+"""The operations of anchored entities (:mod:`cga_lessons.conformal.anchored`): the frame follows products, sums
+and the unary operations, so that derived entities (the circle where two spheres meet, a point pair on a line, a
+scaled sphere, ...) keep the accuracy of the entities they are made of.
+
+**Covariance.**  A translator T = T_t (2.100) is a unit even versor, ``T ~T = 1``, and ``X -> T X ~T`` is an
+automorphism of the algebra that keeps grades (its outermorphism, 2.82).  So it commutes with the geometric product
+(``T (X Y) ~T = (T X ~T)(T Y ~T)``), with grade projection and hence with the outer product, the inner product and
+the contractions (grade parts of the geometric product), with sums and scalar multiples, with the reverse
+(``~(T X ~T) = T ~X ~T``), the grade involution (T is even), the inverse (``(T X ~T)^-1 = T X^-1 ~T``), powers,
+norms (``<X ~X>_0`` is a scalar: unchanged) and the dual (the pseudoscalar Ic commutes with every even element).
+The result of such an operation on X (anchor f, local ``T_{-f} X ~T_{-f}``) and Y (anchor g) is therefore, about
+f, the same operation on X's local and on Y's local moved into f's frame, ``T_{g-f} Y.local ~T_{g-f}``: that is
+the local blade of the result, anchored at f.  ``g - f`` is rounded once, to its own relative accuracy.
+
+**Invariant operands.**  A plain multivector K takes part in that only when ``T K ~T = K`` for every T.  With
+``T = 1 + e t / 2``, ``T K ~T = K + (e t K - K e t) / 2 - e t K e t / 4`` and ``(e t)^2 = 0``: K is invariant
+exactly when it commutes with ``e e1``, ``e e2``, ``e e3``.  Those K span the scalars, ``e ^ A`` for every
+Euclidean A (e itself, free vectors, the translators ``1 + e t / 2``) and the pseudoscalar Ic: in coefficients, no
+Euclidean blade but the scalar, equal e+ and e- coefficients of each Euclidean blade A (``e ^ A`` is
+``-(A e+ + A e-)`` up to order), and no e+e- blade but Ic (:func:`invariant`, an exact test).  Numbers (and arrays
+of them, a batch) are invariant.  ``e0``, a point, ``e1``, a rotor or any other multivector is not: an operation
+with it returns the plain multivector, as before.
+
+**Bits.**  The global coefficients are computed as for plain multivectors (the same routine on the same
+coefficients): an anchored result equals, prints and compares as the plain one, bit for bit.  Only its local
+blade is added, built when first read (see :class:`Pending`).  An operation with no anchored operand never gets
+here: a plain multivector pays nothing.
+"""
+
+from __future__ import annotations
+
+import numbers
+
+import numpy as np
+
+from cga_lessons.algebra import GeometryError, Multivector
+
+from .model import G41, einf
+
+__all__ = ["FrameOps", "Pending", "follow", "invariant", "translated"]
+
+#: A chain of derived entities none of which was read is built from its end when first read, one level after the
+#: other; beyond this depth the operands are built at once, so that a long chain (a sum in a loop) never nests deep.
+MAX_DEPTH = 48
+_NUMBERS = (numbers.Real, np.ndarray)
+_IC = 31  # e123+-
+
+
+class NoFrame(GeometryError):
+    """An operand lost its frame, or the local blade could not be built: the result is read as a plain blade."""
+
+
+class Pending:
+    """The local blade of a derived entity, built when first read: ``build()`` returns ``(anchor, local)``.
+    ``depth`` is the number of derived entities, none of them read yet, it is built through."""
+
+    __slots__ = ("build", "depth")
+
+    def __init__(self, build, depth: int):
+        self.build, self.depth = build, depth
+
+    def __call__(self):
+        return self.build()
+
+
+def invariant(K: Multivector) -> bool:
+    """True when ``T K ~T = K`` for every translator T (2.100): K commutes with e e1, e e2, e e3 (module docstring),
+    that is K is a combination of 1, ``e ^ A`` (A Euclidean) and Ic.  Exact: the e+ and e- coefficients of each
+    Euclidean blade must be equal, not close."""
+    c = K._c
+    for b, v in c.items():
+        if b == 0 or b == _IC:
+            continue
+        s = b & 24
+        if s != 8 and s != 16:  # a Euclidean blade, or one with e+e- (Ic excepted): zero (a batch's zeros) or not K's
+            if np.any(v):
+                return False
+            continue
+        w = c.get(b ^ 24, 0.0)
+        if not (v is w or np.all(np.asarray(v) == np.asarray(w))):
+            return False
+    return True
+
+
+def translated(L: Multivector, t) -> Multivector:
+    """``T_t L ~T_t`` (2.100, ``T_t = 1 + e t / 2``) for t of shape (3,) or (..., 3), L's grades kept (a versor keeps
+    grades; the other grades of the products are round-off)."""
+    t = 0.5 * np.asarray(t, dtype=float)
+    T = einf * Multivector(G41, {1: t[..., 0], 2: t[..., 1], 4: t[..., 2]}) + 1.0
+    return (T * L * ~T).grade(*L.grades_present())
+
+
+def _depth(X) -> int:
+    L = X._local
+    return L.depth if isinstance(L, Pending) else 0
+
+
+def _operand_kinds(operands):
+    """Per operand: True (anchored), False (invariant: a number or an invariant multivector); None when some
+    operand is neither (the result is plain)."""
+    kinds = []
+    for x in operands:
+        if isinstance(x, FrameOps) and x._anchor is not None:
+            kinds.append(True)
+        elif isinstance(x, Multivector):
+            if not invariant(x):
+                return None
+            kinds.append(False)
+        elif isinstance(x, _NUMBERS) and not isinstance(x, (bool, np.bool_)):
+            kinds.append(False)
+        else:
+            return None
+    return kinds
+
+
+def follow(Y, op, *operands, anchor_arg: bool = False):
+    """``Y`` (the result of an operation, computed from the global coefficients) with a local frame: anchored at the
+    anchor f of its first anchored operand, its local blade ``op(*locals)``, where each anchored operand gives its
+    local blade moved into f's frame (``T_{g-f} L ~T_{g-f}``) and every other operand is passed as it is (it must be
+    a number or an invariant multivector; else Y is returned plain).  ``op`` must be translation-covariant (see the
+    module docstring); ``anchor_arg``: it takes f first.  Built when first read; should that fail (an operand's
+    frame dropped, the local blade overflows or has no inverse), Y is read as a plain blade."""
+    if type(Y) is not Multivector or not Y._c:
+        return Y
+    kinds = _operand_kinds(operands)
+    if not kinds or True not in kinds:
+        return Y
+    framed = [x for x, k in zip(operands, kinds) if k]
+    depth = 1 + max(_depth(x) for x in framed)
+    if depth > MAX_DEPTH:
+        for x in framed:
+            x.settle()
+        depth = 1
+    shape, grades = Y.shape, Y.grades_present()
+
+    def build():
+        f, args = None, []
+        for x, k in zip(operands, kinds):
+            if not k:
+                args.append(x)
+                continue
+            x.settle()
+            g, L = x._anchor, x._local
+            if g is None:
+                raise NoFrame("an operand lost its frame")
+            if f is None:
+                f = g
+            elif g is not f and not np.array_equal(g, f):
+                L = translated(L, g - f)
+            args.append(L)
+        L = op(f, *args) if anchor_arg else op(*args)
+        if not isinstance(L, Multivector) or L.shape != shape:
+            raise NoFrame("the local blade has another batch shape")
+        if not all(np.all(np.isfinite(v)) for v in L._c.values()):
+            raise NoFrame("the local blade is not finite")
+        if any(g not in grades for g in L.grades_present()):
+            L = L.grade(*grades)  # round-off in grades the global result does not have
+        a = np.array(np.broadcast_to(f, shape + (3,)), dtype=float)
+        a.flags.writeable = False
+        return a, L
+
+    def guarded():
+        try:
+            return build()
+        except NoFrame:
+            raise
+        except (ValueError, ArithmeticError) as exc:  # GeometryError is a ValueError
+            raise NoFrame(str(exc)) from None
+
+    return type(framed[0]).derive(Y, Pending(guarded, depth))
+
+
+def view(X):
+    """A plain multivector holding X's (read-only) coefficients, not copied: what the global computation reads, so
+    that it is the plain routine's, bit for bit.  Anything else as it is."""
+    if not isinstance(X, FrameOps):
+        return X
+    m = object.__new__(Multivector)
+    m.algebra, m._c = X.algebra, X._c
+    return m
+
+
+# ------------------------------------------------------------------------------- the operators
+def _binary(name: str, rname: str | None, fn):
+    """The operator ``name`` and its reflection ``__r...__``: the plain result, followed (:func:`follow`) by
+    ``fn(left, right)`` on the local blades."""
+    plain = getattr(Multivector, name)
+    rplain = getattr(Multivector, rname, None) if rname else None
+
+    def forward(self, other):
+        Y = plain(view(self), view(other))
+        return Y if Y is NotImplemented else follow(Y, fn, self, other)
+
+    def reflected(self, other):  # other (a number, or a plain multivector: Python asks the subclass first) op self
+        if isinstance(other, Multivector):
+            Y = plain(view(other), view(self))
+        elif rplain is not None:
+            Y = rplain(view(self), other)
+        else:
+            return NotImplemented
+        return Y if Y is NotImplemented else follow(Y, fn, other, self)
+
+    forward.__name__, reflected.__name__ = name, name.replace("__", "__r", 1)
+    forward.__doc__ = f"{plain.__doc__ or name} The frame follows (:func:`cga_lessons.conformal.anchored_ops.follow`)."
+    return forward, reflected
+
+
+def _unary(name: str):
+    """The method ``name`` (its extra arguments passed on): the plain result, followed by the same method on the
+    local blade."""
+    plain = getattr(Multivector, name)
+
+    def method(self, *args):
+        Y = plain(view(self), *args)
+        return follow(Y, lambda L: plain(L, *args), self)
+
+    method.__name__ = name
+    method.__doc__ = f"{plain.__doc__ or name} The frame follows (same operation on the local blade)."
+    return method
+
+
+def _method(name: str):
+    """A method of two operands (``X.inner(Y)``), the frame followed."""
+    plain = getattr(Multivector, name)
+
+    def method(self, other):
+        return follow(plain(view(self), view(other)), lambda a, b: plain(a, b), self, other)
+
+    method.__name__, method.__doc__ = name, plain.__doc__
+    return method
+
+
+def _global(name: str):
+    """A method whose result is a coefficient (a number, not a multivector), read from the global coefficients."""
+    plain = getattr(Multivector, name)
+
+    def method(self, *args):
+        return plain(view(self), *(view(a) for a in args))
+
+    method.__name__, method.__doc__ = name, plain.__doc__
+    return method
+
+
+class FrameOps:
+    """The operators of :class:`~cga_lessons.conformal.anchored.Anchored`: each computes the plain result from the
+    global coefficients and lets the frame follow when every operand is anchored or invariant (module docstring).
+    A mixin before :class:`~cga_lessons.algebra.Multivector`; ``_anchor``, ``_local`` and ``settle`` are the
+    anchored entity's."""
+
+    __slots__ = ()
+
+    __add__, __radd__ = _binary("__add__", "__radd__", lambda a, b: a + b)
+    __sub__, __rsub__ = _binary("__sub__", "__rsub__", lambda a, b: a - b)
+    __mul__, __rmul__ = _binary("__mul__", "__rmul__", lambda a, b: a * b)
+    __truediv__, __rtruediv__ = _binary("__truediv__", "__rtruediv__", lambda a, b: a / b)
+    __xor__, __rxor__ = _binary("__xor__", "__rxor__", lambda a, b: a ^ b)
+    __or__, __ror__ = _binary("__or__", "__ror__", lambda a, b: a | b)
+    __lshift__, __rlshift__ = _binary("__lshift__", None, lambda a, b: a << b)
+    __rshift__, __rrshift__ = _binary("__rshift__", None, lambda a, b: a >> b)
+    inner = _method("inner")
+    left_contraction = _method("left_contraction")
+
+    __neg__ = _unary("__neg__")
+    __invert__ = reverse = _unary("reverse")
+    involute = _unary("involute")
+    conjugate = _unary("conjugate")
+    grade = _unary("grade")
+    even = _unary("even")
+    odd = _unary("odd")
+    dual = _unary("dual")
+    undual = _unary("undual")
+    normalized = _unary("normalized")
+    inv = _unary("inv")
+    __pow__ = _unary("__pow__")
+
+    scalar_product = _global("scalar_product")
+    norm2 = _global("norm2")
+    norm = _global("norm")
