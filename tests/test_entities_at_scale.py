@@ -276,19 +276,20 @@ def two_spheres(cfg):
 @given(CONFIGS)
 def test_circle_where_two_spheres_meet_far_eq_2_79(cfg):
     """``s1 ^ s2`` (2.79), the regressive product, ``meet`` and ``intersect``: the circle of two anchored spheres
-    as exact as the spheres (its local blade about the first one's anchor, the second moved in by 2.100)."""
+    as exact as the spheres (its local blade about the first one's anchor, the second moved in by 2.100).  ``meet``
+    and ``intersect`` decide in the local frame, at the default ``tol`` as at a small one."""
     c, size, pts, c2, r2 = two_spheres(cfg)
     tc, tr2 = circumsphere(pts)
     pc, rho2, d, _ = circle_of(tc, tr2, fr(c2), Fr(r2) ** 2)
     assume(rho2 > 0)
     p, rho, u = flt(pc), fsqrt(rho2), unit(d)
     S1, S2 = cga.standard_form(cga.sphere_from_points(*pts)), cga.sphere(c2, r2)
-    sines_resolved = 1e-15  # the join's decision in the global coefficients: see test_meet_decides_in_the_global..
     for Z in (
         S1 ^ S2,
         cga.regressive_product(cga.dual_form(S2), cga.dual_form(S1)),
-        cga.meet(cga.dual_form(S1), cga.dual_form(S2), sines_resolved),
-        cga.intersect(S1, S2, tol=sines_resolved),
+        cga.meet(cga.dual_form(S1), cga.dual_form(S2)),
+        cga.intersect(S1, S2),
+        cga.intersect(S1, S2, tol=1e-15),
     ):
         centre, radius, normal = cga.circle_center_radius(Z)
         assert close_pos(centre, p, rho, c)
@@ -326,20 +327,96 @@ def test_point_pair_where_a_line_cuts_a_sphere_far_table_2_1(cfg):
         assert one_blade(PP)
 
 
-def test_meet_decides_in_the_global_coefficients():
-    """join and meet decide whether the spans overlap in the global coefficients (sines of principal angles below
-    ``tol``), as for the plain blades: 1e6 out the 4-spaces of two unit spheres are 8e-13 apart, which the default
-    1e-10 takes for one subspace.  The global meet is then a blade of grade 4; the local blades decide otherwise
-    and the frame is dropped (it would describe another entity).  ``s1 ^ s2`` or a ``tol`` below the sine give the
-    circle, exact (the test above)."""
+FAR_PAIR = ([0.6, -0.48, 0.64], 1.0, [0.5, 0.3, 0.1], 1.1)  # two unit-size spheres: their circle has rho ~ 0.87
+
+
+def far_pair(offset):
+    """Two anchored spheres ``offset`` out, centres 0.59 apart (FAR_PAIR)."""
+    u, r1, d, r2 = FAR_PAIR
+    c = offset * np.array(u)
+    return c, cga.sphere(c, r1), cga.sphere(c + d, r2)
+
+
+@pytest.mark.parametrize("offset", [1e5, 1e6])
+def test_meet_of_far_anchored_spheres_decides_in_the_local_frame(offset):
+    """1e5-1e6 out the 4-spaces of two unit spheres are ~1e-12 apart in the global coefficients, which the
+    default ``tol = 1e-10`` takes for one subspace; their local blades (about the first sphere's anchor, the second
+    moved in by 2.100) are well apart.  ``join``, ``meet`` and ``intersect`` of anchored blades decide there: the
+    meet is the circle (grade 3, standard form grade 2), anchored, exact against the Fractions truth at the default
+    ``tol``; its global coefficients are its local blade translated back by the anchor (``T_f L ~T_f``)."""
+    from cga_lessons.conformal.anchored import frame
+    from cga_lessons.conformal.anchored_ops import translated
+
+    c, S1, S2 = far_pair(offset)
+    _, r1, _, r2 = FAR_PAIR
+    c2 = c + FAR_PAIR[2]
+    pc, rho2, d, _ = circle_of(fr(c), Fr(r1) ** 2, fr(c2), Fr(r2) ** 2)
+    p, rho, u = flt(pc), fsqrt(rho2), unit(d)
+    A, B = cga.dual_form(S1), cga.dual_form(S2)
+    M, Z, J = cga.meet(A, B), cga.intersect(S1, S2), cga.join(A, B)
+    assert M.grades_present() == [3] and Z.grades_present() == [2] and J.grades_present() == [5]
+    for X in (M, Z, J):
+        f, L = frame(X)
+        assert f is not None and L.grades_present() == X.grades_present()
+        assert X == translated(L, f)  # the global coefficients: the local blade translated back, bit for bit
+    for X in (M, Z):
+        centre, radius, normal = cga.circle_center_radius(X)
+        assert close_pos(centre, p, rho, c)
+        assert abs(radius - rho) <= REL * rho
+        assert min(np.linalg.norm(normal - u), np.linalg.norm(normal + u)) <= REL
+    W = S1 ^ S2  # the thesis's circle (2.79): intersect's sign, the same local blade
+    assert np.array_equal(frame(Z)[0], frame(W)[0]) and frame(Z)[1] == frame(W)[1]
+    k = cga.classify(Z, form="standard")
+    assert k.name == "circle" and abs(k.radius2 - rho * rho) <= REL * rho * rho
+
+
+@pytest.mark.parametrize("offset", [1e5, 1e6])
+def test_plain_blades_meet_as_before_far_out(offset):
+    """Plain blades have only the global coefficients, and decide there, as before: 1e5-1e6 out the default ``tol``
+    takes the 4-spaces of the two spheres for one subspace (the join is a sphere, the meet a grade-4 blade, the
+    standard form a vector), the storage's limit.  A ``tol`` below the sines (1e-14) gives the circle."""
+    _, S1, S2 = far_pair(offset)
+    A, B = cga.dual_form(S1).plain(), cga.dual_form(S2).plain()
+    assert cga.join(A, B).grades_present() == [4] and cga.meet(A, B).grades_present() == [4]
+    assert cga.intersect(S1.plain(), S2.plain()).grades_present() == [1]
+    assert cga.meet(A, B, 1e-14).grades_present() == [3]
+
+
+@FAST
+@given(CONFIGS)
+def test_anchored_meet_keeps_the_plain_bits_where_the_frames_agree(cfg):
+    """Where the local and the global blades decide the same (the same grade), ``join``, ``meet`` and ``intersect``
+    of anchored blades return the plain routine's global coefficients, bit for bit, with the frame; where they
+    differ (far out, small spheres) the anchored result is its local blade translated back."""
+    from cga_lessons.conformal.anchored import frame
+    from cga_lessons.conformal.anchored_ops import translated
+
+    _, _, pts, c2, r2 = two_spheres(cfg)
+    S1, S2 = cga.standard_form(cga.sphere_from_points(*pts)), cga.sphere(c2, r2)
+    A, B = cga.dual_form(S1), cga.dual_form(S2)
+    for fn, x, y in ((cga.join, A, B), (cga.meet, A, B), (cga.intersect, S1, S2)):
+        X, P = fn(x, y), fn(x.plain(), y.plain())
+        f, L = frame(X)
+        assert f is not None
+        if X.grades_present() == P.grades_present():
+            assert X == P
+        else:
+            assert X == translated(L, f)
+
+
+def test_anchored_meet_near_the_origin_is_the_plain_meet():
+    """1e3 out both frames decide the circle: the anchored meet and intersect are the plain ones, bit for bit."""
     from cga_lessons.conformal.anchored import frame
 
-    c = 1e6 * np.array([0.6, -0.48, 0.64])
-    S1, S2 = cga.sphere(c, 1.0), cga.sphere(c + [0.5, 0.3, 0.1], 1.1)
-    M = cga.meet(cga.dual_form(S1), cga.dual_form(S2))
-    assert M.grades_present() == [4] and frame(M)[0] is None
-    assert M == cga.meet(cga.dual_form(S1).plain(), cga.dual_form(S2).plain())  # the plain meet, bit for bit
-    assert cga.meet(cga.dual_form(S1), cga.dual_form(S2), 1e-14).grades_present() == [3]
+    _, S1, S2 = far_pair(1e3)
+    A, B = cga.dual_form(S1), cga.dual_form(S2)
+    for X, P in (
+        (cga.meet(A, B), cga.meet(A.plain(), B.plain())),
+        (cga.intersect(S1, S2), cga.intersect(S1.plain(), S2.plain())),
+        (cga.join(A, B), cga.join(A.plain(), B.plain())),
+    ):
+        assert X == P and frame(X)[0] is not None
+        assert all(np.array_equal(X.coeffs[k], P.coeffs[k]) for k in P.coeffs) and X.coeffs.keys() == P.coeffs.keys()
 
 
 @FAST

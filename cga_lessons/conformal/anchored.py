@@ -38,15 +38,18 @@ motor: move an entity with ``apply``), reflections and inversions, ``map`` and `
 :class:`~cga_lessons.algebra.Multivector`: the frame is dropped, never stale.
 
 The global coefficients of every result are those of the plain operation, bit for bit, and so are the numbers read
-off them (``scalar()``, ``norm2()``, ``X["e1"]``).  Join and meet decide as before, on the global blades, whether
-the spans overlap (``tol`` bounds the sines of the principal angles in the coefficient space); where they weight the
-result in the coefficient space (a partial overlap, a null join) the local blade is scaled to match the global one,
-and where the local blades decide otherwise (another grade) the frame is dropped.  1e5 out or more, the 4-spaces of
-two unit spheres are less than the default ``tol = 1e-10`` apart (8e-13 times their size at 1e6): their meet is
-then a blade of grade 4, as for plain blades, with no frame; ``s1 ^ s2``, ``regressive_product`` or a ``tol`` below
-the sine give the circle, exact.  An :class:`Anchored` cannot be changed in place: its coefficient map refuses
-writes and its arrays are read-only; ``copy.copy`` and ``copy.deepcopy`` return it as it is.  It prints and compares
-as the multivector of its global coefficients.
+off them (``scalar()``, ``norm2()``, ``X["e1"]``), with one exception: join and meet of two anchored blades.  Whether
+the spans overlap (``tol`` bounds the sines of the principal angles in the coefficient space) is decided on the
+local blades (the second moved into the first's frame), which hold the geometry; 1e5 out or more the global
+4-spaces of two unit spheres are less than the default ``tol = 1e-10`` apart (8e-13 times their size at 1e6), a
+decision of round-off (a plain blade's meet is there a blade of grade 4).  Where the local and the global blades
+decide the same grade the result is the plain one, bit for bit, with its frame (where the weight depends on the
+frame, a partial overlap or a null join, the local blade is scaled to match the global one); where they differ the
+result is the local decision, anchored, its global coefficients its local blade translated back by the anchor
+(``T_f L ~T_f``): ``meet``/``intersect`` of two far spheres is their circle, exact, at the default ``tol``.  An
+:class:`Anchored` cannot be changed in place: its coefficient map refuses writes and its arrays are read-only;
+``copy.copy`` and ``copy.deepcopy`` return it as it is.  It prints and compares as the multivector of its global
+coefficients.
 
 **Cost.**  The local blade and a motion are built when first read (:meth:`Anchored.settle`): a constructor adds
 the choice of the anchor, ``apply`` a few microseconds whatever the batch, an operation the closure that will build

@@ -24,7 +24,9 @@ with it returns the plain multivector, as before.
 **Bits.**  The global coefficients are computed as for plain multivectors (the same routine on the same
 coefficients): an anchored result equals, prints and compares as the plain one, bit for bit.  Only its local
 blade is added, built when first read (see :class:`Pending`).  An operation with no anchored operand never gets
-here: a plain multivector pays nothing.
+here: a plain multivector pays nothing.  The one exception is the join and meet of two anchored blades, which
+decide on their local blades (:func:`cga_lessons.conformal.blades.meet`): where that decision is another grade than
+the global one, the result's global coefficients are its local blade translated back (:func:`translated`).
 """
 
 from __future__ import annotations

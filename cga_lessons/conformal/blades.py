@@ -30,6 +30,7 @@ import numpy as np
 from cga_lessons import checks
 from cga_lessons.algebra import Algebra, DegenerateGeometryError, Multivector
 
+from .anchored import Anchored, frame
 from .anchored_ops import follow, translated
 from .blades_span import (
     blade_span,
@@ -188,7 +189,8 @@ def _local(op, covariant, out: Multivector, ka: int, kb: int):
     :func:`_meet`) it is the result about the anchor, exactly.  Otherwise the subspace still is (join and meet are
     metric-free) but the weight depends on the frame: the local blade is scaled by the least-squares factor that
     makes it, translated back by the anchor, the global result (whose large coefficients hold it to round-off), so
-    that both are one blade, with one orientation.  A local decision that differs (another grade) drops the frame."""
+    that both are one blade, with one orientation.  A local decision of another grade is taken before this
+    (:func:`_decided_locally` returns the local result); should it still differ here, the frame is dropped."""
 
     def build(f, a, b):
         L, branch = op(_as_mv(a).grade(ka), ka, _as_mv(b).grade(kb), kb)
@@ -206,6 +208,35 @@ def _local(op, covariant, out: Multivector, ka: int, kb: int):
     return build
 
 
+def _decided_locally(op, out: Multivector, A0, B0, ka: int, kb: int):
+    """The join or meet of two anchored blades A0 (anchor f) and B0 when their local blades decide otherwise than
+    the global ones (a result of another grade); else None.
+
+    ``op(A, ka, B, kb) -> (blade, branch)`` runs on A0's local blade and B0's moved into f's frame (2.100), as
+    :func:`~cga_lessons.conformal.anchored_ops.follow` moves it.  Far from the origin the global coefficients of two
+    nearby rounds span subspaces whose principal angles are below ``tol`` (8e-13 for two unit spheres 1e6 out): the
+    global decision is then round-off, the local one the geometry's.  The local result L is the entity, anchored at
+    f, and its global coefficients are L translated back by f (``T_f L ~T_f``), not the plain routine's.  Where both
+    decide the same grade (or an operand has no frame) the caller keeps the plain result and lets the frame follow,
+    bit for bit as before."""
+    fa, La = frame(A0)
+    fb, Lb = frame(B0)
+    if fa is None or fb is None:
+        return None
+    if fb is not fa and not np.array_equal(fb, fa):
+        Lb = translated(Lb, fb - fa)
+    try:
+        L, _ = op(La.grade(ka), ka, Lb.grade(kb), kb)
+    except (ValueError, ArithmeticError):  # GeometryError is a ValueError: no local decision to take
+        return None
+    if not L.coeffs or L.grades_present() == out.grades_present():
+        return None
+    W = translated(L, fa)
+    if W.grades_present() != L.grades_present() or not all(math.isfinite(float(v)) for v in W.coeffs.values()):
+        return None
+    return Anchored(G41, dict(W.coeffs), anchor=fa, local=L)
+
+
 def join(A, B, tol: float = 1e-10) -> Multivector:
     """Join ``A ∪ B``: a blade of the smallest subspace that contains both blades (DFM 5.1-5.3, ch. 21).
 
@@ -213,7 +244,8 @@ def join(A, B, tol: float = 1e-10) -> Multivector:
     Euclidean-orthonormal basis of the part of span(B) outside span(A); its weight is then that of A (the join
     has no canonical weight).  ``tol`` bounds the sines of the principal angles counted as zero.  The join does
     not use the metric; a scalar joins to the other argument.  Anchored blades give an anchored join
-    (:mod:`~cga_lessons.conformal.anchored_ops`; in a partial overlap its local blade is scaled to the global one).
+    (:mod:`~cga_lessons.conformal.anchored_ops`; in a partial overlap its local blade is scaled to the global one),
+    decided on their local blades as :func:`meet` is.
 
     >>> from cga_lessons import conformal as cga
     >>> L1 = cga.line_from_points([0, 0, 0], [1, 0, 0])
@@ -229,7 +261,8 @@ def join(A, B, tol: float = 1e-10) -> Multivector:
     J, covariant = _join_covariant(A, ka, B, kb, tol)
     J = result_finite(J, "join", A=A, B=B)
     op = lambda a, ka, b, kb: _join_covariant(a, ka, b, kb, tol)  # noqa: E731
-    return follow(J, _local(op, covariant, J, ka, kb), A0, B0, anchor_arg=True)
+    local = _decided_locally(op, J, A0, B0, ka, kb)
+    return local if local is not None else follow(J, _local(op, covariant, J, ka, kb), A0, B0, anchor_arg=True)
 
 
 def meet(A, B, tol: float = 1e-10) -> Multivector:
@@ -249,9 +282,11 @@ def meet(A, B, tol: float = 1e-10) -> Multivector:
 
     Anchored blades (:mod:`~cga_lessons.conformal.anchored`) give an anchored meet, exact far from the origin: its
     local blade is the same meet of the local blades, scaled to the global one where the join's weight depends on
-    the frame.  Which case applies is decided on the global blades, as for plain ones; where the local blades
-    decide otherwise the frame is dropped (1e5 out or more two unit spheres are one subspace to the default
-    ``tol``: pass a smaller one, or take ``s1 ^ s2``).
+    the frame.  Which case applies is decided on the local blades (the second moved into the first's frame): 1e5
+    out or more the global coefficients of two unit spheres are one subspace to the default ``tol`` (a plain
+    blade's meet is there of grade 4), their local blades are not.  Where both decide the same grade the global
+    coefficients are the plain meet's, bit for bit; where they differ, the local blade translated back by the
+    anchor (:func:`_decided_locally`).
 
     >>> from cga_lessons import conformal as cga
     >>> L = cga.line_from_points([0, 0, 0], [0, 0, 1])            # the z axis
@@ -270,7 +305,8 @@ def meet(A, B, tol: float = 1e-10) -> Multivector:
     else:
         M = single_multivector(result_finite(M, "meet", A=A, B=B), "meet", "A, B")
     op = lambda a, ka, b, kb: _meet(a, ka, b, kb, tol)  # noqa: E731
-    return follow(M, _local(op, covariant, M, ka, kb), A0, B0, anchor_arg=True)
+    local = _decided_locally(op, M, A0, B0, ka, kb)
+    return local if local is not None else follow(M, _local(op, covariant, M, ka, kb), A0, B0, anchor_arg=True)
 
 
 def _meet(A, ka, B, kb, tol):

@@ -175,7 +175,10 @@ def intersect(X, Y, forms=("auto", "auto"), out: str = "auto", tol: float = 1e-1
 
     Degenerate positions are not errors: parallel planes give a free bivector, a line that misses a sphere an
     imaginary point pair, tangent spheres a tangent bivector, concentric spheres a dual flat point.  Ask
-    :func:`classify` (with the same ``form``) what came back.
+    :func:`classify` (with the same ``form``) what came back.  Anchored entities
+    (:mod:`~cga_lessons.conformal.anchored`) keep their frames and are met in them
+    (:func:`~cga_lessons.conformal.blades.meet` decides on the local blades): two unit spheres 1e6 out give their
+    circle, exact, at the default ``tol``.
 
     >>> from cga_lessons import conformal as cga
     >>> z = intersect(cga.sphere([0, 0, 0], 1.0), cga.sphere([1, 0, 0], 1.0))  # standard form, (2.79)
