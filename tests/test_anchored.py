@@ -584,3 +584,17 @@ def test_the_short_local_forms_are_the_closed_forms_eq_2_68_2_72():
     P, Q = pair_about_an_end(a, b), F.point_pair(a, b, "point_pair")
     assert set(P.coeffs) == set(Q.coeffs)
     assert all(np.allclose(P.coeffs[k], Q.coeffs[k], rtol=4 * EPS, atol=0) for k in P.coeffs)
+
+
+def test_constructors_without_the_frame_give_the_plain_blade():
+    """``frame=False``: the same coefficients, bit for bit, as a plain multivector (what a builder working near the
+    origin uses); anything but a bool refused."""
+    a, b = np.array([1e5, -2e5, 3.0]), np.array([1e5 + 0.4, -2e5 - 0.1, 2.5])
+    for framed, plain_one in ((cga.point_pair(a, b), cga.point_pair(a, b, frame=False)),
+                              (cga.sphere(a, 0.7), cga.sphere(a, 0.7, frame=False))):  # fmt: skip
+        assert type(framed).__name__ == "Anchored" and type(plain_one) is Multivector
+        assert dict(framed.coeffs) == dict(plain_one.coeffs)
+    with pytest.raises(InvalidInputError, match="point_pair: frame"):
+        cga.point_pair(a, b, frame="no")
+    with pytest.raises(InvalidInputError, match="sphere: frame"):
+        cga.sphere(a, 0.7, frame=None)

@@ -133,18 +133,22 @@ def exact_up(x) -> Multivector:
 
 
 # --------------------------------------------------------------- point pairs
-def point_pair(a, b) -> Multivector:
+def point_pair(a, b, frame: bool = True) -> Multivector:
     """Point pair in dual form PP* = a ^ b of two conformal points, Eq. (2.68).
 
     Floats: the closed form about the midpoint (or the end nearer the
     origin), its e0 part ``a - b`` put on the grid of its e+/e- coefficients
     (a change of ``~eps (|m|^2 + 1)`` relative), anchored at the end nearer
-    the origin (exact there).  Raises :class:`DegenerateGeometryError` when a
-    and b coincide.
+    the origin (exact there; ``frame=False``: the plain blade alone, which
+    costs less and holds everything near the origin).  Raises
+    :class:`DegenerateGeometryError` when a and b coincide.
     """
+    frame = checks.flag(frame, "point_pair", "frame")
     pts = _F.points("point_pair", "a, b", a, b)
     if pts is None:
         return require_nonzero(exact_up(a) ^ exact_up(b), "point_pair", "a, b", "the two points coincide")
+    if not frame:
+        return _F.point_pair(*pts, "point_pair")
     return from_points(_F.point_pair, "point_pair", *pts, local=pair_about_an_end)
 
 
@@ -238,13 +242,15 @@ def point_pair_sphere(PP: Multivector) -> Multivector:
 
 
 # ------------------------------------------------------------------- spheres
-def sphere(center, radius) -> Multivector:
+def sphere(center, radius, frame: bool = True) -> Multivector:
     """Sphere s = p - rho^2 e / 2 in standard form, Eq. (2.72).
 
     ``center`` has shape (3,) or (N, 3); ``radius`` a scalar or (N,) array, >= 0.
     In floats the weight 1 is stored exactly (``e- - e+`` is 1 to the bit;
-    beyond |p| ~ 1e8 the smallest power of two that can be), anchored at p.
+    beyond |p| ~ 1e8 the smallest power of two that can be), anchored at p
+    (``frame=False``: the plain blade alone, as :func:`point_pair`).
     """
+    frame = checks.flag(frame, "sphere", "frame")
     pts = _F.points("sphere", "center", center)
     radius = _per_item(radius, "sphere", "radius", ("center", None if pts is None else pts[0]), low=0)
     if pts is None or is_sympy(radius):
@@ -253,6 +259,8 @@ def sphere(center, radius) -> Multivector:
         checks.magnitude(radius, "sphere", "radius", limit=COORD_LIMIT, why="its square overflows a float"), dtype=float
     )
     p = pts[0]
+    if not frame:
+        return _F.sphere_std(p, _F.dot(p, p) - r * r, 1.0, "sphere", "center, radius")
     return sphere_at(p, 0.0 * p, r * r, "sphere", "center, radius")  # anchored at its centre
 
 

@@ -88,7 +88,7 @@ def segment_point_pair(segments) -> Multivector:
     f = "segment_point_pair"
     if isinstance(segments, Segment):
         with checks.relabel(f, "segments"):
-            return cga.point_pair(plane_points(segments.start), plane_points(segments.end))
+            return cga.point_pair(plane_points(segments.start), plane_points(segments.end), frame=False)
     if not isinstance(segments, (list, tuple)) or not segments:
         raise checks.fail(f, "segments", f"expected a Segment or a non-empty list of them, got {segments!r:.60}")
     for s in segments:
@@ -96,7 +96,7 @@ def segment_point_pair(segments) -> Multivector:
     starts = np.array([s.start for s in segments])
     ends = np.array([s.end for s in segments])
     with checks.relabel(f, "segments"):
-        return cga.point_pair(plane_points(starts), plane_points(ends))
+        return cga.point_pair(plane_points(starts), plane_points(ends), frame=False)
 
 
 @dataclass(frozen=True)
