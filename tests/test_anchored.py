@@ -37,7 +37,7 @@ from test_entities_at_scale import (
 )
 
 from cga_lessons import conformal as cga
-from cga_lessons.algebra import InvalidInputError, Multivector
+from cga_lessons.algebra import GeometryError, InvalidInputError, Multivector
 from cga_lessons.conformal.anchored import Anchored, frame, plain
 
 RNG = np.random.default_rng(16)
@@ -171,8 +171,7 @@ DROP = {  # a multivector that translations change, or an operation that is not 
     "M >> X": lambda X, Y: cga.motor([0, 0, 1], 0.3, [1, 2, 3]) >> X,
     "map": lambda X, Y: X.map(lambda v: v),
     "simplify": lambda X, Y: X.simplify(),
-    "reflect_in_plane": lambda X, Y: cga.reflect_in_plane(cga.plane([0, 0, 1], 2.0), X),
-    "invert_in_sphere": lambda X, Y: cga.invert_in_sphere(cga.sphere([0, 0, 1], 2.0), X),
+    "apply a dilation": lambda X, Y: cga.apply(cga.dilator(2.0, [0.5, 0, 1]), X),
     "meet with a plane": lambda X, Y: cga.meet(X, cga.dual_form(cga.plane([0, 0, 1], 3.0))),
 }
 OTHER = cga.sphere(NEAR[1] + [0.3, -0.2, 0.1], 0.8)  # a second entity, its anchor not X's
@@ -503,8 +502,158 @@ def test_a_local_blade_that_cannot_be_built_drops_the_frame():
 
 def test_apply_of_other_versors_drops_the_frame():
     X = cga.sphere_from_points(*FAR)
-    for V in (cga.plane([0, 0, 1], 2.0), cga.sphere([0, 0, 0], 3.0), cga.dilator(2.0)):  # not motors
+    for V in (
+        cga.dilator(2.0),
+        cga.dilator(0.5, [1.0, 2.0, 3.0]),
+        cga.motor([0, 0, 1], 0.3, [1, 2, 3]) * cga.sphere([0, 0, 0], 3.0),
+    ):  # no motors, reflections or inversions
         assert type(cga.apply(V, X)) is Multivector
+
+
+def mirrors():
+    """Reflections (a plane and its dual form, a plane times a motor) and inversions (a sphere, its dual form, an
+    imaginary sphere) near NEAR, by name."""
+    S = cga.sphere(NEAR[0] + [1.5, -0.5, 0.4], 1.3)
+    P = cga.plane_from_points(NEAR[0] + [1, 0, 0], NEAR[0] + [0, 1.2, 0.3], NEAR[0] + [0.2, 0.1, 1])
+    return {
+        "plane": cga.standard_form(P),
+        "dual plane": P,
+        "reflect_in_plane": P,
+        "motor * plane": cga.motor([0.3, 1, -0.2], 0.8, [1.0, -2.0, 0.5]) * cga.standard_form(P),
+        "sphere": S,
+        "dual sphere": cga.dual_form(S),
+        "invert_in_sphere": S,
+        "plain sphere": S.plain(),
+        "imaginary sphere": cga.up(NEAR[0] + [1.5, -0.5, 0.4]) + 0.8 * cga.einf,
+    }
+
+
+@pytest.mark.parametrize("name", list(mirrors()))
+def test_reflections_and_inversions_keep_the_frame_and_give_the_plain_bits(name):
+    """apply of a reflection in a plane (2.89-2.91, also a plane's dual form and its product with a motor) or of an
+    inversion in a sphere (2.84-2.88) keeps the frame of every anchored entity: the global coefficients are the
+    plain ones, bit for bit; the anchor is the image of X's anchor, the local blade the result about it (2.100), and
+    a dual form or a motion that follows keeps it too (a pending reflection involutes the local blade)."""
+    V = mirrors()[name]
+    act = {"reflect_in_plane": cga.reflect_in_plane, "invert_in_sphere": cga.invert_in_sphere}.get(name, cga.apply)
+    M = cga.motor([1, 0, 0], 0.4, [0.5, 0.2, -1.0])
+    for xname, X in entities(NEAR).items():
+        Y = act(V, X)
+        assert type(Y) is Anchored, (name, xname)
+        assert same_bits(Y, act(V, X.plain())), (name, xname)
+        assert np.allclose(Y.anchor, cga.apply_to_points(V, X.anchor), rtol=0, atol=1e-11), (name, xname)
+        for Z in (Y, cga.dual_form(Y), cga.apply(M, Y), cga.apply(V, cga.apply(M, X))):
+            assert type(Z) is Anchored, (name, xname)
+            scale = max(size(Z.local), size(plain(Z)))
+            assert about_anchor(Z).isclose(Z.local, rtol=0.0, atol=1e-11 * scale), (name, xname)
+    Xs = cga.sphere(NEAR[:, :], [0.3, 0.4, 0.5, 0.6])  # a batch keeps it, element by element
+    Y = act(V, Xs)
+    for i in range(4):
+        Yi = act(V, Xs.batch_item(i))
+        assert Y.batch_item(i).isclose(Yi) and Y.local.batch_item(i).isclose(Yi.local, atol=1e-13)
+        assert np.allclose(Y.anchor[i], Yi.anchor, rtol=0, atol=1e-13)
+
+
+def test_an_inversion_of_an_anchor_at_its_centre_drops_the_frame():
+    X = cga.point_pair(NEAR[0], NEAR[1])
+    Y = cga.invert_in_sphere(cga.sphere(NEAR[1], 2.0), X)  # the anchor (NEAR[1], nearest the origin) goes to e
+    if np.linalg.norm(NEAR[1]) < np.linalg.norm(NEAR[0]):
+        assert type(Y) is Anchored and Y.anchor is None and Y.local is None
+
+
+def reflect_exact(P, x):
+    """The exact mirror image (Fractions) of an exact point in the plane P = n + delta e as stored (2.89)."""
+    c = cga.standard_form(P).coeffs
+    n = [Fr(float(c.get(b, 0.0))) for b in (1, 2, 4)]
+    delta = (Fr(float(c.get(8, 0.0))) + Fr(float(c.get(16, 0.0)))) / 2
+    k = 2 * (sum(a * b for a, b in zip(n, x)) - delta) / sum(a * a for a in n)
+    return [a - k * b for a, b in zip(x, n)]
+
+
+def invert_exact(p, r2, x):
+    """The exact image (Fractions) of an exact point under the inversion in the sphere (p, r2) (2.88)."""
+    d = [a - b for a, b in zip(x, p)]
+    k = r2 / sum(a * a for a in d)
+    return [b + k * a for a, b in zip(d, p)]
+
+
+def floats(v):
+    return np.array([float(x) for x in v])
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.floats(-1.0, 6.0), st.floats(-1.0, 2.0), st.booleans())
+def test_a_reflection_in_a_plane_is_exact_far_out(seed, log_off, log_size, dual):
+    """A sphere, circle and point pair through points 0.1 to 1e6 out (sizes 0.1-100) reflected in a plane near them
+    (2.89-2.91; standard or dual form): centre, radius and ends within 1e-9 of the exact mirror images (Fractions)
+    of the exact entity (its points reflected exactly in the plane as stored), where the plain result is garbage
+    far out; the global coefficients are the plain ones."""
+    c, size, pts = layout(seed, log_off, log_size)
+    rng = np.random.default_rng(seed + 5)
+    a, b, d = (c + size * rng.uniform(-2, 2, size=3) for _ in range(3))
+    P = cga.plane_from_points(a, b, d)
+    V = P if dual else cga.standard_form(P)
+    far = 4 * (np.linalg.norm(c) + size)
+    tc, tr2 = circumsphere(pts)
+    cc, cr2, _ = circumcircle(pts[:3])
+    S, Z, PP = cga.sphere_from_points(*pts), cga.circle_from_points(*pts[:3]), cga.point_pair(*pts[:2])
+    for X in (S, Z, PP):
+        assert same_bits(cga.apply(V, X), cga.apply(V, X.plain()))
+    centre, radius = cga.sphere_center_radius(cga.reflect_in_plane(V, S))
+    rho = fsqrt(tr2)
+    assert close_pos(centre, floats(reflect_exact(P, tc)), rho, far) and abs(radius - rho) <= REL * rho
+    centre, radius, _ = cga.circle_center_radius(cga.apply(V, Z))
+    rho = fsqrt(cr2)
+    assert close_pos(centre, floats(reflect_exact(P, cc)), rho, far) and abs(radius - rho) <= REL * rho
+    ends = cga.point_pair_endpoints(cga.apply(V, PP))
+    want = [floats(reflect_exact(P, fr(x))) for x in pts[:2]]
+    s = float(np.linalg.norm(pts[0] - pts[1]))
+    if not close_pos(ends[0], want[0], s, far):
+        ends = ends[::-1]
+    assert close_pos(ends[0], want[0], s, far) and close_pos(ends[1], want[1], s, far)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.floats(-1.0, 6.0), st.floats(-1.0, 2.0))
+def test_an_inversion_in_a_sphere_is_exact_far_out(seed, log_off, log_size):
+    """A sphere and a point pair 0.1 to 1e6 out (sizes 0.1-100) inverted in an anchored sphere near them (2.84-2.88):
+    centre, radius and ends within 1e-9 of the exact images (Fractions) of the exact entities under the exact
+    inversion (the sphere's own centre and squared radius).  Far out the plain apply refuses (the global sphere's
+    ``s ~s`` is round-off): the anchored one refuses alike."""
+    c, size, pts = layout(seed, log_off, log_size)
+    rng = np.random.default_rng(seed + 7)
+    u = rng.normal(size=3)
+    p = c + size * rng.uniform(2.5, 4.0) * u / np.linalg.norm(u)
+    r = size * rng.uniform(0.5, 2.0)
+    V = cga.sphere(p, r)
+    S, PP = cga.sphere_from_points(*pts), cga.point_pair(*pts[:2])
+    out = {}
+    for key, X in (("S", S), ("PP", PP)):
+        try:
+            out[key] = cga.apply(V, X.plain())
+        except GeometryError as exc:  # far out the global sandwich has no inverse (a small sphere's s ~s)
+            with pytest.raises(type(exc)):
+                cga.apply(V, X)
+            continue
+        assert same_bits(cga.apply(V, X), out[key])
+    fp, r2 = fr(p), Fr(r * r)
+    far = 4 * (np.linalg.norm(c) + size)
+    tc, tr2 = circumsphere(pts)
+    dd = [a - b for a, b in zip(tc, fp)]
+    k = sum(x * x for x in dd) - tr2
+    if "S" in out:
+        centre, radius = cga.sphere_center_radius(cga.invert_in_sphere(V, S))
+        rho = abs(r2 * fsqrt(tr2) / float(k))
+        assert close_pos(centre, floats([b + r2 * a / k for a, b in zip(dd, fp)]), rho, far)
+        assert abs(radius - rho) <= REL * rho
+    if "PP" not in out:
+        return
+    ends = cga.point_pair_endpoints(cga.apply(V, PP))
+    want = [floats(invert_exact(fp, r2, fr(x))) for x in pts[:2]]
+    s = float(np.linalg.norm(want[0] - want[1]))
+    if not close_pos(ends[0], want[0], s, far):
+        ends = ends[::-1]
+    assert close_pos(ends[0], want[0], s, far) and close_pos(ends[1], want[1], s, far)
 
 
 # ----------------------------------------------------------------- readers

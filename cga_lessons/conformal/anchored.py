@@ -31,10 +31,22 @@ the circle ``s1 ^ s2`` of two spheres (2.79), the point pair where a line cuts a
 sphere are as exact as the entities they are made of, at any distance (when those are near each other: ``g - f``
 is their distance, not theirs from the origin).  The functions of :mod:`~cga_lessons.conformal.blades`
 (contractions, ``dual``, ``regressive_product``, ``join``, ``meet``, ``project``, ``reject``) and ``intersect``
-carry it the same way.  The dual and standard forms keep it, and so do ``apply`` of a motor (``M T_f = T_{M f} R``
-for M = T_t R, 2.102: the anchor moves as a point, ``local`` turns by the rotor part) and
-:meth:`Anchored.batch_item`.  An operation with a multivector that translations change (a point, e0, e1, a rotor, a
-motor: move an entity with ``apply``), reflections and inversions, ``map`` and ``simplify`` build a plain
+carry it the same way.  The dual and standard forms keep it, and so do :meth:`Anchored.batch_item` and ``apply`` (and
+``reflect_in_plane``, ``invert_in_sphere``) of a versor that maps points to points as follows.  The anchor f goes
+to its image f' and the local blade is moved by ``W = T_{-f'} V T_f``, which fixes the origin and is built from
+V's geometry, never from products of the global coefficients:
+
+* a motor M = T_t R (``M T_f = T_{M f} R``, 2.102): ``local`` turns by the rotor part;
+* a reflection in a plane ``n + d e`` (2.89-2.91; standard or dual form) or its product with a motor, an odd
+  isometry ``T_t U``: W is U, the reflection in the plane n through the origin (``U L^ U^-1``, 2.82);
+* an inversion in a sphere of centre p and squared radius r2 (2.84-2.88; real or imaginary, standard or dual form):
+  with q = p - f, ``f' = f + u``, ``u = q (1 - r2 / q^2)``, and ``W = (q - u/2) + e0 + (u/2) E``
+  (:func:`inverted`), of the size of q; the centre and radius are read off the sphere's own local blade when it is
+  anchored (exact at any distance), else off its coefficients.
+
+A dilation, an inversion times a motor and any other versor drop the frame (as does an inversion that sends the
+anchor to infinity, when first read).  An operation with a multivector that translations change (a point, e0, e1,
+a rotor, a motor: move an entity with ``apply``), ``map`` and ``simplify`` build a plain
 :class:`~cga_lessons.algebra.Multivector`: the frame is dropped, never stale.
 
 The global coefficients of every result are those of the plain operation, bit for bit, and so are the numbers read
@@ -70,11 +82,21 @@ import numpy as np
 from cga_lessons.algebra import GeometryError, Multivector
 from cga_lessons.checks import fail
 
-from .anchored_ops import FrameOps, Pending, view
+from .anchored_ops import MAX_DEPTH, FrameOps, NoFrame, Pending, view
 from .entities_frame import dot, grid, parts, put_vec, snap, sphere_std
-from .model import G41
+from .model import G41, E, eo
 
-__all__ = ["Anchored", "frame", "plain", "times_invariant", "moved", "from_points", "pair_about_an_end", "sphere_at"]
+__all__ = [
+    "Anchored",
+    "frame",
+    "plain",
+    "times_invariant",
+    "moved",
+    "inverted",
+    "from_points",
+    "pair_about_an_end",
+    "sphere_at",
+]
 
 
 class FrozenCoeffs(dict):
@@ -178,10 +200,12 @@ class Anchored(FrameOps, Multivector):
                 return
         m = self._motion
         if m is not None:
-            rotor, R, t = m
+            rotor, R, t, inv = m
             rotor = rotor / float(np.sqrt((rotor * ~rotor).scalar()))
             f = self._anchor @ R.T + t
             f.flags.writeable = False
+            if inv:  # an odd versor (a reflection): V L^ V^-1, 2.82
+                L = L.involute()
             self._anchor, self._local, self._motion = f, _frozen_mv(rotor >> L), None
 
     @property
@@ -254,6 +278,10 @@ def times_invariant(X: Multivector, K: Multivector) -> Multivector:
     Y = view(X) * K
     if frame(X, settle=False)[0] is None:
         return Y
+    if X._motion is not None and X._motion[3]:  # a pending reflection involutes the local blade: not K's
+        X.settle()
+        if X._anchor is None:
+            return Y
     L = X._local
     if isinstance(L, Pending):  # derived, not read yet: (anchor, local) when read
 
@@ -267,16 +295,63 @@ def times_invariant(X: Multivector, K: Multivector) -> Multivector:
     return _made(Y, X._anchor, local, X._motion)
 
 
-def moved(X: Anchored, Y: Multivector, V: Multivector, R, t) -> Anchored:
+def moved(X: Anchored, Y: Multivector, V: Multivector, R, t, involute: bool = False) -> Anchored:
     """``Y = V X V^-1`` for a motor V = T_t R (2.102) with rotation matrix R and translation t (``rigid_motion``),
     anchored: since ``V T_f = T_{R f + t} R``, the anchor becomes ``R f + t`` and the local blade turns by the rotor
-    part of V (its Euclidean blades).  Both are left pending until read (:meth:`Anchored.settle`), so that moving an
-    anchored batch costs no more than moving a plain one; a second motion composes with the first."""
+    part of V (its Euclidean blades).  ``involute``: V is an odd isometry ``T_t U`` (a reflection in a plane, U its
+    normal, or its product with a motor; R then has determinant -1), ``Y = V X^ V^-1`` (2.82), and the local blade
+    is ``U L^ U^-1``.  Both are left pending until read (:meth:`Anchored.settle`), so that moving an anchored batch
+    costs no more than moving a plain one; a second motion composes with the first."""
     rotor = Multivector(V.algebra, {b: v for b, v in V._c.items() if b < 8})
     m = X._motion
     if m is not None:
-        rotor, R, t = rotor * m[0], R @ m[1], R @ m[2] + t
-    return _made(Y, X._anchor, X._local, (rotor, R, t))
+        rotor, R, t, involute = rotor * m[0], R @ m[1], R @ m[2] + t, involute != m[3]
+    return _made(Y, X._anchor, X._local, (rotor, R, t, involute))
+
+
+def inverted(X: Anchored, Y: Multivector, p, r2: float, involute: bool = True) -> Anchored:
+    """``Y = V X^ V^-1`` for V the sphere of centre p and signed squared radius r2 (an inversion, 2.84-2.88:
+    ``x -> p + r2 (x - p) / |x - p|^2``), anchored.  With q = p - f (f X's anchor), the anchor goes to its image
+    ``f' = f + u``, ``u = q (1 - r2 / q^2)``, and ``T_{-f'} V T_f`` is the map ``y -> p' + r2 (y - q) / |y - q|^2 - u``
+    (p' = q): the inversion in the sphere S_q of centre q and squared radius r2, then the translation by -u.  So the
+    local blade is ``W L^ W^-1`` with ``W = T_{-u} S_q``, in closed form (``S_q = q + (q^2 - r2) e / 2 + e0``;
+    ``e u q = (q^2 - r2) e`` since u is parallel to q, ``e u e = 0``, ``e u e0 = u - u E``):
+    ``W = (q - u/2) + e0 + (u/2) E``, with ``W ~W = r2``: its coefficients are of the size of q, where the product
+    holds q^2-sized ones that cancel; all are
+    built from q, r2 and u, small where the sphere is near the entity.  Built when first read; an anchor at the
+    centre (sent to infinity) drops the frame."""
+    depth = 1 + (X._local.depth if isinstance(X._local, Pending) else 0)
+    if depth > MAX_DEPTH:
+        X.settle()
+        depth = 1
+
+    def build():
+        X.settle()
+        f, L = X._anchor, X._local
+        if f is None:
+            raise NoFrame("the inverted entity lost its frame")
+        q = p - f
+        qq = dot(q, q)
+        if np.any(qq == 0.0):
+            raise NoFrame("the anchor is the centre of the inversion: its image is at infinity")
+        u = q * (1.0 - r2 / qq)[..., None]
+        g = f + u
+        if not np.all(np.isfinite(g)):
+            raise NoFrame("the anchor's image overflows")
+        W = _vector(q - 0.5 * u) + _vector(0.5 * u) * E + eo
+        loc = W * (L.involute() if involute else L) * ~W
+        loc = loc.grade(*L.grades_present()) * (1.0 / (W * ~W).scalar())
+        g.flags.writeable = False
+        return g, loc
+
+    return _made(Y, _DERIVED, Pending(build, depth))
+
+
+def _vector(x) -> Multivector:
+    """The Euclidean vector x (shape (3,) or (..., 3), a batch) as a multivector."""
+    if x.ndim == 1:
+        return Multivector(G41, {1: float(x[0]), 2: float(x[1]), 4: float(x[2])})
+    return Multivector(G41, {1: x[..., 0], 2: x[..., 1], 4: x[..., 2]})
 
 
 def frame(X: Multivector, settle: bool = True):

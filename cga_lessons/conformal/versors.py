@@ -47,8 +47,9 @@ from cga_lessons.algebra import (
     is_real_single,
 )
 
-from .anchored import Anchored, frame, moved
+from .anchored import Anchored, frame, inverted, moved, times_invariant
 from .model import G41, einf
+from .model import Ic as IC
 from .multivector_checks import COORD_LIMIT, COORD_WHY, check_points, input_error, multivector, mv_is_finite
 from .points import down, up
 
@@ -174,12 +175,59 @@ def _apply(V, X, func: str, vname: str, xname: str) -> Multivector:
 
 
 def _keep_frame(V, X, Y) -> Multivector:
-    """Y = apply(V, X) anchored when X is anchored and V a motor T_t R (2.102): the anchor moves as a point and the
-    local blade turns by the rotor part of V (:func:`~cga_lessons.conformal.anchored.moved`; a scaled motor's scale
-    cancels in ``V X V^-1``).  Y as it is otherwise (V not a motor: reflections, inversions, ...)."""
+    """Y = apply(V, X) anchored when X is anchored and V maps points to points in a way its local blade can follow
+    accurately; Y as it is otherwise (a dilation, a product of an inversion and a motor, ...: the frame is dropped).
+
+    * V a motor T_t R (2.102): the anchor moves as a point and the local blade turns by the rotor part of V
+      (:func:`~cga_lessons.conformal.anchored.moved`; a scaled motor's scale cancels in ``V X V^-1``).
+    * V an odd isometry ``T_t U`` (U a Euclidean versor: a reflection in a plane ``n + d e``, 2.89-2.91, or its
+      product with a motor): ``T_{-f'} V T_f`` with f' = V(f) fixes the origin, so it is U (the reflection in the
+      plane n through the origin): the anchor moves as a point, ``local`` is reflected by V's Euclidean part.
+    * V a sphere (an inversion, 2.84-2.88): :func:`~cga_lessons.conformal.anchored.inverted`.
+    """
     f, _ = frame(X, settle=False)
-    motion = G41.rigid_motion(V) if f is not None and V.algebra is G41 else None
-    return Y if motion is None else moved(X, Y, V, *motion)
+    if f is None or V.algebra is not G41:
+        return Y
+    motion = G41.rigid_motion(V)
+    if motion is not None:
+        return moved(X, Y, V, *motion)
+    if not is_real_single(V):
+        return Y
+    grades = {G41.grades[b] for b in V._c}
+    if grades == {4}:  # a dual form S Ic (2.31): Ic is central, V X V^-1 = S X S^-1
+        K, inv = times_invariant(V, IC), False
+    elif all(g % 2 for g in grades):
+        K, inv = V, True
+    else:
+        return Y
+    affine = _rigid_affine(K)
+    if affine is not None:
+        # T_t U with U its Euclidean part, odd (det R = -1); a half-turn about a line (L, grade 3) has no such U
+        if np.linalg.det(affine[0]) < 0 and any(b < 8 and v != 0.0 for b, v in K._c.items()):
+            return moved(X, Y, K, *affine, involute=inv)
+        return Y
+    sphere = _sphere_of(K)
+    return Y if sphere is None else inverted(X, Y, *sphere, involute=inv)
+
+
+def _sphere_of(V):
+    """``(p, r2)``: the centre and signed squared radius of a grade-1 V that is a real or imaginary sphere (its
+    e0 weight not zero), read off its local blade when V is anchored (exact at any distance), else off its
+    coefficients (as accurate as they hold the radius); None for anything else."""
+    if any(b not in (1, 2, 4, 8, 16) for b in V._c):
+        return None
+    g, L = frame(V)
+    c = L._c
+    cp, cm = float(c.get(8, 0.0)), float(c.get(16, 0.0))
+    w = cm - cp  # the e0 weight (e0 = (e- - e+)/2, e = e- + e+, 2.53)
+    if w == 0.0 or not math.isfinite(w):  # a plane (an isometry: taken before), or no sphere
+        return None
+    x = np.array([float(c.get(b, 0.0)) for b in (1, 2, 4)]) / w
+    r2 = float(x @ x) - (cp + cm) / w
+    p = x if g is None else g + x
+    if not (np.all(np.isfinite(p)) and math.isfinite(r2)) or r2 == 0.0:
+        return None
+    return p, r2
 
 
 def apply_to_points(V: Multivector, x) -> np.ndarray:
