@@ -719,15 +719,18 @@ def test_the_class_refuses_an_inconsistent_frame():
 
 
 def test_the_short_local_forms_are_the_closed_forms_eq_2_68_2_72():
-    """The local blades of spheres and pairs are written directly; they are the closed forms of entities_frame
-    (a sphere's bit for bit, a pair's but for the rounding of a - b onto its grid, which the direct form skips)."""
+    """A sphere's local blade is the closed form of entities_frame about its anchor, bit for bit; a pair's is
+    written directly, the closed form but for the rounding of a - b onto its grid, which the direct form skips."""
     from cga_lessons.conformal import entities_frame as F
-    from cga_lessons.conformal.anchored import pair_about_an_end, sphere_local
+    from cga_lessons.conformal.anchored import pair_about_an_end, sphere_at
 
     c, r2 = RNG.normal(size=(6, 3)) * 10.0 ** RNG.uniform(-2, 3, size=(6, 1)), RNG.uniform(0, 9, size=6)
-    assert same_bits(sphere_local(c, r2), F.sphere_std(c, F.dot(c, c) - r2, 1.0, "sphere", "center, radius"))
+    f = np.array([3e5, -1e5, 2e5])
+    local = sphere_at(f, c, r2, "sphere", "center, radius").local
+    assert same_bits(local, F.sphere_std(c, F.dot(c, c) - r2, 1.0, "sphere", "center, radius"))
     for i in range(6):
-        assert same_bits(sphere_local(c[i], r2[i]), F.sphere_std(c[i], c[i] @ c[i] - r2[i], 1.0, "s", "c, r"))
+        local = sphere_at(f, c[i], r2[i], "s", "c, r").local
+        assert same_bits(local, F.sphere_std(c[i], c[i] @ c[i] - r2[i], 1.0, "s", "c, r"))
     y, z = c, np.zeros((6, 3))
     a, b = np.where(np.arange(6)[:, None] % 2 == 0, y, z), np.where(np.arange(6)[:, None] % 2 == 0, z, y)
     P, Q = pair_about_an_end(a, b), F.point_pair(a, b, "point_pair")

@@ -82,9 +82,10 @@ import numpy as np
 from cga_lessons.algebra import GeometryError, Multivector
 from cga_lessons.checks import fail
 
-from .anchored_ops import MAX_DEPTH, FrameOps, NoFrame, Pending, view
-from .entities_frame import dot, grid, parts, put_vec, snap, sphere_std
+from .anchored_ops import FrameOps, NoFrame, Pending, chain_depth, read_only, view
+from .entities_frame import dot, nearest, parts, put_vec, sphere_std
 from .model import G41, E, eo
+from .points import vector
 
 __all__ = [
     "Anchored",
@@ -264,13 +265,6 @@ def _made(Y: Multivector, anchor, local, motion=None) -> Anchored:
     return out
 
 
-def _read_only(f, shape: tuple) -> np.ndarray:
-    """An anchor: f broadcast to ``shape + (3,)`` (one anchor for a whole batch), as a read-only array."""
-    f = np.array(np.broadcast_to(f, shape + (3,)), dtype=float)
-    f.flags.writeable = False
-    return f
-
-
 def times_invariant(X: Multivector, K: Multivector) -> Multivector:
     """``X K`` for a K that commutes with every translator (the pseudoscalar Ic of 2.60: the dual forms, 2.31,
     commute with 2.100): an anchored X stays anchored, its local blade times K too (and K commutes with a pending
@@ -320,10 +314,7 @@ def inverted(X: Anchored, Y: Multivector, p, r2: float, involute: bool = True) -
     holds q^2-sized ones that cancel; all are
     built from q, r2 and u, small where the sphere is near the entity.  Built when first read; an anchor at the
     centre (sent to infinity) drops the frame."""
-    depth = 1 + (X._local.depth if isinstance(X._local, Pending) else 0)
-    if depth > MAX_DEPTH:
-        X.settle()
-        depth = 1
+    depth = chain_depth(X)
 
     def build():
         X.settle()
@@ -338,20 +329,13 @@ def inverted(X: Anchored, Y: Multivector, p, r2: float, involute: bool = True) -
         g = f + u
         if not np.all(np.isfinite(g)):
             raise NoFrame("the anchor's image overflows")
-        W = _vector(q - 0.5 * u) + _vector(0.5 * u) * E + eo
+        W = vector(q - 0.5 * u) + vector(0.5 * u) * E + eo
         loc = W * (L.involute() if involute else L) * ~W
         loc = loc.grade(*L.grades_present()) * (1.0 / (W * ~W).scalar())
         g.flags.writeable = False
         return g, loc
 
     return _made(Y, _DERIVED, Pending(build, depth))
-
-
-def _vector(x) -> Multivector:
-    """The Euclidean vector x (shape (3,) or (..., 3), a batch) as a multivector."""
-    if x.ndim == 1:
-        return Multivector(G41, {1: float(x[0]), 2: float(x[1]), 4: float(x[2])})
-    return Multivector(G41, {1: x[..., 0], 2: x[..., 1], 4: x[..., 2]})
 
 
 def frame(X: Multivector, settle: bool = True):
@@ -381,18 +365,9 @@ def from_points(build, func: str, *pts, local=None) -> Anchored:
     same closed form on the data translated by -f, 2.100; the differences ``p - f`` are the ones the closed forms
     take anyway), built when first read."""
     X = build(*pts, func)
-    f = _read_only(_nearest_point(pts), X.shape)
+    f = read_only(nearest(*pts), X.shape)
     rel = [p - f for p in pts]
     return _made(X, f, (lambda: build(*rel, func)) if local is None else (lambda: local(*rel)))
-
-
-def _nearest_point(pts) -> np.ndarray:
-    """The point of ``pts`` nearest the origin (per batch element; the first of equals), its squared norm summed in
-    one fixed order, so that a batch picks what its single elements pick."""
-    if pts[0].ndim == 1:
-        return min(pts, key=lambda p: float(dot(p, p)))
-    i = np.argmin(np.stack([dot(p, p) for p in pts]), axis=0)
-    return np.take_along_axis(np.stack(pts), i[None, ..., None], axis=0)[0]
 
 
 def pair_about_an_end(a, b) -> Multivector:
@@ -406,19 +381,6 @@ def pair_about_an_end(a, b) -> Multivector:
     return _coefficients(
         parts(y.shape[:-1]), put_vec(parts(y.shape[:-1]), -0.5 * y), put_vec(parts(y.shape[:-1]), 0.5 * y), D
     )
-
-
-def sphere_local(c, r2) -> Multivector:
-    """The sphere of centre c and squared radius r2 (2.72, weight 1), stored as :func:`entities_frame.sphere_std
-    <cga_lessons.conformal.entities_frame.sphere_std>` stores it (the same bits): with ``q = c^2 - r2``, e+/e-
-    parts ``P = q/2 - 1/2`` on the grid of ``q/2 +- 1/2`` and ``M = P + 1``, exact for a local blade (|q| < 2^52)."""
-    c = np.asarray(c, dtype=float)
-    xe = 0.5 * (dot(c, c) - r2)
-    g = grid(xe, 1.0)
-    P, M = parts(xe.shape), parts(xe.shape)
-    P[..., 0] = snap(xe - 0.5, g)
-    M[..., 0] = P[..., 0] + 1.0
-    return _coefficients(put_vec(parts(xe.shape), c), P, M, parts(xe.shape))
 
 
 def _coefficients(E, P, M, D) -> Multivector:
@@ -437,4 +399,4 @@ def sphere_at(f, c, r2, func: str, args: str) -> Anchored:
     ``local`` is the sphere of centre c (small: the centre's offset from the anchor), built when first read."""
     p = f + c
     X = sphere_std(p, dot(p, p) - r2, 1.0, func, args)
-    return _made(X, _read_only(f, X.shape), lambda: sphere_local(c, r2))
+    return _made(X, read_only(f, X.shape), lambda: sphere_std(c, dot(c, c) - r2, 1.0, func, args))

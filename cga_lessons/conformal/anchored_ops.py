@@ -37,9 +37,9 @@ import numpy as np
 
 from cga_lessons.algebra import GeometryError, Multivector
 
-from .model import G41, einf
+from .versors_build import translator
 
-__all__ = ["FrameOps", "Pending", "follow", "invariant", "translated"]
+__all__ = ["FrameOps", "Pending", "about", "chain_depth", "follow", "invariant", "read_only", "translated"]
 
 #: A chain of derived entities none of which was read is built from its end when first read, one level after the
 #: other; beyond this depth the operands are built at once, so that a long chain (a sum in a loop) never nests deep.
@@ -85,16 +85,34 @@ def invariant(K: Multivector) -> bool:
 
 
 def translated(L: Multivector, t) -> Multivector:
-    """``T_t L ~T_t`` (2.100, ``T_t = 1 + e t / 2``) for t of shape (3,) or (..., 3), L's grades kept (a versor keeps
-    grades; the other grades of the products are round-off)."""
-    t = 0.5 * np.asarray(t, dtype=float)
-    T = einf * Multivector(G41, {1: t[..., 0], 2: t[..., 1], 4: t[..., 2]}) + 1.0
+    """``T_t L ~T_t`` (2.100, :func:`~cga_lessons.conformal.translator`) for t of shape (3,) or (N, 3), L's grades
+    kept (a versor keeps grades; the other grades of the products are round-off)."""
+    T = translator(np.asarray(t, dtype=float))
     return (T * L * ~T).grade(*L.grades_present())
 
 
-def _depth(X) -> int:
-    L = X._local
-    return L.depth if isinstance(L, Pending) else 0
+def about(L: Multivector, g, f) -> Multivector:
+    """The local blade L of an entity anchored at g, moved into the frame of the anchor f (``T_{g-f} L ~T_{g-f}``);
+    L itself when the anchors are one."""
+    return L if g is f or np.array_equal(g, f) else translated(L, g - f)
+
+
+def read_only(f, shape: tuple) -> np.ndarray:
+    """An anchor: f broadcast to ``shape + (3,)`` (one anchor for a whole batch), as a read-only array."""
+    f = np.array(np.broadcast_to(f, shape + (3,)), dtype=float)
+    f.flags.writeable = False
+    return f
+
+
+def chain_depth(*framed) -> int:
+    """The depth of a result derived from the anchored entities ``framed``: one more than the deepest pending
+    chain among them; beyond :data:`MAX_DEPTH` they are built now and the chain starts again at one."""
+    depth = 1 + max(x._local.depth if isinstance(x._local, Pending) else 0 for x in framed)
+    if depth > MAX_DEPTH:
+        for x in framed:
+            x.settle()
+        depth = 1
+    return depth
 
 
 def _operand_kinds(operands):
@@ -128,11 +146,7 @@ def follow(Y, op, *operands, anchor_arg: bool = False):
     if not kinds or True not in kinds:
         return Y
     framed = [x for x, k in zip(operands, kinds) if k]
-    depth = 1 + max(_depth(x) for x in framed)
-    if depth > MAX_DEPTH:
-        for x in framed:
-            x.settle()
-        depth = 1
+    depth = chain_depth(*framed)
     shape, grades = Y.shape, Y.grades_present()
 
     def build():
@@ -147,9 +161,7 @@ def follow(Y, op, *operands, anchor_arg: bool = False):
                 raise NoFrame("an operand lost its frame")
             if f is None:
                 f = g
-            elif g is not f and not np.array_equal(g, f):
-                L = translated(L, g - f)
-            args.append(L)
+            args.append(about(L, g, f))
         L = op(f, *args) if anchor_arg else op(*args)
         if not isinstance(L, Multivector) or L.shape != shape:
             raise NoFrame("the local blade has another batch shape")
@@ -157,9 +169,7 @@ def follow(Y, op, *operands, anchor_arg: bool = False):
             raise NoFrame("the local blade is not finite")
         if any(g not in grades for g in L.grades_present()):
             L = L.grade(*grades)  # round-off in grades the global result does not have
-        a = np.array(np.broadcast_to(f, shape + (3,)), dtype=float)
-        a.flags.writeable = False
-        return a, L
+        return read_only(f, shape), L
 
     def guarded():
         try:
@@ -221,17 +231,6 @@ def _unary(name: str):
     return method
 
 
-def _method(name: str):
-    """A method of two operands (``X.inner(Y)``), the frame followed."""
-    plain = getattr(Multivector, name)
-
-    def method(self, other):
-        return follow(plain(view(self), view(other)), lambda a, b: plain(a, b), self, other)
-
-    method.__name__, method.__doc__ = name, plain.__doc__
-    return method
-
-
 def _global(name: str):
     """A method whose result is a coefficient (a number, not a multivector), read from the global coefficients."""
     plain = getattr(Multivector, name)
@@ -259,8 +258,8 @@ class FrameOps:
     __or__, __ror__ = _binary("__or__", "__ror__", lambda a, b: a | b)
     __lshift__, __rlshift__ = _binary("__lshift__", None, lambda a, b: a << b)
     __rshift__, __rrshift__ = _binary("__rshift__", None, lambda a, b: a >> b)
-    inner = _method("inner")
-    left_contraction = _method("left_contraction")
+    inner = _binary("inner", None, Multivector.inner)[0]
+    left_contraction = _binary("left_contraction", None, Multivector.left_contraction)[0]
 
     __neg__ = _unary("__neg__")
     __invert__ = reverse = _unary("reverse")

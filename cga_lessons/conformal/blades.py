@@ -31,7 +31,7 @@ from cga_lessons import checks
 from cga_lessons.algebra import Algebra, DegenerateGeometryError, Multivector
 
 from .anchored import Anchored, frame
-from .anchored_ops import follow, translated
+from .anchored_ops import about, follow, translated
 from .blades_span import (
     blade_span,
     coefficient_norm,
@@ -223,8 +223,7 @@ def _decided_locally(op, out: Multivector, A0, B0, ka: int, kb: int):
     fb, Lb = frame(B0)
     if fa is None or fb is None:
         return None
-    if fb is not fa and not np.array_equal(fb, fa):
-        Lb = translated(Lb, fb - fa)
+    Lb = about(Lb, fb, fa)
     try:
         L, _ = op(La.grade(ka), ka, Lb.grade(kb), kb)
     except (ValueError, ArithmeticError):  # GeometryError is a ValueError: no local decision to take

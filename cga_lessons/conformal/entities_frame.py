@@ -236,7 +236,7 @@ def nearest(*pts):
     """The point nearest the origin (per batch element): the base of the closed forms, so that an entity
     through (or near) the origin gets small e parts without cancellation."""
     P = np.stack(pts)
-    i = np.argmin(np.sum(P * P, axis=-1), axis=0)
+    i = np.argmin(dot(P, P), axis=0)  # summed in one fixed order: a batch picks what its single elements pick
     return np.take_along_axis(P, i[None, ..., None], axis=0)[0]
 
 

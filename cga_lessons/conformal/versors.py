@@ -48,6 +48,7 @@ from cga_lessons.algebra import (
 )
 
 from .anchored import Anchored, frame, inverted, moved, times_invariant
+from .entities_read import read_sphere
 from .model import G41, einf
 from .model import Ic as IC
 from .multivector_checks import COORD_LIMIT, COORD_WHY, check_points, input_error, multivector, mv_is_finite
@@ -212,22 +213,16 @@ def _keep_frame(V, X, Y) -> Multivector:
 
 def _sphere_of(V):
     """``(p, r2)``: the centre and signed squared radius of a grade-1 V that is a real or imaginary sphere (its
-    e0 weight not zero), read off its local blade when V is anchored (exact at any distance), else off its
-    coefficients (as accurate as they hold the radius); None for anything else."""
+    e0 weight not zero), read as :func:`~cga_lessons.conformal.entities_read.read_sphere` reads a sphere (off its
+    local blade when V is anchored: exact at any distance); None for anything else."""
     if any(b not in (1, 2, 4, 8, 16) for b in V._c):
         return None
-    g, L = frame(V)
-    c = L._c
-    cp, cm = float(c.get(8, 0.0)), float(c.get(16, 0.0))
-    w = cm - cp  # the e0 weight (e0 = (e- - e+)/2, e = e- + e+, 2.53)
-    if w == 0.0 or not math.isfinite(w):  # a plane (an isometry: taken before), or no sphere
+    try:
+        p, r2, _, _ = read_sphere(V, "apply", "V")
+    except GeometryError:  # a plane (an isometry: taken before), or no sphere
         return None
-    x = np.array([float(c.get(b, 0.0)) for b in (1, 2, 4)]) / w
-    r2 = float(x @ x) - (cp + cm) / w
-    p = x if g is None else g + x
-    if not (np.all(np.isfinite(p)) and math.isfinite(r2)) or r2 == 0.0:
-        return None
-    return p, r2
+    r2 = float(r2)
+    return None if r2 == 0.0 else (np.asarray(p, dtype=float), r2)
 
 
 def apply_to_points(V: Multivector, x) -> np.ndarray:
