@@ -72,6 +72,8 @@ def inv(X):
             mm = type(X)(X.algebra, {0: mm._c[0]})
     if set(mm._c) <= {0}:
         d = mm._c.get(0, 0)
+        if not is_sympy(d) and all(X.algebra.grades[b] == 1 for b in X._c):
+            d = vector_square(X, d)
         if is_sympy(d):
             if d == 0:
                 raise degenerate(_INV, "self", "M ~M = 0, the multivector is null and has no inverse")
@@ -83,6 +85,45 @@ def inv(X):
         return finite_out(type(X)(X.algebra, {b: v / d for b, v in rev._c.items()}), _INV, "self")
     # also try M^ ~M (covers M with mixed parity such as 1 + e when scalar)
     return _general_inverse(X)
+
+
+_EPS = float(np.finfo(float).eps)
+
+
+def vector_square(X, d):
+    """``X X`` of a real vector X (single or a batch), ``d`` as the product ``X ~X`` gave it, honest about its
+    round-off (2.19).  That product sums the squared coefficients with their signs, which loses ``eps |X|^2``: in
+    G(4,1) a sphere |c| from the origin has e+ and e- coefficients near |c|^2/2, so the loss is ~eps |c|^4 where
+    ``X X`` (its squared radius) may be 1.  Where d is below that bound, ``X X`` is summed again with each negative
+    basis vector paired with a positive one, ``a^2 - b^2 = (a - b)(a + b)`` (e+ with e-: the weight times twice
+    the e part), terms of the size of the geometry, and kept when above their own round-off; below it, X is null
+    to working precision and has no inverse (zero is returned: the caller raises).  d itself where it was sound,
+    so that those inverses keep their bits."""
+    alg = X.algebra
+    if type(d) is float:  # one vector: the test in floats (a few flops where it is sound)
+        size = 0.0
+        for v in X._c.values():
+            size += v * v
+        if abs(d) > (alg.n + 1) * _EPS * size or not size < np.inf:
+            return d
+    coef = [np.asarray(X._c.get(1 << i, 0.0), dtype=float) for i in range(alg.n)]
+    with np.errstate(over="ignore", invalid="ignore"):
+        size = sum(v * v for v in coef)
+        if not np.all(np.isfinite(size)):
+            return d
+        sound = np.abs(np.asarray(d, dtype=float)) > (alg.n + 1) * _EPS * size
+        if np.all(sound):
+            return d
+        m = alg.metric
+        pos, neg = [i for i in range(alg.n) if m[i] > 0], [i for i in range(alg.n) if m[i] < 0]
+        pairs = list(zip(reversed(pos), neg))
+        paired = {i for pair in pairs for i in pair}
+        terms = [(coef[a] - coef[b]) * (coef[a] + coef[b]) for a, b in pairs]
+        terms += [m[i] * coef[i] * coef[i] for i in range(alg.n) if m[i] and i not in paired]
+        dh = sum(terms)
+        bound = (len(terms) + 3) * _EPS * sum(np.abs(t) for t in terms)
+    out = np.where(sound, d, np.where(np.abs(dh) > bound, dh, 0.0))
+    return float(out) if out.ndim == 0 else out
 
 
 def _general_inverse(X):

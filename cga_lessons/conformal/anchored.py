@@ -15,10 +15,9 @@ them exactly as on a plain multivector, bit for bit) with two read-only slots,
 
 The readers (``sphere_center_radius``, ``circle_center_radius``, ``point_pair_endpoints``, ``point_sphere_side``,
 ``point_pair_sphere``, ``classify``, the line readers, ``plane_normal_distance``) read ``local`` and add the anchor
-back: sizes and directions to a few eps
-relative, positions to that plus the rounding of the coordinates themselves.  Both describe the same entity; the
-global coefficients are its rounding onto the e+/e- storage (the e0 part of a round is put on the grid of its e+/e-
-coefficients, a change of ~eps |c|^2 relative), ``local`` is the entity of the data.
+back: sizes and directions to a few eps relative, positions to that plus the rounding of the coordinates themselves.
+Both describe the same entity; the global coefficients are its rounding onto the e+/e- storage (the e0 part of a round
+is put on the grid of its e+/e- coefficients, a change of ~eps |c|^2 relative), ``local`` is the entity of the data.
 
 **What keeps the frame.**  Every translation-covariant operation (:mod:`~cga_lessons.conformal.anchored_ops`):
 ``T (X o Y) ~T = (T X ~T) o (T Y ~T)`` for a translator T (2.100) and each of the geometric, outer and inner
@@ -42,12 +41,14 @@ V's geometry, never from products of the global coefficients:
 * an inversion in a sphere of centre p and squared radius r2 (2.84-2.88; real or imaginary, standard or dual form):
   with q = p - f, ``f' = f + u``, ``u = q (1 - r2 / q^2)``, and ``W = (q - u/2) + e0 + (u/2) E``
   (:func:`inverted`), of the size of q; the centre and radius are read off the sphere's own local blade when it is
-  anchored (exact at any distance), else off its coefficients.
+  anchored (exact at any distance), else off its coefficients;
+* a dilation (the dilator ``a - b E``) or a similarity ``T_t U D_s`` (its product with a motor or a reflection):
+  W = U D_s; an inversion times a motor (S M or M S): its two motions in turn (:mod:`.anchored_versors`).
 
-A dilation, an inversion times a motor and any other versor drop the frame (as does an inversion that sends the
-anchor to infinity, when first read).  An operation with a multivector that translations change (a point, e0, e1,
-a rotor, a motor: move an entity with ``apply``), ``map`` and ``simplify`` build a plain
-:class:`~cga_lessons.algebra.Multivector`: the frame is dropped, never stale.
+Other versors (even ones that move e: two inversions, an inversion times a reflection) drop the frame, as does an
+inversion that sends the anchor to infinity (when first read); so do an operation with a multivector that
+translations change (a point, e0, e1, a rotor, a motor: move an entity with ``apply``), ``map`` and ``simplify``
+(a plain :class:`~cga_lessons.algebra.Multivector`: the frame is dropped, never stale).
 
 The global coefficients of every result are those of the plain operation, bit for bit, and so are the numbers read
 off them (``scalar()``, ``norm2()``, ``X["e1"]``), with one exception: join and meet of two anchored blades.  Whether
@@ -64,9 +65,8 @@ result is the local decision, anchored, its global coefficients its local blade 
 coefficients.
 
 **Cost.**  The local blade and a motion are built when first read (:meth:`Anchored.settle`): a constructor adds
-the choice of the anchor, ``apply`` a few microseconds whatever the batch, an operation the closure that will build
-its local blade (a chain of results none of which is read is built from its end, at most 48 deep), a reader one
-small closed form.  Products of plain multivectors do not change at all.
+the choice of the anchor, ``apply`` a few microseconds whatever the batch, an operation the closure that builds its
+local blade (a chain of unread results is built from its end, at most 48 deep), a reader one small closed form.
 
 Lines are anchored too (at one of their points): ``point_line_distance`` takes ``x - f`` first, which keeps a
 distance far below the coordinates' resolution to its relative accuracy, and a derived line (``PP ^ e``) keeps the

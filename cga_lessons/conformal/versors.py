@@ -48,6 +48,8 @@ from cga_lessons.algebra import (
 )
 
 from .anchored import Anchored, frame, inverted, moved, times_invariant
+from .anchored_ops import view
+from .anchored_versors import far_parts, far_product, inversion_motor, inverted_and_moved, moves_infinity, similar
 from .entities_read import read_sphere
 from .model import G41, einf
 from .model import Ic as IC
@@ -154,9 +156,13 @@ def _apply(V, X, func: str, vname: str, xname: str) -> Multivector:
     Y = None
     try:
         if X._c and (is_real_single(X) or is_real_batch(X)):
-            mats = V.algebra.versor_matrices(V, X.grades_present())
-            if mats is not None:
-                Y = V.algebra.apply_matrices(mats, X)
+            far = None if 0 in V._c or V.algebra is not G41 or not is_real_single(V) else far_parts(V, func, vname)
+            if far is not None:  # an inversion whose V ~V the tables cannot resolve: by its factors
+                Y = far_product(far, view(X), lambda W, Z: _apply(W, Z, func, vname, xname))
+            else:
+                mats = V.algebra.versor_matrices(V, X.grades_present())
+                if mats is not None:
+                    Y = V.algebra.apply_matrices(mats, X)
         if Y is None:  # the sandwich (SymPy, batches of versors, non-versors, and what the matrices refused)
             multivector(V, func, vname, what="a versor (Multivector)", algebra=None)
             multivector(X, func, xname, what="a Multivector", algebra=None, nonzero=False)
@@ -177,7 +183,8 @@ def _apply(V, X, func: str, vname: str, xname: str) -> Multivector:
 
 def _keep_frame(V, X, Y) -> Multivector:
     """Y = apply(V, X) anchored when X is anchored and V maps points to points in a way its local blade can follow
-    accurately; Y as it is otherwise (a dilation, a product of an inversion and a motor, ...: the frame is dropped).
+    accurately; Y as it is otherwise (an even versor that moves the point at infinity, a batch of versors, SymPy:
+    the frame is dropped).
 
     * V a motor T_t R (2.102): the anchor moves as a point and the local blade turns by the rotor part of V
       (:func:`~cga_lessons.conformal.anchored.moved`; a scaled motor's scale cancels in ``V X V^-1``).
@@ -185,6 +192,8 @@ def _keep_frame(V, X, Y) -> Multivector:
       product with a motor): ``T_{-f'} V T_f`` with f' = V(f) fixes the origin, so it is U (the reflection in the
       plane n through the origin): the anchor moves as a point, ``local`` is reflected by V's Euclidean part.
     * V a sphere (an inversion, 2.84-2.88): :func:`~cga_lessons.conformal.anchored.inverted`.
+    * V a similarity (a dilation, its product with a motor or a reflection) or an inversion times a motor:
+      :mod:`~cga_lessons.conformal.anchored_versors`.
     """
     f, _ = frame(X, settle=False)
     if f is None or V.algebra is not G41:
@@ -199,16 +208,25 @@ def _keep_frame(V, X, Y) -> Multivector:
         K, inv = times_invariant(V, IC), False
     elif all(g % 2 for g in grades):
         K, inv = V, True
-    else:
-        return Y
-    affine = _rigid_affine(K)
+    else:  # even, no motor: a similarity?
+        Z = similar(X, Y, V)
+        return Y if Z is None else Z
+    # The affine test's tolerance scales with its |t|^2-sized entries: far out it would take a reflection times a
+    # dilation or an inversion for an isometry, so those are told apart first.
+    Z = similar(X, Y, K)  # odd: a reflection times a dilation
+    if Z is not None:
+        return Z
+    affine = None if moves_infinity(K) else _rigid_affine(K)
     if affine is not None:
         # T_t U with U its Euclidean part, odd (det R = -1); a half-turn about a line (L, grade 3) has no such U
         if np.linalg.det(affine[0]) < 0 and any(b < 8 and v != 0.0 for b, v in K._c.items()):
             return moved(X, Y, K, *affine, involute=inv)
         return Y
     sphere = _sphere_of(K)
-    return Y if sphere is None else inverted(X, Y, *sphere, involute=inv)
+    if sphere is not None:
+        return inverted(X, Y, *sphere, involute=inv)
+    parts = inversion_motor(K) if inv else None  # an inversion times a motor
+    return Y if parts is None else inverted_and_moved(X, Y, parts)
 
 
 def _sphere_of(V):

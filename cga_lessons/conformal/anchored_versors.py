@@ -1,0 +1,300 @@
+"""Anchored entities under the versors that are no isometry and no single inversion: a dilation and the similarities
+it makes with a motor or a reflection, an inversion times a motor (the versor action 2.82; inversions 2.84-2.88,
+reflections 2.89-2.91, translators 2.100, motors 2.102); and the global result of an inversion whose ``V ~V`` the
+product tables cannot resolve (a small sphere far out).  Used by :func:`~cga_lessons.conformal.apply`.
+
+**Null parts.**  A multivector of G(4,1) is ``V = E + Xe e + Y e0 + D E_pm`` with E, Xe, Y, D Euclidean (the split
+of :mod:`~cga_lessons.conformal.entities_frame`; e and e0 of 2.53, ``E_pm = e+ e- = e ^ e0``, 2.55).  Its square
+is ``<V ~V>_0 = <(E - D) ~(E + D)>_0 - 2 <Xe ~Y>_0`` (:func:`square`): terms of the size of the geometry, where the
+squares of the e+/e- coefficients, |c|^4-sized for a round |c| out, cancel.
+
+**Similarities** (:func:`similarity`, :func:`similar`).  A versor that fixes the point at infinity (Y = 0) and is
+no motor is ``V = T_t U D_s`` with U a Euclidean versor (a rotor, or odd: a reflection in a plane through the
+origin, 2.90) and ``D_s = a - b E_pm`` the dilator (:func:`~cga_lessons.conformal.dilator`; not numbered in the
+thesis, see Dorst, Fontijne & Mann 2007, ch. 16), ``s = (a + b) / (a - b)``: its parts are ``E = a U``,
+``D = -b U`` and ``Xe = (a - b) t U / 2``, its point map ``x -> s R x + t`` (R that of U).  So ``rho = b / a`` is
+``-<D ~E>_0 / <E ~E>_0``, ``V (1 + rho E_pm)`` is ``T_t U`` times a number, read linearly by
+:meth:`~cga_lessons.algebra.Algebra.rigid_motion` (2.141-2.144), and since ``D_s T_f = T_{s f} D_s``,
+``T_{-f'} V T_f = U D_s`` with ``f' = s R f + t``: the anchor goes to f' and the local blade is ``W L^ W^-1``,
+``W = U (1 - rho E_pm)``, coefficients of the size of U (never products of the global ones).
+
+**An inversion times a motor** (:func:`inversion_motor`, :func:`inverted_and_moved`).  An odd versor that moves
+the point at infinity is ``V = S M = M S'`` (M = R + e Q a motor, Q = t R / 2; S, S' spheres ``p + beta e + e0``,
+2.72, S' = M^-1 S M).  Multiplying out (``e0 e = -1 - E_pm``, ``e e0 = -1 + E_pm``)::
+
+    S M  = (p R - Q) - Q E_pm + (beta R - p Q) e + R e0
+    M S' = (R p' + Q) - Q E_pm + (beta' R + Q p') e + R e0
+
+so ``R = Y``, ``Q = -D``, ``p = <(E - D) ~R>_1 / <R ~R>_0``, ``p' = <~R (E + D)>_1 / <R ~R>_0`` and, for both, the
+squared radius ``r2 = <V ~V>_0 / <R ~R>_0`` (``V ~V = S^2 M ~M``, 2.83), summed exactly from the stored
+coefficients.  The frame follows the factors: the motor's motion (:func:`~cga_lessons.conformal.anchored.moved`),
+then the inversion's (:func:`~cga_lessons.conformal.anchored.inverted`), or the other way round.  As exact as V
+holds its factors: the float product of a sphere and a motor that both reach |c| from the origin rounds terms of
+size |c|^3 that cancel (``e e = 0`` summed as ``e+ e+ + e- e-``) and holds its rotor R (its e0 part, a difference
+of |c|^2-sized e+/e- coefficients) to eps |c|^2 only; one of them near the origin, it holds them to eps |c|.
+
+**Far inversions** (:func:`far_parts`, :func:`far_product`).  The tables of
+:meth:`~cga_lessons.algebra.Algebra.versor_matrices` compute ``V ~V`` as the signed sum of the squared
+coefficients, round-off ``eps |V|^2``: for a unit sphere 1e6 out (e+ and e- coefficients near 5e11) about 1e8,
+where ``V ~V = 1``, so the scale of the result was garbage or V was refused as having no inverse.  Where that
+round-off passes ``TABLE_TOLERANCE`` of ``V ~V`` (summed by its null parts), the global result is the product of
+the factors instead: the motor, the translation by -p, the inversion in the sphere of squared radius r2 about the
+origin, the translation back (2.100, 2.84-2.88), each well conditioned; centre and radius are read off the
+sphere's local blade when it is anchored (exact at any distance), else off its coefficients (their own limit,
+``eps |p|^2``).  ``V ~V`` zero to within its round-off (a sphere of radius 0: a point) has no inverse and raises.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+
+import numpy as np
+
+from cga_lessons import checks
+from cga_lessons.algebra import GeometryError, Multivector
+
+from .anchored import Anchored, frame, inverted, moved, times_invariant
+from .anchored_ops import NoFrame, Pending, chain_depth
+from .entities_frame import EPS, split
+from .entities_read import read_sphere
+from .model import G41, E, e1, einf, eo
+from .model import Ic as IC
+from .versors_build import translator
+
+__all__ = [
+    "TABLE_TOLERANCE",
+    "Inversion",
+    "square",
+    "moves_infinity",
+    "similarity",
+    "similar",
+    "inversion_motor",
+    "inverted_and_moved",
+    "far_parts",
+    "far_product",
+]
+
+#: The round-off of ``V ~V`` in the product tables (``eps |V|^2``, |V|^2 the sum of the squared coefficients) is
+#: trusted up to this much of ``V ~V`` (the relative tolerance of the algebra's versor test); beyond it an inversion
+#: is applied by its factors (:func:`far_product`).  For a unit sphere: beyond about 10 from the origin.
+TABLE_TOLERANCE = 1e-12
+_VECTOR = (1, 2, 4, 8, 16)  # e1 e2 e3 e+ e-
+#: The reflection in the plane e1 (through the origin, 2.90) as a matrix: the point map of the vector e1.
+_H1 = np.diag([-1.0, 1.0, 1.0])
+
+
+def _euclid(a) -> Multivector:
+    """The Euclidean multivector of an 8-array of parts (index: the blade's bitmap, 0 ... 7)."""
+    return Multivector(G41, {x: float(a[x]) for x in range(8) if a[x] != 0.0})
+
+
+def _vector(M: Multivector) -> np.ndarray:
+    return np.array([float(M.coeffs.get(b, 0.0)) for b in (1, 2, 4)])
+
+
+def square(V: Multivector):
+    """``(<V ~V>_0, bound)`` of a single real multivector of G(4,1): the scalar of ``V ~V`` (2.83) summed exactly
+    from the stored coefficients (fractions; one rounding), and eight eps of the absolute sum of its terms
+    ``<(E - D) ~(E + D)>_0 - 2 <Xe ~Y>_0`` (module docstring), the round-off of coefficients rounded by eps each,
+    the e0 part Y taken as stored (the constructors store it exactly).  ``|<V ~V>_0| <= bound``: V is null to
+    within its round-off."""
+    d = Fraction(0)
+    for b, v in V.coeffs.items():
+        q = Fraction(float(v)) ** 2
+        d += -q if b & 16 else q  # <b ~b> = -1 for the blades with e- (e-^2 = -1), else +1
+    Eu, Xe, Y, D, _, _ = split(V, "apply", "V")
+    terms = np.abs((Eu - D) * (Eu + D)).sum() + 2.0 * np.abs(Xe * Y).sum()
+    return float(d), 8.0 * EPS * float(terms)
+
+
+def moves_infinity(V: Multivector) -> bool:
+    """Whether V (single, real) has an e0 part Y beyond round-off (16 eps of its largest coefficient): the versors
+    that fix the point at infinity e (motors, reflections, similarities) have none, and their float products none
+    at all (the e+ and e- coefficients are summed alike); an inversion times a motor has ``Y = R``, about
+    2 / |p|^2 of its largest coefficient (9000 eps for a sphere 1e6 out)."""
+    c = V.coeffs
+    vmax = max((abs(float(v)) for v in c.values()), default=0.0)
+    return any(abs(float(c.get(x | 16, 0.0)) - float(c.get(x | 8, 0.0))) > 16.0 * EPS * vmax for x in range(8))
+
+
+# ------------------------------------------------------------------------------------------- similarities
+def similarity(V: Multivector):
+    """``(s, R, t, W, odd)`` of a single real versor V of G(4,1) that maps points by ``x -> s R x + t`` with
+    ``s != 1`` (a dilation, 2.55, or its product with a motor or a reflection; module docstring), else None:
+    R (3, 3) has determinant -1 when V is odd, and ``W = U (1 - rho E_pm)`` is ``T_{-f'} V T_f`` up to a number
+    (``f' = s R f + t``), the versor that moves a local blade."""
+    c = V.coeffs
+    if not any(b & 24 == 24 for b in c) or moves_infinity(V):
+        return None  # no E_pm part (no dilation), or an e0 part
+    A = [float(c.get(x, 0.0)) for x in range(8)]
+    AA = sum(a * a for a in A)
+    if not AA > 0.0:
+        return None
+    rho = -sum(float(c.get(x | 24, 0.0)) * a for x, a in enumerate(A)) / AA
+    if not (-1.0 < rho < 1.0) or rho == 0.0:
+        return None
+    parity = {G41.grades[b] & 1 for b in c}
+    if len(parity) != 1:
+        return None
+    odd = parity.pop() == 1
+    M = V * (1.0 + rho * E)  # T_t U times a number: the dilation divided out (D_s^-1 is 1 + rho E_pm up to one)
+    rigid = G41.rigid_motion(M * e1 if odd else M)  # an odd isometry times e1 is a motor (2.90, 2.102)
+    if rigid is None:
+        return None
+    R, t = rigid
+    if odd:  # apply(M, X) = apply(M e1, apply(e1, X)): first the reflection in the plane e1
+        R = R @ _H1
+    U = Multivector(G41, {b: v for b, v in M.coeffs.items() if b < 8})
+    return (1.0 + rho) / (1.0 - rho), R, t, U * (1.0 - rho * E), odd
+
+
+def similar(X: Anchored, Y: Multivector, V: Multivector):
+    """``Y = apply(V, X)`` anchored, for V a similarity (:func:`similarity`); None for any other V.  The anchor f
+    goes to ``s R f + t``, the local blade L to ``W L^ W^-1`` (2.82); built when first read."""
+    sim = similarity(V)
+    if sim is None:
+        return None
+    s, R, t, W, odd = sim
+    norm = 1.0 / (W * ~W).scalar()
+    depth = chain_depth(X)
+
+    def build():
+        f, L = frame(X)
+        if f is None:
+            raise NoFrame("the dilated entity lost its frame")
+        g = s * (f @ R.T) + t
+        if not np.all(np.isfinite(g)):
+            raise NoFrame("the anchor's image overflows")
+        loc = (W * (L.involute() if odd else L) * ~W).grade(*L.grades_present()) * norm
+        g.flags.writeable = False
+        return g, loc
+
+    return Anchored.derive(Y, Pending(build, depth))
+
+
+# ------------------------------------------------------------------------------- inversion times a motor
+@dataclass(frozen=True)
+class Inversion:
+    """An inversion times a motor, ``V = S M`` (``motor_first``: the motor acts first) or ``M S``: the sphere's
+    centre and signed squared radius (2.84-2.88), the motor M (2.102) and its ``(R, t)``; ``null``: ``V ~V`` is
+    zero to within its round-off (a sphere of radius 0, no inverse)."""
+
+    centre: np.ndarray
+    radius2: float
+    motor: Multivector
+    rigid: tuple
+    motor_first: bool
+    null: bool
+
+
+def inversion_motor(V: Multivector) -> Inversion | None:
+    """V (single, real, odd) read as an inversion times a motor (module docstring), the form of the smaller centre
+    chosen (its coordinates round least); None when V fixes the point at infinity or is no such product to a
+    relative 1e-9 of its coefficients."""
+    if any(G41.grades[b] % 2 == 0 for b in V.coeffs) or not moves_infinity(V):
+        return None
+    Eu, Xe, Y, D, _, _ = split(V, "apply", "V")
+    R = _euclid(Y)
+    RR = float(np.dot(Y, Y))
+    if not RR > 0.0 or any(Y[x] != 0.0 for x in (1, 2, 4, 7)):
+        return None
+    p1 = _vector(_euclid(Eu - D) * ~R) / RR  # V = S M: the motor first
+    p2 = _vector(~R * _euclid(Eu + D)) / RR  # V = M S'
+    d, bound = square(V)
+    r2 = d / RR
+    first = bool(p1 @ p1 <= p2 @ p2)
+    p = p1 if first else p2
+    M = R - einf * _euclid(D)
+    S = Multivector(G41, {1: p[0], 2: p[1], 4: p[2]}) + (0.5 * (p @ p - r2)) * einf + eo
+    back = S * M if first else M * S
+    scale = max(abs(float(v)) for v in V.coeffs.values())
+    keys = set(V.coeffs) | set(back.coeffs)
+    if max(abs(float(back.coeffs.get(b, 0.0)) - float(V.coeffs.get(b, 0.0))) for b in keys) > 1e-9 * scale:
+        return None
+    rigid = G41.rigid_motion(M)
+    if rigid is None:
+        return None
+    return Inversion(p, r2, M, rigid, first, abs(d) <= bound)
+
+
+def inverted_and_moved(X: Anchored, Y: Multivector, inv: Inversion) -> Anchored:
+    """``Y = apply(V, X)`` anchored for ``V = S M`` or ``M S`` (:class:`Inversion`): the motor's motion and the
+    inversion's, one after the other as V applies them (:func:`~cga_lessons.conformal.anchored.moved`, 2.102;
+    :func:`~cga_lessons.conformal.anchored.inverted`, 2.84-2.88).  The intermediate entity carries Y's
+    coefficients, never read."""
+    R, t = inv.rigid
+    if inv.motor_first:
+        return inverted(moved(X, Y, inv.motor, R, t), Y, inv.centre, inv.radius2)
+    return moved(inverted(X, Y, inv.centre, inv.radius2), Y, inv.motor, R, t)
+
+
+# ------------------------------------------------------------------------------------------ far inversions
+def far_parts(V: Multivector, func: str, name: str):
+    """``(centre, r2, motor, motor_first, dual)`` of a single real V of G(4,1) that is an inversion (a sphere,
+    standard or dual form, or its product with a motor) whose ``V ~V`` the tables cannot resolve (module
+    docstring; motor None for a sphere alone), else None.  The centre and radius of a sphere are read as
+    :func:`~cga_lessons.conformal.entities_read.read_sphere` reads them (off its local blade when anchored).
+    Raises :class:`~cga_lessons.algebra.DegenerateGeometryError` for a V whose ``V ~V`` is zero to within its
+    round-off."""
+    c = V.coeffs
+    vector = all(b in _VECTOR for b in c)
+    if vector:  # a sphere or a plane: the test below in a few flops
+        x1, x2, x3, p, m = (float(c.get(b, 0.0)) for b in _VECTOR)
+        if p == m:
+            return None  # a plane (2.89): an isometry
+        d = x1 * x1 + x2 * x2 + x3 * x3 + (p - m) * (p + m)
+        size = x1 * x1 + x2 * x2 + x3 * x3 + p * p + m * m
+        if EPS * size <= TABLE_TOLERANCE * abs(d):
+            return None  # the tables resolve V ~V
+    grades = {G41.grades[b] for b in c}
+    dual = grades == {4}
+    if dual:  # S Ic (2.31): V X V^-1 = S X^ S^-1 for the sphere S = V Ic (Ic is central), up to a number
+        V, grades = times_invariant(V, IC), {1}
+    if any(g % 2 == 0 for g in grades):
+        return None
+    if not vector:
+        vals = np.array([float(v) for v in V.coeffs.values()])
+        Eu, Xe, Y, D, _, _ = split(V, func, name)
+        if not np.any(Y):
+            return None  # it fixes the point at infinity: an isometry or a similarity, no inversion
+        d = float(np.dot(Eu - D, Eu + D) - 2.0 * np.dot(Xe, Y))
+        if EPS * float(vals @ vals) <= TABLE_TOLERANCE * abs(d):
+            return None  # the tables resolve V ~V
+    if grades == {1}:
+        try:
+            p, r2, _, tol = read_sphere(V, func, name)
+        except GeometryError:
+            return None
+        p, r2 = np.asarray(p, dtype=float), float(r2)
+        if abs(r2) <= float(tol):
+            raise _null(func, name)
+        return None if not np.any(p) else (p, r2, None, True, dual)  # about the origin: the tables' own route
+    inv = inversion_motor(V)
+    if inv is None:
+        return None
+    if inv.null:
+        raise _null(func, name)
+    return inv.centre, inv.radius2, inv.motor, inv.motor_first, dual
+
+
+def _null(func: str, name: str):
+    return checks.degenerate(
+        func, name, "has no inverse, so it is no versor (V ~V = 0 to within its round-off: a sphere of radius 0)"
+    )
+
+
+def far_product(parts, X: Multivector, step) -> Multivector:
+    """``apply(V, X)`` for the :func:`far_parts` of V, by its factors: ``step(W, Z)`` applies one factor W to Z
+    (the caller's apply, its errors in the caller's words).  The inversion in the sphere (p, r2) is
+    ``T_p S0 ~T_p`` with ``S0 = e0 - r2 e / 2`` about the origin (2.72, 2.100); a dual form's action is that of its
+    sphere on ``X^`` (2.82)."""
+    p, r2, M, motor_first, dual = parts
+    Z = X.involute() if dual else X
+    if M is not None and motor_first:
+        Z = step(M, Z)
+    S0 = eo - (0.5 * r2) * einf
+    Z = step(translator(p), step(S0, step(translator(-p), Z))) if np.any(p) else step(S0, Z)
+    if M is not None and not motor_first:
+        Z = step(M, Z)
+    return Z
