@@ -374,13 +374,15 @@ def test_motor_functions_refuse_non_motors():
     assert np.allclose(cga.down(dilator * cga.up(x) * ~dilator), x / 3, rtol=1e-15)
 
 
-def test_apply_to_points_of_a_reflection_is_the_affine_reflection():
-    """A plane n + delta e (2.89) is odd, not a motor: its affine part still moves points, x - 2 (n.x - delta) n
-    (2.90).  Odd versors keep the bilinear table of (2.82), so a plane far away loses ~eps delta^2."""
-    n, delta = np.array([0.0, 0.6, 0.8]), 10.0
+@pytest.mark.parametrize("delta", [10.0, 1e6])
+def test_apply_to_points_of_a_reflection_is_the_affine_reflection(delta):
+    """A plane n + delta e (2.89) is odd, not a motor: it moves points by x - 2 (n.x - delta) n (2.90), read off
+    the motor P e1 times the reflection in e1 (cga_lessons.conformal.similarities), exact at any distance (the
+    affine part of its 5x5 matrix, used before, lost ~eps delta^2 far away)."""
+    n = np.array([0.0, 0.6, 0.8])
     x = RNG.normal(size=(10, 3)) * 10
     got = cga.apply_to_points(cga.plane(n, delta), x)
-    assert np.allclose(got, x - 2 * (x @ n - delta)[:, None] * n, rtol=0, atol=1e-13)
+    assert np.allclose(got, x - 2 * (x @ n - delta)[:, None] * n, rtol=0, atol=1e-13 * delta)
 
 
 # ------------------------------------------------------------------ overflow and scalars

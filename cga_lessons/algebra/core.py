@@ -347,9 +347,12 @@ class Algebra(AlgebraKind):
         it has no E = e+e- part.  The parts that break this (the differences of
         the e+ and e- coefficients, the E blades, and the trivector of ``n ~R``,
         which must vanish for ``V ~V`` to be a scalar, 2.145) must be within
-        :func:`motor_tolerance` of the largest coefficient: ``VERSOR_TOLERANCE``
-        plus the round-off a product of motors leaves in its e+/e- terms, up to
-        ``MOTOR_TOLERANCE_CAP``.  A motor built by ``motor``, ``translator``,
+        :func:`motor_tolerance`: ``VERSOR_TOLERANCE`` plus the round-off a
+        product of motors leaves in its e+/e- terms, up to
+        ``MOTOR_TOLERANCE_CAP``, of the largest coefficient for the trivector
+        and of the rotor's norm for the others (a dilation's E part is that
+        fraction of the rotor at any distance, so a similarity far out is no
+        motor).  A motor built by ``motor``, ``translator``,
         ``rotor`` or ``matrix_to_motor`` has no defect at all, at any distance.
 
         Both parts are read linearly off the coefficients: ``R`` is the

@@ -221,7 +221,10 @@ def motor_parts(c: dict, grades) -> tuple | None:
     n1, n2, n3, n123 = -m1, -m2, -m3, -m123
     nn = math.hypot(n1, n2, n3, n123)
     tri = n123 * q0 - n1 * q23 + n2 * q13 - n3 * q12  # <n ~R>_3 / |R|, zero when n = t R / 2
-    anti = max(
+    # The parts that move e (e+ != e-: an e0 part) or scale it (E = e+e-: a dilation, D_s = a - b E) are weighed
+    # against the rotor |R| (a similarity's E part is rho |R|, rho = b / a), not against the largest coefficient,
+    # which grows with |t|: measured against that, T_t D_s 1e6 out passed for a motor up to s = 1.02.
+    moving = max(
         abs(float(get(9, 0.0)) - m1),
         abs(float(get(10, 0.0)) - m2),
         abs(float(get(12, 0.0)) - m3),
@@ -230,11 +233,10 @@ def motor_parts(c: dict, grades) -> tuple | None:
         abs(float(get(27, 0.0))),
         abs(float(get(29, 0.0))),
         abs(float(get(30, 0.0))),
-        abs(tri),
     )
     ratio = nn / rn
     rel = min(VERSOR_TOLERANCE + 16 * _EPS * ratio * ratio, MOTOR_TOLERANCE_CAP)  # motor_tolerance, floats
-    if not anti <= rel * vmax:  # also refuses NaN
+    if not (abs(tri) <= rel * vmax and moving <= rel * rn):  # also refuses NaN
         return None
     s = 2.0 / rn  # t = 2 <n ~R>_1 / (R ~R)  (2.144)
     t0 = s * (n1 * q0 + n2 * q12 + n3 * q13 + n123 * q23)

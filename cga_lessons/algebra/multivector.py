@@ -253,7 +253,12 @@ class Multivector:
         of X, built once in closed form (:meth:`Algebra.versor_matrices`),
         times X's coefficients.  A versor keeps grades (2.82), so the result
         has X's grades only, where the plain product adds round-off in the
-        others.  Anything else is the plain product ``V * X * ~V``.
+        others.  Anything else is the plain product ``V * X * ~V``.  It never
+        divides by ``V ~V`` (it scales by it), so a versor whose ``V ~V`` is
+        lost to round-off (a sphere far from the origin) still gives ``V X ~V``
+        to the round-off of its terms, ``eps |V|^2 |X|`` (by the tables, or by
+        the plain product where ``V ~V`` rounds to 0); the normalised action
+        ``V X^ V^-1`` of such a versor is :func:`cga_lessons.conformal.apply`.
         """
         func = "Multivector >>"
         other = self._coerce(other, func)

@@ -80,6 +80,8 @@ VERSOR_TOLERANCE = 1e-12
 #: The rotor blades 1 e12 e13 e23 of a motor M = R + e n of G(4,1) (bitmaps e1=1 e2=2 e3=4 e+=8 e-=16): R = (M ^ E) E
 #: (2.141).  n sits on e1- e2- e3- e123- (negated: e n = (e+ + e-) n, 2.53) and, equal, on e1+ e2+ e3+ e123+.
 ROTOR_BLADES = (0, 3, 5, 6)
+_EPS = float(np.finfo(float).eps)
+
 
 class VersorMatrices(dict):
     """``{grade: k x k matrix}`` of a versor's action in the blade order of (2.9), e+/e- basis.
@@ -169,14 +171,23 @@ class VersorActions:
 
         ``d = <V ~V>_0``; ``raw[g]`` is the matrix of ``X -> V X ~V`` and
         ``unit[g]`` that of ``X -> V X^ V^-1`` (2.82) on grade g, both
-        :class:`VersorMatrices`.  A motor of G(4,1) (:meth:`MotorMatrices.rigid`) gets
-        them in closed form from its rotation and translation.  Any other V is
+        :class:`VersorMatrices` (``unit`` None when ``V ~V`` is not resolved,
+        below).  A motor of G(4,1) (:meth:`MotorMatrices.rigid`) gets them in
+        closed form from its rotation and translation.  Any other V is
         a versor here when its blades have one parity and ``V ~V`` is a
         non-zero scalar up to round-off: its other blades within
         ``VERSOR_TOLERANCE |v|^2`` (|v|^2 the sum of the squared coefficients,
         which bounds the sum of the |products| making up each entry of V ~V,
         hence their round-off); in G(p, q) with p + q <= 5 that makes V an
-        element of the Clifford group, so it keeps grades.
+        element of the Clifford group, so it keeps grades.  And ``V ~V`` itself
+        must be resolved for ``unit``: its round-off, eps times the sum of the
+        squared coefficients of the non-null blades, within ``VERSOR_TOLERANCE``
+        of it.  Otherwise (in G(4,1) a sphere far from the origin: its e+ and e-
+        coefficients near |c|^2/2 square to ~|c|^4 where ``V ~V`` is its squared
+        radius) the matrices divided by it would be garbage: ``unit`` is None
+        (:meth:`matrices` returns None, and :func:`cga_lessons.conformal.apply`
+        takes such a versor by its factors), while ``raw``, which never divides
+        by it, stays the sandwich ``V X ~V`` to the round-off of its terms.
         """
         c = V._c
         if not c or not is_real_single(V) or self.n > 5:
@@ -203,23 +214,28 @@ class VersorActions:
         if parity is None:
             return None
         v = np.array(ck[1], dtype=float)
+        m = len(v)
         with np.errstate(over="ignore", invalid="ignore"):
             size = float(v @ v)
             w = (v[:, None] * v).ravel() @ T
+            # the terms summed into <V ~V>_0: b ~b of each blade, +-1 (0 for a null blade of a degenerate metric)
+            dsize = float(np.abs(T[:: m + 1, 0]) @ (v * v))
         head = w[: self.dim].tolist()
         d = head[0]
         if not (math.isfinite(d) and d != 0 and math.isfinite(size)):
             return None
+        resolved = _EPS * dsize <= VERSOR_TOLERANCE * abs(d)  # else V ~V is lost to round-off: no unit matrices
         if max(map(abs, head[1:]), default=0.0) > VERSOR_TOLERANCE * size:
             return None
         raw, unit = {}, {}
         for g, sl in slices.items():
             k = len(self.grade_blades[g])
             raw[g] = mat = w[sl].reshape(k, k)
-            unit[g] = u = mat * ((-1.0 if parity and g & 1 else 1.0) / d)
-            u.flags.writeable = False  # shared through the cache
+            if resolved:
+                unit[g] = u = mat * ((-1.0 if parity and g & 1 else 1.0) / d)
+                u.flags.writeable = False  # shared through the cache
         w.flags.writeable = False
-        return d, parity, VersorMatrices(raw), VersorMatrices(unit)
+        return d, parity, VersorMatrices(raw), (VersorMatrices(unit) if resolved else None)
 
     def matrices(self, V: Multivector, grades) -> dict | None:
         """:meth:`Algebra.versor_matrices <cga_lessons.algebra.Algebra.versor_matrices>`: :meth:`info` with V and

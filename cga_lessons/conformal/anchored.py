@@ -43,7 +43,8 @@ V's geometry, never from products of the global coefficients:
   (:func:`inverted`), of the size of q; the centre and radius are read off the sphere's own local blade when it is
   anchored (exact at any distance), else off its coefficients;
 * a dilation (the dilator ``a - b E``) or a similarity ``T_t U D_s`` (its product with a motor or a reflection):
-  W = U D_s; an inversion times a motor (S M or M S): its two motions in turn (:mod:`.anchored_versors`).
+  W = U D_s (:mod:`.similarities`); an inversion times a motor (S M or M S): its two motions in turn
+  (:mod:`.anchored_versors`).
 
 Other versors (even ones that move e: two inversions, an inversion times a reflection) drop the frame, as does an
 inversion that sends the anchor to infinity (when first read); so do an operation with a multivector that

@@ -1,5 +1,5 @@
-"""Anchored entities under the versors that are no isometry and no single inversion: a dilation and the similarities
-it makes with a motor or a reflection, an inversion times a motor (the versor action 2.82; inversions 2.84-2.88,
+"""Anchored entities under the versors that are no isometry, no similarity and no single inversion: an inversion times
+a motor (the versor action 2.82; inversions 2.84-2.88,
 reflections 2.89-2.91, translators 2.100, motors 2.102); and the global result of an inversion whose ``V ~V`` the
 product tables cannot resolve (a small sphere far out).  Used by :func:`~cga_lessons.conformal.apply`.
 
@@ -8,15 +8,8 @@ of :mod:`~cga_lessons.conformal.entities_frame`; e and e0 of 2.53, ``E_pm = e+ e
 is ``<V ~V>_0 = <(E - D) ~(E + D)>_0 - 2 <Xe ~Y>_0`` (:func:`square`): terms of the size of the geometry, where the
 squares of the e+/e- coefficients, |c|^4-sized for a round |c| out, cancel.
 
-**Similarities** (:func:`similarity`, :func:`similar`).  A versor that fixes the point at infinity (Y = 0) and is
-no motor is ``V = T_t U D_s`` with U a Euclidean versor (a rotor, or odd: a reflection in a plane through the
-origin, 2.90) and ``D_s = a - b E_pm`` the dilator (:func:`~cga_lessons.conformal.dilator`; not numbered in the
-thesis, see Dorst, Fontijne & Mann 2007, ch. 16), ``s = (a + b) / (a - b)``: its parts are ``E = a U``,
-``D = -b U`` and ``Xe = (a - b) t U / 2``, its point map ``x -> s R x + t`` (R that of U).  So ``rho = b / a`` is
-``-<D ~E>_0 / <E ~E>_0``, ``V (1 + rho E_pm)`` is ``T_t U`` times a number, read linearly by
-:meth:`~cga_lessons.algebra.Algebra.rigid_motion` (2.141-2.144), and since ``D_s T_f = T_{s f} D_s``,
-``T_{-f'} V T_f = U D_s`` with ``f' = s R f + t``: the anchor goes to f' and the local blade is ``W L^ W^-1``,
-``W = U (1 - rho E_pm)``, coefficients of the size of U (never products of the global ones).
+**Similarities** (a dilation and its products with a motor or a reflection, and the odd isometries): by their
+factors in :mod:`~cga_lessons.conformal.similarities`.
 
 **An inversion times a motor** (:func:`inversion_motor`, :func:`inverted_and_moved`).  An odd versor that moves
 the point at infinity is ``V = S M = M S'`` (M = R + e Q a motor, Q = t R / 2; S, S' spheres ``p + beta e + e0``,
@@ -33,8 +26,8 @@ holds its factors: the float product of a sphere and a motor that both reach |c|
 size |c|^3 that cancel (``e e = 0`` summed as ``e+ e+ + e- e-``) and holds its rotor R (its e0 part, a difference
 of |c|^2-sized e+/e- coefficients) to eps |c|^2 only; one of them near the origin, it holds them to eps |c|.
 
-**Far inversions** (:func:`far_parts`, :func:`far_product`).  The tables of
-:meth:`~cga_lessons.algebra.Algebra.versor_matrices` compute ``V ~V`` as the signed sum of the squared
+**Far inversions** (:func:`far_parts`, :func:`far_product`; :func:`unresolved` for what no factors cover).  The
+tables of :meth:`~cga_lessons.algebra.Algebra.versor_matrices` compute ``V ~V`` as the signed sum of the squared
 coefficients, round-off ``eps |V|^2``: for a unit sphere 1e6 out (e+ and e- coefficients near 5e11) about 1e8,
 where ``V ~V = 1``, so the scale of the result was garbage or V was refused as having no inverse.  Where that
 round-off passes ``TABLE_TOLERANCE`` of ``V ~V`` (summed by its null parts), the global result is the product of
@@ -54,21 +47,20 @@ import numpy as np
 from cga_lessons import checks
 from cga_lessons.algebra import GeometryError, Multivector
 
-from .anchored import Anchored, frame, inverted, moved, times_invariant
-from .anchored_ops import NoFrame, Pending, chain_depth
+from .anchored import Anchored, inverted, moved, times_invariant
 from .entities_frame import EPS, split
 from .entities_read import read_sphere
-from .model import G41, E, e1, einf, eo
+from .model import G41, einf, eo
 from .model import Ic as IC
 from .versors_build import translator
 
 __all__ = [
     "TABLE_TOLERANCE",
+    "LOST_TOLERANCE",
     "Inversion",
     "square",
     "moves_infinity",
-    "similarity",
-    "similar",
+    "unresolved",
     "inversion_motor",
     "inverted_and_moved",
     "far_parts",
@@ -79,9 +71,10 @@ __all__ = [
 #: trusted up to this much of ``V ~V`` (the relative tolerance of the algebra's versor test); beyond it an inversion
 #: is applied by its factors (:func:`far_product`).  For a unit sphere: beyond about 10 from the origin.
 TABLE_TOLERANCE = 1e-12
+#: Beyond this much of ``V ~V`` its round-off ``eps |V|^2`` leaves no motion to apply (:func:`unresolved`): the
+#: sandwich of the versor as stored would be off by more than the package's 1e-9.
+LOST_TOLERANCE = 1e-9
 _VECTOR = (1, 2, 4, 8, 16)  # e1 e2 e3 e+ e-
-#: The reflection in the plane e1 (through the origin, 2.90) as a matrix: the point map of the vector e1.
-_H1 = np.diag([-1.0, 1.0, 1.0])
 
 
 def _euclid(a) -> Multivector:
@@ -116,61 +109,6 @@ def moves_infinity(V: Multivector) -> bool:
     c = V.coeffs
     vmax = max((abs(float(v)) for v in c.values()), default=0.0)
     return any(abs(float(c.get(x | 16, 0.0)) - float(c.get(x | 8, 0.0))) > 16.0 * EPS * vmax for x in range(8))
-
-
-# ------------------------------------------------------------------------------------------- similarities
-def similarity(V: Multivector):
-    """``(s, R, t, W, odd)`` of a single real versor V of G(4,1) that maps points by ``x -> s R x + t`` with
-    ``s != 1`` (a dilation, 2.55, or its product with a motor or a reflection; module docstring), else None:
-    R (3, 3) has determinant -1 when V is odd, and ``W = U (1 - rho E_pm)`` is ``T_{-f'} V T_f`` up to a number
-    (``f' = s R f + t``), the versor that moves a local blade."""
-    c = V.coeffs
-    if not any(b & 24 == 24 for b in c) or moves_infinity(V):
-        return None  # no E_pm part (no dilation), or an e0 part
-    A = [float(c.get(x, 0.0)) for x in range(8)]
-    AA = sum(a * a for a in A)
-    if not AA > 0.0:
-        return None
-    rho = -sum(float(c.get(x | 24, 0.0)) * a for x, a in enumerate(A)) / AA
-    if not (-1.0 < rho < 1.0) or rho == 0.0:
-        return None
-    parity = {G41.grades[b] & 1 for b in c}
-    if len(parity) != 1:
-        return None
-    odd = parity.pop() == 1
-    M = V * (1.0 + rho * E)  # T_t U times a number: the dilation divided out (D_s^-1 is 1 + rho E_pm up to one)
-    rigid = G41.rigid_motion(M * e1 if odd else M)  # an odd isometry times e1 is a motor (2.90, 2.102)
-    if rigid is None:
-        return None
-    R, t = rigid
-    if odd:  # apply(M, X) = apply(M e1, apply(e1, X)): first the reflection in the plane e1
-        R = R @ _H1
-    U = Multivector(G41, {b: v for b, v in M.coeffs.items() if b < 8})
-    return (1.0 + rho) / (1.0 - rho), R, t, U * (1.0 - rho * E), odd
-
-
-def similar(X: Anchored, Y: Multivector, V: Multivector):
-    """``Y = apply(V, X)`` anchored, for V a similarity (:func:`similarity`); None for any other V.  The anchor f
-    goes to ``s R f + t``, the local blade L to ``W L^ W^-1`` (2.82); built when first read."""
-    sim = similarity(V)
-    if sim is None:
-        return None
-    s, R, t, W, odd = sim
-    norm = 1.0 / (W * ~W).scalar()
-    depth = chain_depth(X)
-
-    def build():
-        f, L = frame(X)
-        if f is None:
-            raise NoFrame("the dilated entity lost its frame")
-        g = s * (f @ R.T) + t
-        if not np.all(np.isfinite(g)):
-            raise NoFrame("the anchor's image overflows")
-        loc = (W * (L.involute() if odd else L) * ~W).grade(*L.grades_present()) * norm
-        g.flags.writeable = False
-        return g, loc
-
-    return Anchored.derive(Y, Pending(build, depth))
 
 
 # ------------------------------------------------------------------------------- inversion times a motor
@@ -298,3 +236,24 @@ def far_product(parts, X: Multivector, step) -> Multivector:
     if M is not None and not motor_first:
         Z = step(M, Z)
     return Z
+
+
+def unresolved(V: Multivector) -> str:
+    """Why apply cannot take V (single, real, one parity, not a vector) to working precision, or '': ``V ~V``
+    summed exactly from its coefficients is below ``eps |V|^2 / LOST_TOLERANCE`` (|V|^2 the sum of the squared
+    coefficients, the round-off of V's own products and of its sandwich): a versor that far from the origin which
+    is no motor, similarity, sphere or inversion times a motor (the float product of motors or spheres far out)
+    no longer holds its motion to 1e-9, and its inverse would be the round-off's."""
+    c = V.coeffs
+    if len({G41.grades[b] & 1 for b in c}) != 1 or all(G41.grades[b] == 1 for b in c):
+        return ""
+    d, _ = square(V)
+    size = sum(float(v) ** 2 for v in c.values())
+    if EPS * size <= LOST_TOLERANCE * abs(d):
+        return ""
+    return (
+        f"V ~V = {d:.3g} is lost to the round-off of its coefficients (eps |V|^2 = {EPS * size:.3g}): a versor "
+        "this far from the origin that is no motor, similarity, sphere or inversion times a motor (a product of "
+        "motors or spheres far out) holds no motion to working precision; compose rigid motions as matrices "
+        "(motor_to_matrix, matrix_to_motor) or build the versor with its constructor"
+    )

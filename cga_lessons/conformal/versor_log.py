@@ -78,6 +78,12 @@ def unit_motor(M, func: str, name: str = "M") -> Multivector:
             f"{where} not a motor: it does not commute with e (|M e - e M| = {comm:.3g}), so it moves the point "
             "at infinity (a dilation, transversion or other conformal versor)"
         )
+    if G41.rigid_motion(M) is None:  # its E (dilation) and e0 parts against the rotor: a similarity far out
+        raise InvalidInputError(
+            f"{where} not a motor: it has an E = e+e- or e0 part beyond round-off of its rotor part (a dilation "
+            "or another conformal versor), or is a product of motors so far out that it is no motor to working "
+            "precision (see Algebra.rigid_motion)"
+        )
     # M ~M = R ~R for M = T R: its scalar is the rotor part's squared norm, read from the blades free of e+ and e-
     # (the full product would sum the translation's coefficients squared, which cancel to eps |t|^2, not to 0).
     n2 = sum(v * v for b, v in M.coeffs.items() if not b & 0b11000)
@@ -252,19 +258,35 @@ def rotor_log(R: Multivector) -> Multivector:
 
 
 def dilator(scale, center=None) -> Multivector:
-    """Dilation versor ``D = exp(-ln(scale)/2 E) = cosh(g) - sinh(g) E``, g = ln(scale)/2.
+    """Dilation versor ``D = exp(-ln(scale)/2 E) = a - b E``, ``a = cosh(g)``, ``b = sinh(g)``, g = ln(scale)/2.
 
-    Not in the thesis's table 2.2 (its versors are the rigid motions,
+    Not numbered in the thesis (its table 2.2 holds the rigid motions,
     inversions and reflections); see Dorst, Fontijne & Mann (2007), ch. 16
     (uniform scaling).  ``E = e+ e- = e ^ e0`` (2.55) squares to +1, so the
-    series (2.37) sums to cosh/sinh; the sandwich ``apply(D, up(x))`` is a
-    multiple of ``up(scale x)`` and ``down`` (2.111) removes the factor.  With
-    a centre c it is ``T_c D ~T_c``: ``x -> c + scale (x - c)``.  D is an even
-    unit versor (D ~D = 1) but not a motor: it moves e, so :func:`motor_log`
-    refuses it; its log is simply ``-ln(scale)/2 E``.  Numerically the
-    image's weight ``-e . X = 1/scale`` is the difference of its e+ and e-
-    parts, of size ``scale |x|^2``, so ``down`` keeps about ``eps |scale x|^2``
-    relative accuracy (7e-8 at ``|scale x|`` = 3e4).
+    series (2.37) sums to cosh/sinh, here written ``a = (s + 1) / (2 sqrt(s))``,
+    ``b = (s - 1) / (2 sqrt(s))`` (no logarithm: b is exact to a few ulp for s
+    near 1, and ``a^2 - b^2 = 1``).  The sandwich ``apply(D, up(x))`` is
+    ``up(scale x) / scale`` and ``down`` (2.111) removes the factor.
+
+    With a centre c it is ``T_c D ~T_c`` (T_c the translator of 2.100), written
+    out: ``E e = -e``, ``e E = e`` and c commutes with E, so ``T_c E ~T_c =
+    E + e c`` and::
+
+        D_c = a - b E - b e ^ c,        x -> c + scale (x - c),
+
+    each coefficient one product (``b c_i`` on the e+ and e- blades): no
+    ``|c|^2``-sized terms that cancel, so ``dilator(1.0, c)`` is exactly 1 and
+    the map holds to round-off at any distance (the product ``T_c D ~T_c``
+    rounded terms of size ``|c|^2 b`` and left a scale off by ~1e-4 1e6 out).
+    D is an even unit versor (D ~D = 1) but not a motor: it moves e, so
+    :func:`motor_log` refuses it; its log is ``-ln(scale)/2 E`` (about the
+    origin).  :func:`~cga_lessons.conformal.apply_to_points` maps points by
+    ``x -> scale x + (1 - scale) c`` read off D
+    (:func:`~cga_lessons.conformal.similarities.similarity_factors`); the plain
+    conformal image of a point has weight ``-e . X = 1/scale``, the difference
+    of its e+ and e- parts of size ``scale |x|^2``, so ``down`` of a plain
+    blade keeps about ``eps |scale x|^2`` relative accuracy (7e-8 at
+    ``|scale x|`` = 3e4; an anchored entity keeps its frame).
 
     Parameters
     ----------
@@ -279,16 +301,20 @@ def dilator(scale, center=None) -> Multivector:
     array([2., 4., 6.])
     >>> cga.down(cga.apply(dilator(3.0, [1.0, 1.0, 1.0]), cga.up([2.0, 1.0, 1.0])))
     array([4., 1., 1.])
+    >>> dilator(1.0, [123456.7, -234567.8, 345678.9])
+    1
     """
     scale = checks.real(scale, "dilator", "scale", low=0.0, strict_low=True)
-    g = 0.5 * math.log(scale)
-    D = E * (-math.sinh(g)) + math.cosh(g)
+    root = math.sqrt(scale)
+    a, b = (scale + 1.0) / (2.0 * root), (scale - 1.0) / (2.0 * root)
+    D = E * (-b) + a if b != 0.0 else G41.scalar(a)
     if center is None:
         return D
     c = checks.array(center, "dilator", "center", (3,))
-    T = translator(c)
+    if b == 0.0:
+        return D
     try:
-        return result_finite(T * D * ~T, "dilator", scale=scale, center=c)
+        return result_finite(D - (einf ^ vector(c * b)), "dilator", scale=scale, center=c)
     except GeometryError as exc:  # a product refused to overflow
         if str(exc).startswith("dilator:"):
             raise

@@ -24,6 +24,12 @@ looping over the batch; a conformal point cloud costs one 5x5 product.  A
 motor's matrices are built in closed form from its rotation and translation
 (:meth:`~cga_lessons.algebra.Algebra.rigid_motion`), so that points far from
 the origin keep their precision (see :mod:`cga_lessons.algebra.versor_matrices`).
+Where the tables cannot resolve a versor's ``V ~V`` (its round-off ``eps |V|^2``
+beyond 1e-12 of it: a sphere, a plane or a dilation far from the origin),
+:func:`apply` takes it by its factors: the inversions in
+:mod:`cga_lessons.conformal.anchored_versors`, the similarities and reflections in
+:mod:`cga_lessons.conformal.similarities`; a versor no factors cover whose
+``V ~V`` is lost to round-off (a product of motors far out) raises.
 
 The constructors (:func:`translator`, :func:`rotor`, :func:`rotor_about_line`,
 :func:`motor`, :func:`screw`) live in :mod:`cga_lessons.conformal.versors_build`, the
@@ -49,12 +55,13 @@ from cga_lessons.algebra import (
 
 from .anchored import Anchored, frame, inverted, moved, times_invariant
 from .anchored_ops import view
-from .anchored_versors import far_parts, far_product, inversion_motor, inverted_and_moved, moves_infinity, similar
-from .entities_read import read_sphere
+from .anchored_versors import far_parts, far_product, inversion_motor, inverted_and_moved, moves_infinity, unresolved
+from .inversions import inversion_of, inverted_points, sphere_of
 from .model import G41, einf
 from .model import Ic as IC
 from .multivector_checks import COORD_LIMIT, COORD_WHY, check_points, input_error, multivector, mv_is_finite
 from .points import down, up
+from .similarities import similar, similarity_factors, similarity_product
 
 __all__ = [
     "apply",
@@ -80,8 +87,11 @@ def versor_matrix(V: Multivector, grade: int) -> np.ndarray:
     entities costs one (k, k) x (k, N) product with this matrix (k = 5 for
     points and spheres, 10 for lines and circles).  For a numeric versor it is
     built in closed form from one cached bilinear table
-    (:meth:`~cga_lessons.algebra.Algebra.versor_matrices`); other numeric
-    multivectors (V ~V not a scalar) use one sandwich per basis blade.
+    (:meth:`~cga_lessons.algebra.Algebra.versor_matrices`); where those cannot
+    resolve ``V ~V`` (a sphere, a dilation or a plane far from the origin) its
+    columns are :func:`apply` of the basis blades, which takes such a versor
+    by its factors (or raises where none cover it); other numeric multivectors
+    (V ~V not a scalar) use one sandwich per basis blade.
     """
     func = "versor_matrix"
     multivector(V, func, "V", what="a versor (Multivector of G(4,1))", single=True, numeric=True)
@@ -89,13 +99,12 @@ def versor_matrix(V: Multivector, grade: int) -> np.ndarray:
     mats = G41.versor_matrices(V, (grade,))
     if mats is not None:
         out = mats[grade].copy()
-    else:
+    else:  # the route of apply, a basis blade at a time: the sandwich, or the factors of a versor far out
         blades = G41.grade_blades[grade]
         _parity(V, func)
-        Vinv = _inverse(V, func, "V")
         cols = []
         for b in blades:
-            img = _apply_sandwich(V, Multivector(G41, {b: 1.0}), Vinv, func)
+            img = _apply(V, Multivector(G41, {b: 1.0}), func, "V", "grade")
             cols.append([float(img._c.get(r, 0.0)) for r in blades])
         out = np.array(cols).T
     if not np.all(np.isfinite(out)):
@@ -163,6 +172,8 @@ def _apply(V, X, func: str, vname: str, xname: str) -> Multivector:
                 mats = V.algebra.versor_matrices(V, X.grades_present())
                 if mats is not None:
                     Y = V.algebra.apply_matrices(mats, X)
+                elif V.algebra is G41 and is_real_single(V):  # V ~V beyond the tables (a versor far out)
+                    Y = _far_similarity(V, X, func, vname, xname)
         if Y is None:  # the sandwich (SymPy, batches of versors, non-versors, and what the matrices refused)
             multivector(V, func, vname, what="a versor (Multivector)", algebra=None)
             multivector(X, func, xname, what="a Multivector", algebra=None, nonzero=False)
@@ -181,6 +192,24 @@ def _apply(V, X, func: str, vname: str, xname: str) -> Multivector:
     raise input_error(func, {vname: V, xname: X})
 
 
+def _far_similarity(V, X, func: str, vname: str, xname: str):
+    """apply(V, X) for a single real V whose ``V ~V`` the tables refused: a similarity or an odd isometry by its
+    factors (:func:`~cga_lessons.conformal.similarities.similarity_product`: a dilation, a reflection in a plane
+    far out, 2.89-2.91, or their products with a motor, 2.102); raises for a V that no factors cover and whose
+    ``V ~V`` is lost to round-off (:func:`~cga_lessons.conformal.anchored_versors.unresolved`); None for the
+    others (the sandwich)."""
+    dual = all(G41.grades[b] == 4 for b in V._c)
+    # a dual form K Ic (2.31): Ic is central, so V X V^-1 = K X K^-1 = apply(K, X^) (2.82)
+    sim = similarity_factors(times_invariant(V, IC) if dual else V)
+    if sim is not None:
+        Z = view(X)
+        return similarity_product(sim, Z.involute() if dual else Z, lambda W, Z: _apply(W, Z, func, vname, xname))
+    why = unresolved(V)
+    if why:
+        raise checks.fail(func, vname, why)
+    return None
+
+
 def _keep_frame(V, X, Y) -> Multivector:
     """Y = apply(V, X) anchored when X is anchored and V maps points to points in a way its local blade can follow
     accurately; Y as it is otherwise (an even versor that moves the point at infinity, a batch of versors, SymPy:
@@ -190,9 +219,12 @@ def _keep_frame(V, X, Y) -> Multivector:
       (:func:`~cga_lessons.conformal.anchored.moved`; a scaled motor's scale cancels in ``V X V^-1``).
     * V an odd isometry ``T_t U`` (U a Euclidean versor: a reflection in a plane ``n + d e``, 2.89-2.91, or its
       product with a motor): ``T_{-f'} V T_f`` with f' = V(f) fixes the origin, so it is U (the reflection in the
-      plane n through the origin): the anchor moves as a point, ``local`` is reflected by V's Euclidean part.
+      plane n through the origin): the anchor moves as a point, ``local`` is reflected by V's Euclidean part; its
+      (R, t) read off the motor ``V e1`` (:func:`~cga_lessons.conformal.similarities.similarity_factors`), exact at
+      any distance.
     * V a sphere (an inversion, 2.84-2.88): :func:`~cga_lessons.conformal.anchored.inverted`.
-    * V a similarity (a dilation, its product with a motor or a reflection) or an inversion times a motor:
+    * V a similarity (a dilation, its product with a motor or a reflection):
+      :mod:`~cga_lessons.conformal.similarities`; an inversion times a motor:
       :mod:`~cga_lessons.conformal.anchored_versors`.
     """
     f, _ = frame(X, settle=False)
@@ -211,36 +243,20 @@ def _keep_frame(V, X, Y) -> Multivector:
     else:  # even, no motor: a similarity?
         Z = similar(X, Y, V)
         return Y if Z is None else Z
-    # The affine test's tolerance scales with its |t|^2-sized entries: far out it would take a reflection times a
-    # dilation or an inversion for an isometry, so those are told apart first.
     Z = similar(X, Y, K)  # odd: a reflection times a dilation
     if Z is not None:
         return Z
-    affine = None if moves_infinity(K) else _rigid_affine(K)
-    if affine is not None:
-        # T_t U with U its Euclidean part, odd (det R = -1); a half-turn about a line (L, grade 3) has no such U
-        if np.linalg.det(affine[0]) < 0 and any(b < 8 and v != 0.0 for b, v in K._c.items()):
-            return moved(X, Y, K, *affine, involute=inv)
+    sim = None if moves_infinity(K) else similarity_factors(K)
+    if sim is not None:  # an odd isometry T_t U (rho = 0): (R, t) read exactly off the motor K e1
+        # U its Euclidean part; a half-turn about a line (L, grade 3) has no such U
+        if any(b < 8 and v != 0.0 for b, v in K._c.items()):
+            return moved(X, Y, K, *sim.rigid, involute=inv)
         return Y
-    sphere = _sphere_of(K)
+    sphere = sphere_of(K)
     if sphere is not None:
         return inverted(X, Y, *sphere, involute=inv)
     parts = inversion_motor(K) if inv else None  # an inversion times a motor
     return Y if parts is None else inverted_and_moved(X, Y, parts)
-
-
-def _sphere_of(V):
-    """``(p, r2)``: the centre and signed squared radius of a grade-1 V that is a real or imaginary sphere (its
-    e0 weight not zero), read as :func:`~cga_lessons.conformal.entities_read.read_sphere` reads a sphere (off its
-    local blade when V is anchored: exact at any distance); None for anything else."""
-    if any(b not in (1, 2, 4, 8, 16) for b in V._c):
-        return None
-    try:
-        p, r2, _, _ = read_sphere(V, "apply", "V")
-    except GeometryError:  # a plane (an isometry: taken before), or no sphere
-        return None
-    r2 = float(r2)
-    return None if r2 == 0.0 else (np.asarray(p, dtype=float), r2)
 
 
 def apply_to_points(V: Multivector, x) -> np.ndarray:
@@ -250,9 +266,16 @@ def apply_to_points(V: Multivector, x) -> np.ndarray:
     R and t read linearly off its coefficients
     (:meth:`~cga_lessons.algebra.Algebra.rigid_motion`, 2.141-2.144): exact to
     round-off at any distance, at the cost of a plain homogeneous matrix.  A
-    reflection in a plane uses the 3x4 affine part of its 5x5 matrix.  Other
-    versors (inversions, dilations) and SymPy input go through the conformal
-    point and :func:`~cga_lessons.conformal.points.down`.
+    similarity (a dilation, its product with a motor or a reflection) and an
+    odd isometry (a reflection in a plane, 2.89-2.91, or its product with a
+    motor) map by ``y = s R x + t``, read as linearly off their factors
+    (:func:`~cga_lessons.conformal.similarities.similarity_factors`; s = 1, det R
+    = -1 for the isometry): exact at any distance too.  An inversion in a
+    sphere (2.84-2.88) or its product with a motor maps by its closed form
+    ``x -> p + r2 (x - p) / |x - p|^2`` (the sphere's centre and squared
+    radius read off its local frame when it has one: exact at any distance).
+    Other versors and SymPy input go through the conformal point and
+    :func:`~cga_lessons.conformal.points.down`.
     """
     func = "apply_to_points"
     arr, sym = check_points(x, func)
@@ -266,10 +289,17 @@ def apply_to_points(V: Multivector, x) -> np.ndarray:
         affine = None
     if affine is None:
         multivector(V, func, "V", what="a versor (Multivector of G(4,1))")
-        affine = _rigid_affine(V)
-    if affine is None:
-        return _points_through_conformal(V, arr, func)
-    R, t = affine
+        sim = similarity_factors(V) if is_real_single(V) else None
+        if sim is None:
+            inversion = inversion_of(V) if is_real_single(V) else None
+            if inversion is not None:
+                return inverted_points(inversion, arr, func)
+            return _points_through_conformal(V, arr, func)
+        R, t = sim.rigid
+        if sim.rho != 0.0:
+            R = sim.scale * R
+    else:
+        R, t = affine
     if arr.ndim == 1:
         y = R @ arr + t
         try:
@@ -298,42 +328,6 @@ def _points_through_conformal(V: Multivector, arr: np.ndarray, func: str) -> np.
         return down(Y)
     except GeometryError as exc:
         raise checks.degenerate(func, "x", f"V sends a point to infinity or out of range ({exc})") from None
-
-
-_AFFINE_CACHE: dict = {}
-
-
-def _rigid_affine(V: Multivector):
-    """``(R, t)`` of a numeric versor (not a motor: a reflection) acting on points as an isometry, else None.
-
-    With A the 5x5 matrix on e1 e2 e3 e+ e-, the Euclidean part of V up(x) is
-    A[:3,:3] x + A[:3,3] (x^2-1)/2 + A[:3,4] (x^2+1)/2 with weight row
-    A[4]-A[3].  For a rigid motion the x^2 terms cancel and the weight stays
-    that of up(x), so the map is y = R x + t with R = A[:3,:3] and
-    t = (A[:3,4] - A[:3,3]) / 2.  Cached by the versor's coefficients.
-    """
-    if not is_real_single(V):
-        return None
-    key = (tuple(V._c), tuple(V._c.values()))
-    hit = _AFFINE_CACHE.get(key, False)
-    if hit is not False:
-        return hit
-    mats = G41.versor_matrices(V, (1,))
-    hit = None
-    if mats is not None:
-        A = mats[1]
-        scale = max(1.0, float(np.abs(A).max()))
-        w = A[4] - A[3]
-        w[3] += 1.0
-        w[4] -= 1.0
-        if max(float(np.abs(A[:3, 3] + A[:3, 4]).max()), float(np.abs(w).max())) <= 1e-12 * scale:
-            R, t = np.ascontiguousarray(A[:3, :3]), 0.5 * (A[:3, 4] - A[:3, 3])
-            R.flags.writeable = t.flags.writeable = False
-            hit = (R, t)
-    if len(_AFFINE_CACHE) >= 256:
-        _AFFINE_CACHE.clear()
-    _AFFINE_CACHE[key] = hit
-    return hit
 
 
 def reflect_in_plane(P: Multivector, X: Multivector) -> Multivector:

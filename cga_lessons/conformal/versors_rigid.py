@@ -84,18 +84,27 @@ def why_not_motor(M: Multivector) -> str:
     q0, q12, q13, q23 = (get(b) / rn for b in _ROTOR)
     tri = n[3] * q0 - n[0] * q23 + n[1] * q13 - n[2] * q12
     tol = motor_tolerance(vmax, nn, rn)
+    # As rigid_motion weighs them: the parts that move e (e+ != e-) or scale it (an E part: a dilation) against the
+    # rotor's norm, which does not grow with the translation (a similarity T_t D_s far out has an E part of rho |R|,
+    # a small fraction of its largest coefficient); the trivector against the largest coefficient.
+    rotor_tol = tol * rn / vmax
     checks = [
-        (np.maximum.reduce([np.abs(get(p) - get(m)) for p, m in zip(_PLUS, _MINUS)]), "its e+ and e- parts differ"),
-        (np.maximum.reduce([np.abs(get(b)) for b in _EE]), "it has an E = e+e- part"),
-        (np.abs(tri), "<n ~R>_3 != 0, M ~M is not a scalar (2.145)"),
-    ]
-    for dev, what in checks:
-        if np.any(dev > tol):
-            worst = float(np.max(dev / np.maximum(vmax, 1e-300)))
+        (np.maximum.reduce([np.abs(get(p) - get(m)) for p, m in zip(_PLUS, _MINUS)]), "its e+ and e- parts differ",
+         rotor_tol, rn, "its rotor's norm"),
+        (np.maximum.reduce([np.abs(get(b)) for b in _EE]), "it has an E = e+e- part", rotor_tol, rn,
+         "its rotor's norm"),
+        (np.abs(tri), "<n ~R>_3 != 0, M ~M is not a scalar (2.145)", tol, vmax, "its largest coefficient"),
+    ]  # fmt: skip
+    for dev, what, bound, size, of in checks:
+        if np.any(dev > bound):
+            worst = float(np.max(dev / np.maximum(size, 1e-300)))
             hint = ""
             if float(np.max(nn / rn)) > 300:
-                hint = "; a product of motors far from the origin loses ~eps |t|^2 to its e+/e- terms"
-            return f"not a motor: it does not commute with e ({what}, {worst:.1e} of its largest coefficient{hint})"
+                hint = (
+                    "; a product of motors far from the origin loses ~eps |t|^2 to its e+/e- terms, and a "
+                    "dilation (a similarity) has an E part at any distance"
+                )
+            return f"not a motor: it does not commute with e ({what}, {worst:.1e} of {of}{hint})"
     return ""
 
 
