@@ -46,13 +46,19 @@ V's geometry, never from products of the global coefficients:
   W = U D_s (:mod:`.similarities`); an inversion times a motor (S M or M S): its two motions in turn
   (:mod:`.anchored_versors`).
 
-Other versors (even ones that move e: two inversions, an inversion times a reflection) drop the frame, as does an
+An anchored versor (two anchored spheres multiplied: two inversions) is applied in its own frame
+(:func:`~cga_lessons.conformal.anchored_versors.in_versor_frame`; where its global coefficients no longer hold
+it, 1e5 out or more, the global result is the local one translated back:
+:func:`~cga_lessons.conformal.anchored_versors.lost_versor_apply`).  Other versors without a frame (an inversion
+times a reflection: a plane carries none) drop the frame, as does an
 inversion that sends the anchor to infinity (when first read); so do an operation with a multivector that
 translations change (a point, e0, e1, a rotor, a motor: move an entity with ``apply``), ``map`` and ``simplify``
 (a plain :class:`~cga_lessons.algebra.Multivector`: the frame is dropped, never stale).
 
 The global coefficients of every result are those of the plain operation, bit for bit, and so are the numbers read
-off them (``scalar()``, ``norm2()``, ``X["e1"]``), with one exception: join and meet of two anchored blades.  Whether
+off them (``scalar()``, ``norm2()``, ``X["e1"]``), with two exceptions: apply of an anchored versor whose global
+coefficients no longer hold it (above; a grade they lost to cancellation stays in the local blade,
+:data:`~cga_lessons.conformal.anchored_ops.LOST_GRADE`), and join and meet of two anchored blades.  Whether
 the spans overlap (``tol`` bounds the sines of the principal angles in the coefficient space) is decided on the
 local blades (the second moved into the first's frame), which hold the geometry; 1e5 out or more the global
 4-spaces of two unit spheres are less than the default ``tol = 1e-10`` apart (8e-13 times their size at 1e6), a

@@ -133,6 +133,11 @@ def _operand_kinds(operands):
     return kinds
 
 
+#: A grade of a local blade that the global result lacks is kept when its largest coefficient passes this much of the
+#: local blade's largest (the package's relative accuracy): below it, it is the local operation's round-off.
+LOST_GRADE = 1e-9
+
+
 def follow(Y, op, *operands, anchor_arg: bool = False):
     """``Y`` (the result of an operation, computed from the global coefficients) with a local frame: anchored at the
     anchor f of its first anchored operand, its local blade ``op(*locals)``, where each anchored operand gives its
@@ -167,8 +172,14 @@ def follow(Y, op, *operands, anchor_arg: bool = False):
             raise NoFrame("the local blade has another batch shape")
         if not all(np.all(np.isfinite(v)) for v in L._c.values()):
             raise NoFrame("the local blade is not finite")
-        if any(g not in grades for g in L.grades_present()):
-            L = L.grade(*grades)  # round-off in grades the global result does not have
+        extra = [g for g in L.grades_present() if g not in grades]
+        if extra:
+            # A grade the global result does not have is round-off of the local operation, and is dropped, unless
+            # it is beyond LOST_GRADE of the local blade: then the global coefficients lost it to cancellation (the
+            # scalar S1 . S2 of two spheres 1e6 out is a difference of 1e12-sized terms) and the local keeps it.
+            size = max(float(np.max(np.abs(v))) for v in L._c.values())
+            keep = [g for g in extra if float(np.max(np.abs(L.grade(g).to_array()))) > LOST_GRADE * size]
+            L = L.grade(*grades, *keep)
         return read_only(f, shape), L
 
     def guarded():

@@ -45,9 +45,10 @@ from fractions import Fraction
 import numpy as np
 
 from cga_lessons import checks
-from cga_lessons.algebra import GeometryError, Multivector
+from cga_lessons.algebra import GeometryError, Multivector, is_real_batch, is_real_single
 
-from .anchored import Anchored, inverted, moved, times_invariant
+from .anchored import Anchored, frame, inverted, moved, times_invariant
+from .anchored_ops import NoFrame, Pending, about, chain_depth, read_only, translated, view
 from .entities_frame import EPS, split
 from .entities_read import read_sphere
 from .model import G41, einf, eo
@@ -65,6 +66,8 @@ __all__ = [
     "inverted_and_moved",
     "far_parts",
     "far_product",
+    "in_versor_frame",
+    "lost_versor_apply",
 ]
 
 #: The round-off of ``V ~V`` in the product tables (``eps |V|^2``, |V|^2 the sum of the squared coefficients) is
@@ -257,3 +260,51 @@ def unresolved(V: Multivector) -> str:
         "motors or spheres far out) holds no motion to working precision; compose rigid motions as matrices "
         "(motor_to_matrix, matrix_to_motor) or build the versor with its constructor"
     )
+
+
+# ------------------------------------------------------------------------------------ anchored versors
+def in_versor_frame(X: Anchored, Y: Multivector, V: Anchored, step) -> Anchored:
+    """``Y = apply(V, X)`` for an anchored versor V (anchor f; a product of anchored spheres, planes or entities:
+    two inversions, say), anchored at f: since ``T_{-f} (V X V^-1) T_f = V_f X_f V_f^-1`` (2.82, 2.100) with ``V_f``
+    V's local versor and ``X_f`` X's local blade moved into f's frame, the local blade is ``step(V_f, X_f)`` (the
+    caller's apply), every term of the size of the geometry about f.  Built when first read."""
+    depth = chain_depth(X, V)
+
+    def build():
+        fx, lx = frame(X)
+        fv, lv = frame(V)
+        if fx is None or fv is None:
+            raise NoFrame("the versor or the entity lost its frame")
+        f = read_only(fv, Y.shape)
+        return f, step(lv, about(lx, fx, f))
+
+    return Anchored.derive(Y, Pending(build, depth))
+
+
+def lost_versor_apply(V: Multivector, X: Multivector, step, lost: bool = False):
+    """apply(V, X) for an anchored versor V (anchor f; a product of anchored spheres: two inversions, 2.84-2.88)
+    whose global coefficients no longer hold it: they differ from its local versor translated back,
+    ``T_f V_f ~T_f`` (2.100), by more than ``LOST_TOLERANCE`` of their size (1e5 out the scalar ``S1 . S2`` of two
+    spheres is a difference of |c|^4-sized terms, and can vanish).  Then the action is taken in V's frame,
+    ``T_{-f} (V X V^-1) T_f = V_f X_f V_f^-1`` (2.82) by ``step`` (the caller's apply), X's local blade moved into
+    f's frame (a plain X: its coefficients moved), and the global coefficients are the result translated back,
+    anchored at f when X is.  None where V's global coefficients hold it (the plain route, its bits), or V has no
+    frame.  ``lost``: they are known not to hold it (its ``V ~V`` is round-off: :func:`unresolved`)."""
+    if not lost and len({G41.grades[b] for b in V.coeffs}) == 1 and G41.grades[next(iter(V.coeffs))] in (1, 4):
+        return None  # a sphere or plane: read exactly off its frame by the closed forms (sphere_of)
+    fv, lv = frame(V)
+    if fv is None or not is_real_single(V) or not (is_real_single(X) or is_real_batch(X)):
+        return None
+    back = translated(lv, fv)
+    size = max(abs(float(v)) for v in back.coeffs.values())
+    keys = set(back.coeffs) | set(V.coeffs)
+    if not lost and max(abs(float(back.coeffs.get(b, 0.0)) - float(V.coeffs.get(b, 0.0))) for b in keys) <= (
+        LOST_TOLERANCE * size
+    ):
+        return None
+    fx, lx = frame(X)
+    local = step(lv, about(lx, fx, fv) if fx is not None else translated(view(X), -fv))
+    Y = translated(local, fv)
+    if fx is None:
+        return Y
+    return Anchored(Y.algebra, Y.coeffs, anchor=np.broadcast_to(fv, Y.shape + (3,)), local=local)

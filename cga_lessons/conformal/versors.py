@@ -55,7 +55,16 @@ from cga_lessons.algebra import (
 
 from .anchored import Anchored, frame, inverted, moved, times_invariant
 from .anchored_ops import view
-from .anchored_versors import far_parts, far_product, inversion_motor, inverted_and_moved, moves_infinity, unresolved
+from .anchored_versors import (
+    far_parts,
+    far_product,
+    in_versor_frame,
+    inversion_motor,
+    inverted_and_moved,
+    lost_versor_apply,
+    moves_infinity,
+    unresolved,
+)
 from .inversions import inversion_of, inverted_points, sphere_of
 from .model import G41, einf
 from .model import Ic as IC
@@ -163,6 +172,10 @@ def _apply(V, X, func: str, vname: str, xname: str) -> Multivector:
     if X.algebra is not V.algebra:
         raise checks.fail(func, xname, f"a multivector of {X.algebra!r}, V one of {V.algebra!r}")
     Y = None
+    if type(V) is Anchored and X._c:
+        Y = lost_versor_apply(V, X, lambda W, Z: _apply(W, Z, func, vname, xname))
+        if Y is not None:
+            return Y
     try:
         if X._c and (is_real_single(X) or is_real_batch(X)):
             far = None if 0 in V._c or V.algebra is not G41 or not is_real_single(V) else far_parts(V, func, vname)
@@ -205,8 +218,11 @@ def _far_similarity(V, X, func: str, vname: str, xname: str):
         Z = view(X)
         return similarity_product(sim, Z.involute() if dual else Z, lambda W, Z: _apply(W, Z, func, vname, xname))
     why = unresolved(V)
-    if why:
-        raise checks.fail(func, vname, why)
+    if why:  # an anchored versor (two anchored spheres multiplied, say) is taken in its own frame, else refused
+        Y = lost_versor_apply(V, X, lambda W, Z: _apply(W, Z, func, vname, xname), lost=True)
+        if Y is None:
+            raise checks.fail(func, vname, why)
+        return Y
     return None
 
 
@@ -242,7 +258,7 @@ def _keep_frame(V, X, Y) -> Multivector:
         K, inv = V, True
     else:  # even, no motor: a similarity?
         Z = similar(X, Y, V)
-        return Y if Z is None else Z
+        return _in_frame(V, X, Y) if Z is None else Z
     Z = similar(X, Y, K)  # odd: a reflection times a dilation
     if Z is not None:
         return Z
@@ -251,12 +267,21 @@ def _keep_frame(V, X, Y) -> Multivector:
         # U its Euclidean part; a half-turn about a line (L, grade 3) has no such U
         if any(b < 8 and v != 0.0 for b, v in K._c.items()):
             return moved(X, Y, K, *sim.rigid, involute=inv)
-        return Y
+        return _in_frame(V, X, Y)
     sphere = sphere_of(K)
     if sphere is not None:
         return inverted(X, Y, *sphere, involute=inv)
     parts = inversion_motor(K) if inv else None  # an inversion times a motor
-    return Y if parts is None else inverted_and_moved(X, Y, parts)
+    return _in_frame(V, X, Y) if parts is None else inverted_and_moved(X, Y, parts)
+
+
+def _in_frame(V, X, Y) -> Multivector:
+    """Y = apply(V, X) for a versor no closed form above reads, anchored when V carries a frame too (a product of
+    anchored spheres, 2.84-2.88, say: two inversions): applied in V's frame
+    (:func:`~cga_lessons.conformal.anchored_versors.in_versor_frame`); Y as it is otherwise."""
+    if frame(V, settle=False)[0] is None:
+        return Y
+    return in_versor_frame(X, Y, V, lambda W, Z: _apply(W, Z, "apply", "V", "X"))
 
 
 def apply_to_points(V: Multivector, x) -> np.ndarray:
