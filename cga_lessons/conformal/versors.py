@@ -228,8 +228,8 @@ def _far_similarity(V, X, func: str, vname: str, xname: str):
 
 def _keep_frame(V, X, Y) -> Multivector:
     """Y = apply(V, X) anchored when X is anchored and V maps points to points in a way its local blade can follow
-    accurately; Y as it is otherwise (an even versor that moves the point at infinity, a batch of versors, SymPy:
-    the frame is dropped).
+    accurately; Y as it is otherwise (a versor without a frame of its own that no closed form below reads, an
+    inversion times a reflection say; a batch of versors; SymPy: the frame is dropped).
 
     * V a motor T_t R (2.102): the anchor moves as a point and the local blade turns by the rotor part of V
       (:func:`~cga_lessons.conformal.anchored.moved`; a scaled motor's scale cancels in ``V X V^-1``).
@@ -242,6 +242,8 @@ def _keep_frame(V, X, Y) -> Multivector:
     * V a similarity (a dilation, its product with a motor or a reflection):
       :mod:`~cga_lessons.conformal.similarities`; an inversion times a motor:
       :mod:`~cga_lessons.conformal.anchored_versors`.
+    * any other V that carries a frame itself (two anchored spheres multiplied): applied in V's frame
+      (:func:`_in_frame`).
     """
     f, _ = frame(X, settle=False)
     if f is None or V.algebra is not G41:
