@@ -53,6 +53,7 @@ from .entities_frame import EPS, split
 from .entities_read import read_sphere
 from .model import G41, einf, eo
 from .model import Ic as IC
+from .points import euclidean
 from .versors_build import translator
 
 __all__ = [
@@ -67,6 +68,7 @@ __all__ = [
     "far_parts",
     "far_product",
     "in_versor_frame",
+    "image_in_frame",
     "lost_versor_apply",
 ]
 
@@ -83,10 +85,6 @@ _VECTOR = (1, 2, 4, 8, 16)  # e1 e2 e3 e+ e-
 def _euclid(a) -> Multivector:
     """The Euclidean multivector of an 8-array of parts (index: the blade's bitmap, 0 ... 7)."""
     return Multivector(G41, {x: float(a[x]) for x in range(8) if a[x] != 0.0})
-
-
-def _vector(M: Multivector) -> np.ndarray:
-    return np.array([float(M.coeffs.get(b, 0.0)) for b in (1, 2, 4)])
 
 
 def square(V: Multivector):
@@ -140,8 +138,8 @@ def inversion_motor(V: Multivector) -> Inversion | None:
     RR = float(np.dot(Y, Y))
     if not RR > 0.0 or any(Y[x] != 0.0 for x in (1, 2, 4, 7)):
         return None
-    p1 = _vector(_euclid(Eu - D) * ~R) / RR  # V = S M: the motor first
-    p2 = _vector(~R * _euclid(Eu + D)) / RR  # V = M S'
+    p1 = euclidean(_euclid(Eu - D) * ~R) / RR  # V = S M: the motor first
+    p2 = euclidean(~R * _euclid(Eu + D)) / RR  # V = M S'
     d, bound = square(V)
     r2 = d / RR
     first = bool(p1 @ p1 <= p2 @ p2)
@@ -265,35 +263,46 @@ def unresolved(V: Multivector) -> str:
 # ------------------------------------------------------------------------------------ anchored versors
 def in_versor_frame(X: Anchored, Y: Multivector, V: Anchored, step) -> Anchored:
     """``Y = apply(V, X)`` for an anchored versor V (anchor f; a product of anchored spheres, planes or entities:
-    two inversions, say), anchored at f: since ``T_{-f} (V X V^-1) T_f = V_f X_f V_f^-1`` (2.82, 2.100) with ``V_f``
-    V's local versor and ``X_f`` X's local blade moved into f's frame, the local blade is ``step(V_f, X_f)`` (the
-    caller's apply), every term of the size of the geometry about f.  Built when first read."""
+    two inversions, say), anchored at f, its local blade :func:`image_in_frame` (built when first read)."""
     depth = chain_depth(X, V)
 
     def build():
-        fx, lx = frame(X)
-        fv, lv = frame(V)
-        if fx is None or fv is None:
-            raise NoFrame("the versor or the entity lost its frame")
-        f = read_only(fv, Y.shape)
-        return f, step(lv, about(lx, fx, f))
+        if frame(X)[0] is None:
+            raise NoFrame("the entity lost its frame")
+        f, local = image_in_frame(V, X, step)
+        if f is None:
+            raise NoFrame("the versor lost its frame")
+        return read_only(f, Y.shape), local
 
     return Anchored.derive(Y, Pending(build, depth))
+
+
+def image_in_frame(V: Multivector, X: Multivector, step):
+    """``(f, L)``: the action of an anchored versor V (anchor f) on X in V's frame: since
+    ``T_{-f} (V X V^-1) T_f = V_f X_f V_f^-1`` (2.82, 2.100) with ``V_f`` V's local versor and ``X_f`` X's local
+    blade moved into f's frame (a plain X: its coefficients moved), ``L = step(V_f, X_f)`` (the caller's apply),
+    every term of the size of the geometry about f; ``(None, None)`` when V has no frame."""
+    fv, lv = frame(V)
+    if fv is None:
+        return None, None
+    fx, lx = frame(X)
+    return fv, step(lv, about(lx, fx, fv) if fx is not None else translated(view(X), -fv))
 
 
 def lost_versor_apply(V: Multivector, X: Multivector, step, lost: bool = False):
     """apply(V, X) for an anchored versor V (anchor f; a product of anchored spheres: two inversions, 2.84-2.88)
     whose global coefficients no longer hold it: they differ from its local versor translated back,
     ``T_f V_f ~T_f`` (2.100), by more than ``LOST_TOLERANCE`` of their size (1e5 out the scalar ``S1 . S2`` of two
-    spheres is a difference of |c|^4-sized terms, and can vanish).  Then the action is taken in V's frame,
-    ``T_{-f} (V X V^-1) T_f = V_f X_f V_f^-1`` (2.82) by ``step`` (the caller's apply), X's local blade moved into
-    f's frame (a plain X: its coefficients moved), and the global coefficients are the result translated back,
-    anchored at f when X is.  None where V's global coefficients hold it (the plain route, its bits), or V has no
-    frame.  ``lost``: they are known not to hold it (its ``V ~V`` is round-off: :func:`unresolved`)."""
+    spheres is a difference of |c|^4-sized terms, and can vanish).  Then the action is taken in V's frame
+    (:func:`image_in_frame`) and the global coefficients are the result translated back, anchored at f when X is.
+    None where V's global coefficients hold it (the plain route, its bits), or V has no frame.  ``lost``: they are
+    known not to hold it (its ``V ~V`` is round-off: :func:`unresolved`)."""
     if not lost and len({G41.grades[b] for b in V.coeffs}) == 1 and G41.grades[next(iter(V.coeffs))] in (1, 4):
-        return None  # a sphere or plane: read exactly off its frame by the closed forms (sphere_of)
+        return None  # a sphere or plane: read exactly off its frame by the closed forms (inversions.sphere_of)
+    if not is_real_single(V) or not (is_real_single(X) or is_real_batch(X)):
+        return None
     fv, lv = frame(V)
-    if fv is None or not is_real_single(V) or not (is_real_single(X) or is_real_batch(X)):
+    if fv is None:
         return None
     back = translated(lv, fv)
     size = max(abs(float(v)) for v in back.coeffs.values())
@@ -302,9 +311,8 @@ def lost_versor_apply(V: Multivector, X: Multivector, step, lost: bool = False):
         LOST_TOLERANCE * size
     ):
         return None
-    fx, lx = frame(X)
-    local = step(lv, about(lx, fx, fv) if fx is not None else translated(view(X), -fv))
-    Y = translated(local, fv)
-    if fx is None:
+    f, local = image_in_frame(V, X, step)
+    Y = translated(local, f)
+    if frame(X)[0] is None:
         return Y
-    return Anchored(Y.algebra, Y.coeffs, anchor=np.broadcast_to(fv, Y.shape + (3,)), local=local)
+    return Anchored(Y.algebra, Y.coeffs, anchor=np.broadcast_to(f, Y.shape + (3,)), local=local)

@@ -15,7 +15,7 @@ from cga_lessons import checks
 from cga_lessons.algebra import GeometryError, Multivector
 
 from .anchored import times_invariant
-from .anchored_versors import inversion_motor
+from .anchored_versors import Inversion, inversion_motor
 from .entities_read import read_sphere
 from .model import G41
 from .model import Ic as IC
@@ -37,28 +37,26 @@ def sphere_of(V):
     return None if r2 == 0.0 else (np.asarray(p, dtype=float), r2)
 
 
-def inversion_of(V: Multivector):
-    """``(p, r2, rigid, motor_first)`` of a single real V that is an inversion in a sphere (standard or dual form,
-    2.84-2.88) or its product with a motor (``rigid``: the motor's (R, t), 2.102; None for a sphere alone): the
-    centre and squared radius read as :func:`sphere_of` reads them (off the local blade of an anchored sphere:
-    exact at any distance); None for anything else."""
+def inversion_of(V: Multivector) -> Inversion | None:
+    """V (single, real) read as an inversion in a sphere (standard or dual form, 2.84-2.88) or its product with a
+    motor (2.102), an :class:`~cga_lessons.conformal.anchored_versors.Inversion` (``motor`` and ``rigid`` None for a
+    sphere alone): the centre and squared radius read as :func:`sphere_of` reads them (off the local blade of an
+    anchored sphere: exact at any distance); None for anything else, and for a null V (no inverse)."""
     grades = {G41.grades[b] for b in V._c}
     if grades == {1} or grades == {4}:
         sphere = sphere_of(V if grades == {1} else times_invariant(V, IC))
-        return None if sphere is None else (*sphere, None, True)
+        return None if sphere is None else Inversion(*sphere, None, None, True, False)
     if not all(g % 2 for g in grades):
         return None
     parts = inversion_motor(V)
-    if parts is None or parts.null or parts.radius2 == 0.0:
-        return None
-    return parts.centre, parts.radius2, parts.rigid, parts.motor_first
+    return None if parts is None or parts.null or parts.radius2 == 0.0 else parts
 
 
 def inverted_points(inversion, arr: np.ndarray, func: str) -> np.ndarray:
     """Points mapped by an inversion (:func:`inversion_of`) in closed form: ``x -> p + r2 (x - p) / |x - p|^2``
     (2.84-2.88; r2 < 0 for an imaginary sphere), the motor's ``R x + t`` before or after it.  Every term is of the
     size of the geometry (``x - p``), where the conformal point of a far x holds its weight only to eps |x|^2."""
-    p, r2, rigid, motor_first = inversion
+    p, r2, rigid, motor_first = inversion.centre, inversion.radius2, inversion.rigid, inversion.motor_first
     y = np.atleast_2d(arr)
     if rigid is not None and motor_first:
         y = y @ rigid[0].T + rigid[1]

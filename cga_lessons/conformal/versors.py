@@ -59,13 +59,12 @@ from .anchored_versors import (
     far_parts,
     far_product,
     in_versor_frame,
-    inversion_motor,
     inverted_and_moved,
     lost_versor_apply,
     moves_infinity,
     unresolved,
 )
-from .inversions import inversion_of, inverted_points, sphere_of
+from .inversions import inversion_of, inverted_points
 from .model import G41, einf
 from .model import Ic as IC
 from .multivector_checks import COORD_LIMIT, COORD_WHY, check_points, input_error, multivector, mv_is_finite
@@ -270,11 +269,12 @@ def _keep_frame(V, X, Y) -> Multivector:
         if any(b < 8 and v != 0.0 for b, v in K._c.items()):
             return moved(X, Y, K, *sim.rigid, involute=inv)
         return _in_frame(V, X, Y)
-    sphere = sphere_of(K)
-    if sphere is not None:
-        return inverted(X, Y, *sphere, involute=inv)
-    parts = inversion_motor(K) if inv else None  # an inversion times a motor
-    return _in_frame(V, X, Y) if parts is None else inverted_and_moved(X, Y, parts)
+    parts = inversion_of(K)  # a sphere, or an inversion times a motor
+    if parts is None:
+        return _in_frame(V, X, Y)
+    if parts.motor is None:
+        return inverted(X, Y, parts.centre, parts.radius2, involute=inv)
+    return inverted_and_moved(X, Y, parts)
 
 
 def _in_frame(V, X, Y) -> Multivector:
