@@ -112,6 +112,9 @@ def test_tie_bar_closed_form():
     assert tie_bar(0.99, p) == pytest.approx(0.98 * 0.99)  # a complete map: the ratio decides
     assert tie_bar(0.9, p) == pytest.approx(0.8)  # a deficit of 10 %: a rival failing on 20 % ties
     assert tie_bar(0.9, RelocCheck(deficit_ratio=0.0)) == pytest.approx(0.882)
+    # summed over four scans the margin halves: a rival failing on 15 % where the best fails on 10 % ties
+    assert tie_bar(0.9, p, 4) == pytest.approx(0.85)
+    assert tie_bar(0.99, p, 4) == pytest.approx(0.98 * 0.99)  # the ratio still decides on a complete map
 
 
 # --------------------------------------------------------------------------- the line map of a log

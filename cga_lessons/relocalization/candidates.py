@@ -117,18 +117,23 @@ def verify_hypotheses(M, obs, chosen, check: RelocCheck):
     return ranked
 
 
-def tie_bar(best: float, check: RelocCheck) -> float:
+def tie_bar(best: float, check: RelocCheck, n_scans: int = 1) -> float:
     """The score at which a clearly different pose ties with the best one (scoring ``best``).
 
-    ``min(ambiguity_ratio * best, best - deficit_ratio * (1 - best))``: at
+    ``min(ambiguity_ratio * best, best - deficit_ratio * (1 - best) / sqrt(n_scans))``: at
     least ``ambiguity_ratio`` of the best, or a *deficit* ``1 - score`` at
-    most ``1 + deficit_ratio`` times the best's.  The deficit is what the map
+    most ``1 + deficit_ratio / sqrt(n_scans)`` times the best's.  The deficit is what the map
     fails to explain at the best pose (holes, clutter, a blurred wall); a
     rival that fails to explain not much more may be the true pose scored
     down by the same imperfections, so the answer is not trusted.  On a
     complete map (score about 0.99) the first term decides.
+
+    ``n_scans``: the scores are summed over this many scans taken from different poses (a chain of
+    :class:`~cga_lessons.relocalization.sequence.Relocalizer`).  The margin ``deficit_ratio`` covers how much the
+    true pose's deficit varies from one look to the next (which holes and clutter the beams happen to meet); a sum
+    over ``n`` looks varies ``sqrt(n)`` times less relative to its size, so the margin shrinks by that factor.
     """
-    return min(check.ambiguity_ratio * best, best - check.deficit_ratio * (1.0 - best))
+    return min(check.ambiguity_ratio * best, best - check.deficit_ratio * (1.0 - best) / np.sqrt(n_scans))
 
 
 def decide(M, obs, ranked, check: RelocCheck):

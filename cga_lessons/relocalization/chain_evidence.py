@@ -144,7 +144,7 @@ def decide_chain(
     bad = odometry_misfit(best.poses, odometry, model)
     if bad is not None:
         return "ambiguous", f"the best chain of poses moves against the odometry at scan {bad}", None
-    bar = tie_bar(cands[0].score, p)
+    bar = tie_bar(cands[0].score, p, len(evidence))
     rivals = [c for c in cands[1:] if c.score >= bar]
     if rivals:
         return (

@@ -138,7 +138,14 @@ class RelocCheck:
         best (18 of 22 above 0.7), of a confident right one mostly below 0.7
         (112 of 131); a rival failing to explain at most twice what the best
         fails to explain (a deficit of 10 % against 5 %) is too close to call
-        on a map with holes.  0 gives the ratio rule alone.
+        on a map with holes.  0 gives the ratio rule alone.  A chain of
+        ``n`` scans (:class:`~cga_lessons.relocalization.sequence.Relocalizer`)
+        is held to ``deficit_ratio / sqrt(n)``: its deficit is summed over
+        ``n`` looks.  Measured with ``benchmarks/bench_reloc_logs.py`` (runs of
+        three, six CARMEN logs, seeds 0-3): 1,235 of 1,444 runs located
+        against 1,133 with the single scan's margin, confidently wrong 21
+        against 18; on the four logs the margin was not measured on (CSAIL,
+        Freiburg, Seattle, Orebro) 586 of 672 against 543, none more wrong.
     distinct_position, distinct_heading : float
         Poses further apart than this (m) or turned more than this (radians)
         are clearly different; the best pose moved by these along its least

@@ -22,7 +22,8 @@ of hypotheses, each a chain of laser poses, one per scan:
    :func:`~cga_lessons.relocalization.verify.score_poses` summed over all its
    scans: ``(inliers - violations) / returned beams``;
 4. the answer is *ambiguous* while a clearly different chain ties with the
-   best (:func:`~cga_lessons.relocalization.candidates.tie_bar`), or while the best chain moved rigidly by
+   best (:func:`~cga_lessons.relocalization.candidates.tie_bar`, its deficit margin shrunk by the square root of
+   the number of scans summed), or while the best chain moved rigidly by
    ``distinct_position`` along its least constrained direction (or turned by
    ``distinct_heading`` about its last pose) still does; that is the rule of a
    single relocalization, applied to all the scans together; and while the
