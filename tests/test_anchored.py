@@ -5,11 +5,12 @@ What is checked: which constructors anchor and which do not; that ``local`` is t
 (products, sums, scaling, the involutions, inverse, dual, the blades functions, join, meet, intersect) with
 anchored operands or invariant ones (numbers, e ^ A, Ic: each claim checked against the sandwich) keeps it, its
 local blade the same operation on the local blades (the second moved into the first one's frame) and its global
-coefficients the plain operation's, bit for bit; that an operation with anything else drops it and gives the plain
-bits; that the dual forms, ``apply`` of a motor (2.102) and ``batch_item`` keep it; that an anchored entity cannot
-be changed in place.  Accuracy far from the origin against exact truth is in ``test_entities_at_scale.py``; here
-the properties of moved entities (and of the circle where a moved sphere meets another) are held to 1e-9 against
-the exact image of the exact answer under the motor's own (R, t).
+coefficients the plain operation's, bit for bit, a plain conformal point counting as anchored at itself
+(``point_wedges``); that an operation with anything else drops it and gives the plain bits; that the dual forms,
+``apply`` of a motor (2.102) and ``batch_item`` keep it; that an anchored entity cannot be changed in place.
+Accuracy far from the origin against exact truth is in ``test_entities_at_scale.py``; here the properties of moved
+entities (and of the circle where a moved sphere meets another) are held to 1e-9 against the exact image of the
+exact answer under the motor's own (R, t).
 """
 
 import copy
@@ -155,17 +156,23 @@ KEEP = {  # f(X, Y, P, Q): X, Y anchored (anchors f != g), P, Q their plain copi
     "reject": lambda X, Y: cga.reject(X, Y),
     "intersect": lambda X, Y: cga.intersect(X, Y),
     "standard_form": lambda X, Y: cga.standard_form(X),
-}
-DROP = {  # a multivector that translations change, or an operation that is not covariant
-    "X * e1": lambda X, Y: X * cga.e1,
-    "e1 * X": lambda X, Y: cga.e1 * X,
+    # a plain conformal point is anchored at itself (w up(x) = T_x (w e0) ~T_x, point_wedges): the frame follows
     "X * eo": lambda X, Y: X * cga.eo,
     "X ^ eo": lambda X, Y: X ^ cga.eo,
     "eo | X": lambda X, Y: cga.eo | X,
     "X + up(p)": lambda X, Y: X + cga.up([1.0, 2.0, 3.0]),
+    "up(p) ^ X": lambda X, Y: cga.up([1.0, 2.0, 3.0]) ^ X,
+    "X ^ apply(M, up(p))": lambda X, Y: X ^ cga.apply(cga.motor([0, 0, 1], 0.3, [1, 2, 3]), cga.up([1.0, 2.0, 3.0])),
+    "X * (e + 1e-10 eo)": lambda X, Y: X * (cga.einf + 1e-10 * cga.eo),  # an (imaginary) sphere: anchored too
+}
+DROP = {  # a multivector that translations change (and not a point), or an operation that is not covariant
+    "X * e1": lambda X, Y: X * cga.e1,
+    "e1 * X": lambda X, Y: cga.e1 * X,
     "X * Q (plain)": lambda X, Y: X * plain(Y),
     "Q * X (plain)": lambda X, Y: plain(Y) * X,
-    "X * (e + 1e-10 eo)": lambda X, Y: X * (cga.einf + 1e-10 * cga.eo),
+    "X ^ (plain sphere)": lambda X, Y: X ^ plain(cga.sphere([1.0, 2.0, 3.0], 0.5)),  # not null: no point
+    "X ^ (plain e + 1e-10 eo)": lambda X, Y: X ^ Multivector(cga.G41, {8: 1.0 - 0.5e-10, 16: 1.0 + 0.5e-10}),
+    "X ^ (up(p) / 3, 1e7 out)": lambda X, Y: X ^ (cga.up([1e7, 2.0, 3.0]) / 3.0),  # its weight is not resolved
     "X * E": lambda X, Y: X * cga.E,
     "X * rotor": lambda X, Y: X * cga.rotor([0, 0, 1], 0.3),
     "M >> X": lambda X, Y: cga.motor([0, 0, 1], 0.3, [1, 2, 3]) >> X,

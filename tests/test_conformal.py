@@ -121,9 +121,14 @@ def test_point_pair_guards():
     with pytest.raises(DegenerateGeometryError, match="imaginary"):
         cga.point_pair_endpoints(PP)
     a = np.array([4.0, 0.0, 0.0])
-    with pytest.raises(DegenerateGeometryError, match="accuracy guard"):  # a raw wedge: its coefficients only
-        cga.point_pair_endpoints(cga.up(a) ^ cga.up(a + [0, 5e-5, 0]))
-    p1, _ = cga.point_pair_endpoints(cga.up(a) ^ cga.up(a + [0, 1e-3, 0]))  # above the guard: accurate
+    b = a + [0, 5e-5, 0]
+    raw = cga.up(a) ^ cga.up(b)  # a raw wedge of plain points carries their frame (point_wedges): read about a, exact
+    p1, p2 = cga.point_pair_endpoints(raw)
+    assert np.array_equal(p1, a) and np.abs(p2 - b).max() <= 1e-15
+    with pytest.raises(DegenerateGeometryError, match="accuracy guard"):  # its coefficients only (the frame dropped)
+        cga.point_pair_endpoints(cga.Multivector(cga.G41, dict(raw.coeffs)))
+    wide = cga.Multivector(cga.G41, dict((cga.up(a) ^ cga.up(a + [0, 1e-3, 0])).coeffs))
+    p1, _ = cga.point_pair_endpoints(wide)  # above the guard: accurate
     assert np.allclose(p1, a, atol=1e-7)
     p1, p2 = cga.point_pair_endpoints(cga.point_pair(a, a + [0, 5e-5, 0]))  # anchored: read about a, exact
     assert np.abs(p1 - a).max() <= 1e-15 and np.abs(p2 - a - [0, 5e-5, 0]).max() <= 1e-15

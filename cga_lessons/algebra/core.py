@@ -195,6 +195,26 @@ class Algebra(AlgebraKind):
         self._products = ProductTerms(self)
         self._motors = MotorMatrices(self, tables, versors)
         self._versors = VersorActions(self, self._motors, tables, versors)
+        #: What a layer above adds to the operators' results (:meth:`set_operation_hook`); None: nothing.
+        self.operation_hook = None
+
+    def set_operation_hook(self, hook) -> None:
+        """Let a layer above this one add to the results of the operators that combine entities: ``A ^ B``,
+        ``A + B`` and ``A - B`` of this algebra's multivectors.
+
+        ``hook(result, op, left, right)`` is called when both operands are multivectors: ``result`` is the plain
+        result, ``op`` the operator's symbol (``"^"``, ``"+"``, ``"-"``), ``left`` and ``right`` the operands as
+        written.  It must return ``result`` or a multivector with exactly its coefficients (a subclass that carries
+        more: the conformal layer registers :func:`cga_lessons.conformal.point_wedges.framed_points` on G(4,1), so
+        that the outer product and the sums of plain conformal points carry their local frame).  The operators
+        without the hook are :meth:`Multivector.plain_operation <cga_lessons.algebra.Multivector.plain_operation>`.
+        ``None`` removes it.  The algebra never
+        imports the layer that registers it; an algebra without a hook pays one attribute read per operator.  The
+        geometric product, the hot path of every versor, and the inner products are not hooked.
+        """
+        if hook is not None and not callable(hook):
+            raise fail("Algebra.set_operation_hook", "hook", f"expected a function or None, got {type(hook).__name__}")
+        self.operation_hook = hook
 
     # ------------------------------------------------------------------ names
     def _make_name(self, blade: int) -> str:

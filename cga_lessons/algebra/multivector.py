@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from cga_lessons.checks import fail, instance, integer
+from cga_lessons.checks import fail, instance, integer, short
 from cga_lessons.errors import DegenerateGeometryError, GeometryError
 
 from . import access, display, inverse, involutions
@@ -33,6 +33,13 @@ if TYPE_CHECKING:
     from .core import Algebra
 
 __all__ = ["Multivector", "commutator"]
+
+
+def _hooked(out, op: str, A, B):
+    """``out = A op B`` of an operator, passed to the algebra's operation hook (:meth:`Algebra.set_operation_hook
+    <cga_lessons.algebra.Algebra.set_operation_hook>`) when there is one and B is a multivector."""
+    hook = A.algebra.operation_hook
+    return out if hook is None or not isinstance(B, Multivector) else hook(out, op, A, B)
 
 
 class Multivector:
@@ -129,7 +136,10 @@ class Multivector:
             raise self._mismatch(func, other, exc) from None
         return finite_out(out, func)
 
-    def __add__(self, other):
+    # The operators +, - and ^ call the algebra's operation hook after their plain routine when both operands are
+    # multivectors (_hooked).
+    def _add(self, other):
+        """``self + other`` without the operation hook."""
         other = self._coerce(other, "Multivector +")
         if other is NotImplemented:
             return NotImplemented
@@ -138,7 +148,11 @@ class Multivector:
         except ValueError as exc:
             raise self._mismatch("Multivector +", other, exc) from None
 
-    __radd__ = __add__
+    def __add__(self, other):
+        """Sum; a number is a scalar."""
+        return _hooked(self._add(other), "+", self, other)
+
+    __radd__ = _add
 
     def __neg__(self):
         return Multivector(self.algebra, {b: -v for b, v in self._c.items()})
@@ -146,7 +160,8 @@ class Multivector:
     def __pos__(self):
         return self
 
-    def __sub__(self, other):
+    def _sub(self, other):
+        """``self - other`` without the operation hook."""
         other = self._coerce(other, "Multivector -")
         if other is NotImplemented:
             return NotImplemented
@@ -154,6 +169,10 @@ class Multivector:
             return finite_out(self._plus(-other), "Multivector -")
         except ValueError as exc:
             raise self._mismatch("Multivector -", other, exc) from None
+
+    def __sub__(self, other):
+        """Difference; a number is a scalar."""
+        return _hooked(self._sub(other), "-", self, other)
 
     def __rsub__(self, other):
         other = self._coerce(other, "Multivector -")
@@ -226,9 +245,13 @@ class Multivector:
         except DegenerateGeometryError as exc:
             raise no_inverse(func, name, exc) from None
 
+    def _xor(self, other):
+        """``self ^ other`` without the operation hook."""
+        return self._binary(other, "op", "Multivector ^")
+
     def __xor__(self, other):
         """Outer product (2.14, 2.30); a scalar factor just scales (2.20)."""
-        return self._binary(other, "op", "Multivector ^")
+        return _hooked(self._xor(other), "^", self, other)
 
     def __rxor__(self, other):
         return self._binary(other, "op", "Multivector ^", reflected=True)
@@ -243,6 +266,16 @@ class Multivector:
     def __lshift__(self, other):
         """Left contraction A _| B: <A_r B_s>_{s-r} (zero when r > s)."""
         return self._binary(other, "lc", "Multivector <<")
+
+    def plain_operation(self, op: str, other):
+        """``self op other`` for ``op`` one of ``"+"``, ``"-"``, ``"^"`` (other a multivector or a number), computed
+        and checked as the operator does it, without the algebra's operation hook (:meth:`Algebra.set_operation_hook
+        <cga_lessons.algebra.Algebra.set_operation_hook>`): what a layer that adds to the operators' results computes
+        its own parts with.  NotImplemented where the operator would defer to other."""
+        plain = _PLAIN.get(op) if type(op) is str else None
+        if plain is None:
+            raise fail("Multivector.plain_operation", "op", f"expected one of '+', '-', '^', got {short(op)}")
+        return plain(self, other)
 
     def __rshift__(self, other):
         """Sandwich ``V >> X = V X ~V`` (2.98, 2.101, 2.103).
@@ -349,6 +382,9 @@ class Multivector:
     map = display.map_coefficients
     __repr__ = display.text
     _repr_latex_ = display.latex
+
+
+_PLAIN = {"+": Multivector._add, "-": Multivector._sub, "^": Multivector._xor}  # the operators' plain routines
 
 
 def mv_from_dict(algebra, coeffs: dict):

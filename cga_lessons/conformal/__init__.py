@@ -4,7 +4,8 @@
 up/down (:mod:`cga_lessons.conformal.model`, 2.52-2.60, and :mod:`cga_lessons.conformal.points`, 2.61-2.67,
 2.111-2.114), the entities of
 table 2.1 and their properties (:mod:`cga_lessons.conformal.entities`, :mod:`cga_lessons.conformal.lines_circles`,
-section 2.4; exact far from the origin through their local frames, :mod:`cga_lessons.conformal.anchored`) and
+section 2.4; exact far from the origin through their local frames, :mod:`cga_lessons.conformal.anchored`, and so are
+raw wedges of points, ``up(a) ^ up(b) ^ ...``, :mod:`cga_lessons.conformal.point_wedges`) and
 the versors of table 2.2 (:mod:`cga_lessons.conformal.versors`, 2.82-2.110, 2.135-2.145),
 and beyond the thesis the logarithm, roots and interpolation of motors and the
 dilator (:mod:`cga_lessons.conformal.versor_log`, :mod:`cga_lessons.conformal.versor_powers`), contractions,
@@ -72,6 +73,7 @@ from .parameters import (  # noqa: F401
     SphereParameters,
 )
 from .plane_ransac import segment_planes  # noqa: F401
+from .point_wedges import framed_points  # noqa: F401  (importing it registers G41's operation hook)
 from .points import *  # noqa: F403
 from .points import __all__ as _points_all
 from .points import point_weight  # noqa: F401

@@ -25,7 +25,10 @@ products, the contractions, sums and differences, scalar multiples, negation, gr
 other involutions, the inverse, powers, normalisation and the dual (Ic commutes with T).  The result of such an
 operation on anchored entities X (anchor f) and Y (anchor g), or on one and a number or a translation-invariant
 multivector (1, e and ``e ^ A``, Ic: :func:`~cga_lessons.conformal.anchored_ops.invariant`), is anchored at f, its
-local blade the same operation on X's local and Y's local moved into f's frame, ``T_{g-f} Y.local ~T_{g-f}``.  So
+local blade the same operation on X's local and Y's local moved into f's frame, ``T_{g-f} Y.local ~T_{g-f}``.  A
+plain conformal point is an anchored entity too (``w up(x) = T_x (w e0) ~T_x``: anchor x, local ``w e0``,
+:func:`~cga_lessons.conformal.anchored_ops.point_frame`): with one the frame follows, and ``^``, ``+`` and ``-`` of
+plain points make anchored entities (``up(a) ^ up(b) ^ up(c) ^ up(d)``, :mod:`~cga_lessons.conformal.point_wedges`).  So
 the circle ``s1 ^ s2`` of two spheres (2.79), the point pair where a line cuts a sphere, a circle's plane, a scaled
 sphere are as exact as the entities they are made of, at any distance (when those are near each other: ``g - f``
 is their distance, not theirs from the origin).  The functions of :mod:`~cga_lessons.conformal.blades`
@@ -52,8 +55,9 @@ it, 1e5 out or more, the global result is the local one translated back:
 :func:`~cga_lessons.conformal.anchored_versors.lost_versor_apply`).  Other versors without a frame (an inversion
 times a reflection: a plane carries none) drop the frame, as does an
 inversion that sends the anchor to infinity (when first read); so do an operation with a multivector that
-translations change (a point, e0, e1, a rotor, a motor: move an entity with ``apply``), ``map`` and ``simplify``
-(a plain :class:`~cga_lessons.algebra.Multivector`: the frame is dropped, never stale).
+translations change and that is no point (e1, a rotor, a motor: move an entity with ``apply``; a sphere that carries
+no frame), ``map`` and ``simplify`` (a plain :class:`~cga_lessons.algebra.Multivector`: the frame is dropped, never
+stale).
 
 The global coefficients of every result are those of the plain operation, bit for bit, and so are the numbers read
 off them (``scalar()``, ``norm2()``, ``X["e1"]``), with two exceptions: apply of an anchored versor whose global

@@ -18,33 +18,60 @@ exactly when it commutes with ``e e1``, ``e e2``, ``e e3``.  Those K span the sc
 Euclidean A (e itself, free vectors, the translators ``1 + e t / 2``) and the pseudoscalar Ic: in coefficients, no
 Euclidean blade but the scalar, equal e+ and e- coefficients of each Euclidean blade A (``e ^ A`` is
 ``-(A e+ + A e-)`` up to order), and no e+e- blade but Ic (:func:`invariant`, an exact test).  Numbers (and arrays
-of them, a batch) are invariant.  ``e0``, a point, ``e1``, a rotor or any other multivector is not: an operation
-with it returns the plain multivector, as before.
+of them, a batch) are invariant.
+
+**Points.**  A conformal point is not invariant but covariant itself: ``w up(x) = T_x (w e0) ~T_x`` (2.62, 2.100),
+the entity anchored at x whose local blade is ``w e0``, and its coefficients hold x (``E / w``, 2.114).  A plain
+vector whose coefficients are a point's to their resolution (``e0`` is one, at the origin;
+:func:`~cga_lessons.conformal.anchored_points.point_frame`) takes part as an anchored operand: its local blade in
+f's frame is ``w up(x - f)``, in closed form (:func:`~cga_lessons.conformal.anchored_points.point_about`), and the
+result is anchored at the anchor of the first anchored entity among the operands (of the first point when there is
+none: the operation hook of G41 makes such results, ``up(a) ^ up(b)``, :mod:`~cga_lessons.conformal.point_wedges`).
+``e1``, a rotor, a sphere without a frame or any other multivector that is neither: an operation with it returns
+the plain multivector, as before.
 
 **Bits.**  The global coefficients are computed as for plain multivectors (the same routine on the same
 coefficients): an anchored result equals, prints and compares as the plain one, bit for bit.  Only its local
-blade is added, built when first read (see :class:`Pending`).  An operation with no anchored operand never gets
-here: a plain multivector pays nothing.  The one exception is the join and meet of two anchored blades, which
-decide on their local blades (:func:`cga_lessons.conformal.blades.meet`): where that decision is another grade than
-the global one, the result's global coefficients are its local blade translated back (:func:`translated`).
+blade is added, built when first read (see :class:`Pending`).  An operation with no anchored operand gets here only
+through G41's operation hook (``^``, ``+``, ``-``, :mod:`~cga_lessons.conformal.point_wedges`), which declines in
+about a microsecond what is no point (the cheap tests first: :func:`operand_kinds`).  The one exception to the bits
+is the join and meet of two anchored blades, which decide on their local blades
+(:func:`cga_lessons.conformal.blades.meet`): where that decision is another grade than the global one, the result's
+global coefficients are its local blade translated back (:func:`translated`).
 """
 
 from __future__ import annotations
 
+import math
 import numbers
 
 import numpy as np
 
 from cga_lessons.algebra import GeometryError, Multivector
 
+from .anchored_points import VECTOR, point_about, point_parts
 from .versors_build import translator
 
-__all__ = ["FrameOps", "Pending", "about", "chain_depth", "follow", "invariant", "read_only", "translated"]
+__all__ = [
+    "FrameOps",
+    "Pending",
+    "about",
+    "chain_depth",
+    "follow",
+    "invariant",
+    "operand_kinds",
+    "point_parts",
+    "read_only",
+    "translated",
+]
 
 #: A chain of derived entities none of which was read is built from its end when first read, one level after the
 #: other; beyond this depth the operands are built at once, so that a long chain (a sum in a loop) never nests deep.
 MAX_DEPTH = 48
 _NUMBERS = (numbers.Real, np.ndarray)
+_F64 = np.float64
+#: The blades an invariant multivector may hold: the scalar, Ic and the blades with exactly one of e+, e- (2.100).
+_PAIRED = frozenset([0, 31] + [b for b in range(32) if b & 24 in (8, 16)])
 _IC = 31  # e123+-
 
 
@@ -70,16 +97,20 @@ def invariant(K: Multivector) -> bool:
     that is K is a combination of 1, ``e ^ A`` (A Euclidean) and Ic.  Exact: the e+ and e- coefficients of each
     Euclidean blade must be equal, not close."""
     c = K._c
-    for b, v in c.items():
-        if b == 0 or b == _IC:
-            continue
-        s = b & 24
-        if s != 8 and s != 16:  # a Euclidean blade, or one with e+e- (Ic excepted): zero (a batch's zeros) or not K's
-            if np.any(v):
+    if not c.keys() <= _PAIRED:  # a Euclidean blade, or one with e+e- (Ic excepted): zero (a batch's zeros) or not K's
+        for b in c.keys() - _PAIRED:
+            v = c[b]
+            t = type(v)
+            if (v != 0.0) if t is float or t is _F64 else np.any(v):
                 return False
+    for b, v in c.items():
+        if b & 24 != 8 and b & 24 != 16:
             continue
-        w = c.get(b ^ 24, 0.0)
-        if not (v is w or np.all(np.asarray(v) == np.asarray(w))):
+        w, t = c.get(b ^ 24, 0.0), type(v)  # the coefficient of the twin (e+ for e-, e- for e+): equal, or not K
+        if (t is float or t is _F64) and (type(w) is float or type(w) is _F64):
+            if v != w:
+                return False
+        elif not (v is w or np.all(np.asarray(v) == np.asarray(w))):
             return False
     return True
 
@@ -99,6 +130,9 @@ def about(L: Multivector, g, f) -> Multivector:
 
 def read_only(f, shape: tuple) -> np.ndarray:
     """An anchor: f broadcast to ``shape + (3,)`` (one anchor for a whole batch), as a read-only array."""
+    if type(f) is np.ndarray and f.shape == shape + (3,) and f.dtype == float:
+        if not f.flags.writeable and f.flags.owndata:
+            return f  # already one (a read-only array of its own: shared, never changed)
     f = np.array(np.broadcast_to(f, shape + (3,)), dtype=float)
     f.flags.writeable = False
     return f
@@ -115,21 +149,34 @@ def chain_depth(*framed) -> int:
     return depth
 
 
-def _operand_kinds(operands):
-    """Per operand: True (anchored), False (invariant: a number or an invariant multivector); None when some
-    operand is neither (the result is plain)."""
+def operand_kinds(operands):
+    """Per operand: True (anchored), False (invariant: a number or an invariant multivector), ``(anchor, weight)``
+    (a plain conformal point, :func:`~cga_lessons.conformal.anchored_points.point_parts`); None when some operand is
+    none of these (the result is plain).
+    Points are recognised last, once every other operand has passed (the cheap tests first)."""
     kinds = []
     for x in operands:
-        if isinstance(x, FrameOps) and x._anchor is not None:
-            kinds.append(True)
-        elif isinstance(x, Multivector):
-            if not invariant(x):
+        if isinstance(x, Multivector):
+            if isinstance(x, FrameOps) and x._anchor is not None:
+                kinds.append(True)
+            elif (16 in x._c or 8 in x._c) and x._c.keys() <= VECTOR:  # perhaps a point (or e: invariant)
+                kinds.append(None)
+            elif invariant(x):
+                kinds.append(False)
+            else:
                 return None
-            kinds.append(False)
         elif isinstance(x, _NUMBERS) and not isinstance(x, (bool, np.bool_)):
             kinds.append(False)
         else:
             return None
+    for i, k in enumerate(kinds):
+        if k is None:
+            k = point_parts(operands[i])
+            if k is None:
+                if not invariant(operands[i]):
+                    return None
+                k = False
+            kinds[i] = k
     return kinds
 
 
@@ -138,39 +185,67 @@ def _operand_kinds(operands):
 LOST_GRADE = 1e-9
 
 
-def follow(Y, op, *operands, anchor_arg: bool = False):
+def _finite(L: Multivector) -> bool:
+    """Whether every coefficient of L is finite: one ``fsum`` for floats (NaN and inf propagate), else each array."""
+    try:
+        if math.isfinite(math.fsum(L._c.values())):
+            return True
+    except (TypeError, ValueError, OverflowError):  # arrays (a batch), inf - inf, a sum beyond float range
+        pass
+    return all(np.all(np.isfinite(v)) for v in L._c.values())
+
+
+def follow(Y, op, *operands, anchor_arg: bool = False, derive=None, kinds=None):
     """``Y`` (the result of an operation, computed from the global coefficients) with a local frame: anchored at the
-    anchor f of its first anchored operand, its local blade ``op(*locals)``, where each anchored operand gives its
-    local blade moved into f's frame (``T_{g-f} L ~T_{g-f}``) and every other operand is passed as it is (it must be
-    a number or an invariant multivector; else Y is returned plain).  ``op`` must be translation-covariant (see the
-    module docstring); ``anchor_arg``: it takes f first.  Built when first read; should that fail (an operand's
-    frame dropped, the local blade overflows or has no inverse), Y is read as a plain blade."""
+    anchor f of its first anchored operand (with none, of its first plain point), its local blade ``op(*locals)``,
+    where each anchored operand gives its local blade moved into f's frame (``T_{g-f} L ~T_{g-f}``), a plain
+    conformal point its own in closed form (``w up(g - f)``, :func:`~.anchored_points.point_about`), and every other
+    operand is passed as it is (it must be a number or an invariant multivector; else Y is returned
+    plain).  ``op`` must be translation-covariant (see the module docstring); ``anchor_arg``: it takes f first.
+    ``derive`` makes the result when no operand is anchored (points only; the anchored class's ``derive``): without
+    it such a Y is returned plain.  ``kinds``: the operands' :func:`operand_kinds`, when the caller has them.  Built
+    when first read; should that fail (an operand's frame dropped, the local blade overflows or has no inverse), Y is
+    read as a plain blade."""
     if type(Y) is not Multivector or not Y._c:
         return Y
-    kinds = _operand_kinds(operands)
-    if not kinds or True not in kinds:
+    kinds = operand_kinds(operands) if kinds is None else kinds
+    if not kinds:
         return Y
-    framed = [x for x, k in zip(operands, kinds) if k]
-    depth = chain_depth(*framed)
-    shape, grades = Y.shape, Y.grades_present()
+    framed = [x for x, k in zip(operands, kinds) if k is True]
+    if not framed and not any(kinds):  # only invariant operands
+        return Y
+    if framed:
+        depth, derive = chain_depth(*framed), type(framed[0]).derive
+    elif derive is None:
+        return Y
+    else:
+        depth = 1
 
     def build():
-        f, args = None, []
-        for x, k in zip(operands, kinds):
-            if not k:
-                args.append(x)
-                continue
+        shape, grades = Y.shape, Y.grades_present()
+        frames = []  # (anchor, local) of the anchored operands; the first one's anchor is the result's
+        for x in framed:
             x.settle()
-            g, L = x._anchor, x._local
-            if g is None:
+            if x._anchor is None:
                 raise NoFrame("an operand lost its frame")
-            if f is None:
-                f = g
-            args.append(about(L, g, f))
+            frames.append((x._anchor, x._local))
+        f = frames[0][0] if frames else None
+        args, at = [], iter(frames)
+        for x, k in zip(operands, kinds):
+            if k is False:
+                args.append(x)
+            elif k is True:
+                g, L = next(at)
+                args.append(about(L, g, f))
+            else:  # a plain point (anchor, weight): in closed form about f (or its own anchor, when it is f)
+                g, w = k
+                g = np.array(g) if type(g) is tuple else g
+                f = g if f is None else f
+                args.append(point_about(w, g, f))
         L = op(f, *args) if anchor_arg else op(*args)
         if not isinstance(L, Multivector) or L.shape != shape:
             raise NoFrame("the local blade has another batch shape")
-        if not all(np.all(np.isfinite(v)) for v in L._c.values()):
+        if not _finite(L):
             raise NoFrame("the local blade is not finite")
         extra = [g for g in L.grades_present() if g not in grades]
         if extra:
@@ -190,7 +265,7 @@ def follow(Y, op, *operands, anchor_arg: bool = False):
         except (ValueError, ArithmeticError) as exc:  # GeometryError is a ValueError
             raise NoFrame(str(exc)) from None
 
-    return type(framed[0]).derive(Y, Pending(guarded, depth))
+    return derive(Y, Pending(guarded, depth))
 
 
 def view(X):
@@ -204,11 +279,21 @@ def view(X):
 
 
 # ------------------------------------------------------------------------------- the operators
-def _binary(name: str, rname: str | None, fn):
+def _binary(name: str, rname: str | None, fn, symbol: str | None = None):
     """The operator ``name`` and its reflection ``__r...__``: the plain result, followed (:func:`follow`) by
-    ``fn(left, right)`` on the local blades."""
+    ``fn(left, right)`` on the local blades.  ``symbol``: an operator the algebra's operation hook follows
+    (:meth:`~cga_lessons.algebra.Multivector.plain_operation`): the global result and ``fn`` on multivectors are
+    computed without it (the frame is this class's to follow)."""
     plain = getattr(Multivector, name)
-    rplain = getattr(Multivector, rname, None) if rname else None
+    rplain, doc = getattr(Multivector, rname, None) if rname else None, plain.__doc__
+    if symbol is not None:
+        number_fn = fn
+
+        def plain(a, b):
+            return a.plain_operation(symbol, b)
+
+        def fn(a, b):
+            return a.plain_operation(symbol, b) if isinstance(a, Multivector) else number_fn(a, b)
 
     def forward(self, other):
         Y = plain(view(self), view(other))
@@ -224,7 +309,7 @@ def _binary(name: str, rname: str | None, fn):
         return Y if Y is NotImplemented else follow(Y, fn, other, self)
 
     forward.__name__, reflected.__name__ = name, name.replace("__", "__r", 1)
-    forward.__doc__ = f"{plain.__doc__ or name} The frame follows (:func:`cga_lessons.conformal.anchored_ops.follow`)."
+    forward.__doc__ = f"{doc or name} The frame follows (:func:`cga_lessons.conformal.anchored_ops.follow`)."
     return forward, reflected
 
 
@@ -261,11 +346,11 @@ class FrameOps:
 
     __slots__ = ()
 
-    __add__, __radd__ = _binary("__add__", "__radd__", lambda a, b: a + b)
-    __sub__, __rsub__ = _binary("__sub__", "__rsub__", lambda a, b: a - b)
+    __add__, __radd__ = _binary("__add__", "__radd__", lambda a, b: a + b, "+")
+    __sub__, __rsub__ = _binary("__sub__", "__rsub__", lambda a, b: a - b, "-")
     __mul__, __rmul__ = _binary("__mul__", "__rmul__", lambda a, b: a * b)
     __truediv__, __rtruediv__ = _binary("__truediv__", "__rtruediv__", lambda a, b: a / b)
-    __xor__, __rxor__ = _binary("__xor__", "__rxor__", lambda a, b: a ^ b)
+    __xor__, __rxor__ = _binary("__xor__", "__rxor__", lambda a, b: a ^ b, "^")
     __or__, __ror__ = _binary("__or__", "__ror__", lambda a, b: a | b)
     __lshift__, __rlshift__ = _binary("__lshift__", None, lambda a, b: a << b)
     __rshift__, __rrshift__ = _binary("__rshift__", None, lambda a, b: a >> b)

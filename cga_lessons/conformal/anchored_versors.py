@@ -232,7 +232,7 @@ def far_product(parts, X: Multivector, step) -> Multivector:
     Z = X.involute() if dual else X
     if M is not None and motor_first:
         Z = step(M, Z)
-    S0 = eo - (0.5 * r2) * einf
+    S0 = eo.plain_operation("-", (0.5 * r2) * einf)  # plain: its own frame (at the origin) adds nothing
     Z = step(translator(p), step(S0, step(translator(-p), Z))) if np.any(p) else step(S0, Z)
     if M is not None and not motor_first:
         Z = step(M, Z)

@@ -121,6 +121,11 @@ CASES = [
     op(Multivector.__sub__, "Multivector -", V, extra={"other": [OTHER_ALGEBRA]}),
     op(Multivector.__sub__, "Multivector -", 2.0, name="Multivector - (scalar)"),
     op(Multivector.__rsub__, "Multivector -", 2.0),
+    # the operators without the algebra's operation hook: checked and named as the operator ("Multivector ^: other")
+    Case(Multivector.plain_operation, {"self": X, "op": "^", "other": V}, label="Multivector ^",
+         positional=("self", "op", "other"), extra={"other": [OTHER_ALGEBRA]},
+         skip={"op": "the calling layer's own symbol; a wrong one raises 'Multivector.plain_operation: op: ...' "
+                     "(tests/test_point_wedges.py)"}),
     Case(Multivector.__pow__, {"self": X, "k": 3}, label="Multivector **", positional=("self", "k"), strict=True,
          extra={"k": [10**6]}),
     Case(Multivector.__pow__, {"self": V, "k": -2}, label="Multivector **", positional=("self", "k"),
