@@ -383,3 +383,18 @@ def test_apply_to_points_refuses_the_inverting_spheres_centre():
     S = cga.sphere([1e6, 2.0, 3.0], 2.0)
     with pytest.raises(DegenerateGeometryError, match=r"^apply_to_points: x: V sends a point to infinity"):
         cga.apply_to_points(S, [1e6, 2.0, 3.0])
+
+
+@pytest.mark.parametrize("weight", [1 / 3, -0.7, 2.5, 1e-3, 7.0])
+def test_down_of_a_weighted_point_far_out_eq_2_111_2_114(weight):
+    """``down(w up(x)) = x`` (2.111, 2.114) for any weight w, one point and a batch: within 2^11 eps of |x| near
+    the origin (the weight read as the difference ``X_- - X_+``, its rounding eps x^2 / 2 relative, below
+    ``SUM_OVER_WEIGHT``), within a few eps far out (read as ``|X_E|^2 / (X_+ + X_-)``).  As the difference
+    ``down(up(x) / 3)`` 1e6 out was 6e-5 off (60 m)."""
+    rng = np.random.default_rng(7)
+    for scale, tol in ((1e-3, 8 * EPS), (1.0, 8 * EPS), (30.0, 2048 * EPS), (1e3, 8 * EPS), (1e6, 8 * EPS)):
+        xs = rng.normal(size=(200, 3)) * scale
+        batch = cga.down(cga.up(xs) * weight)
+        assert np.all(np.abs(batch - xs).max(axis=1) <= tol * np.abs(xs).max(axis=1))
+        for x in xs[:40]:
+            assert np.abs(cga.down(cga.up(x) * weight) - x).max() <= tol * np.abs(x).max()

@@ -17,6 +17,7 @@ from cga_lessons.algebra import Multivector
 from cga_lessons.scratch import scratch
 
 from .model import G41
+from .points import SUM_OVER_WEIGHT
 
 __all__ = ["POINT_RTOL", "VECTOR", "WEIGHT_ULPS", "point_about", "point_frame", "point_parts"]
 
@@ -41,9 +42,10 @@ def point_frame(X: Multivector):
     :data:`POINT_RTOL` of ``|w| (|X_+| + |X_-|) + E^2`` (the sizes of its terms: s holds ``(|X_+| + |X_-|) eps``
     of round-off, ``w^2 x^2 + 1`` near the origin, about ``2 w^2 x^2`` far out), and w beyond :data:`WEIGHT_ULPS`
     of the terms it is the difference of.  Then ``x = E / w`` (2.114), as :func:`~cga_lessons.conformal.down` reads
-    it, to the accuracy of w, which the test bounds (``s w = E^2`` to 8 eps): exact where the weight is stored
-    exactly (the images of ``up(x)`` under a motor, ``2 up(x)`` ... from 1e3 to 6.7e7 out, but for a fraction
-    ~2/x^2 of them), a few eps of x nearer (measured: at most 8 eps |x| near |x| = 1-30).  A vector whose
+    it (far out, where ``|X_+| + |X_-|`` passes :data:`~cga_lessons.conformal.points.SUM_OVER_WEIGHT` times w, with w
+    read as ``E^2 / s``), to the accuracy of w, which the test bounds (``s w = E^2`` to 8 eps): exact where the
+    weight is stored exactly (the images of ``up(x)`` under a motor, ``2 up(x)`` ... from 1e3 to 6.7e7 out, but for
+    a fraction ~2/x^2 of them), a few eps of x nearer (measured: at most 8 eps |x| near |x| = 1-30).  A vector whose
     coefficients are bit for bit those ``up`` stores for its Euclidean part E (``(E^2 -+ 1) / 2``) is ``up(E)``:
     anchored at E, weight 1, even where ``x^2 + 1`` rounded its weight (a fraction ~2/x^2 of all x, by up to
     eps x^2 / 4, beyond the test from |x| = 8 on: ``2 up(x)`` or ``apply(M, up(x))`` of such an x is left plain).
@@ -85,6 +87,8 @@ def point_parts(X: Multivector):
         t = abs(xm) + abs(xp)
         if not abs(w) > WEIGHT_ULPS * t or not abs(s * w - q) <= POINT_RTOL * (abs(w) * t + q):
             return None  # (NaN and inf fail the comparisons)
+        if t > SUM_OVER_WEIGHT * abs(w):  # far out: the weight as down reads it, |E|^2 / (X_+ + X_-)
+            w = q / s
     y1, y2, y3 = x1 / w, x2 / w, x3 / w
     if not (math.isfinite(y1) and math.isfinite(y2) and math.isfinite(y3)):
         return None
@@ -122,6 +126,10 @@ def _batch_point_frame(xp, xm, x1, x2, x3):
             ok &= np.abs(s, out=s) <= u
             if not np.all(ok | exact):
                 return None
+            far = ~exact & (t > SUM_OVER_WEIGHT * np.abs(w))  # the weight as down reads it far out
+            if far.any():
+                sums = np.broadcast_to(np.add(xp, xm), shape)
+                w[far] = q[far] / sums[far]
         w[exact] = 1.0
         anchor = np.empty(shape + (3,))
         if np.all(w == 1.0):  # up(x) and its images under a motor: x is E, the weight one number
