@@ -60,9 +60,9 @@ __all__ = [
     "follow",
     "invariant",
     "operand_kinds",
-    "point_parts",
     "read_only",
     "translated",
+    "unhooked",
 ]
 
 #: A chain of derived entities none of which was read is built from its end when first read, one level after the
@@ -279,6 +279,13 @@ def view(X):
 
 
 # ------------------------------------------------------------------------------- the operators
+def unhooked(symbol: str, fallback):
+    """The operator ``symbol`` (``"+"``, ``"-"``, ``"^"``) on local blades without the algebra's operation hook
+    (:meth:`~cga_lessons.algebra.Multivector.plain_operation`): a local blade's frame is the caller's to follow;
+    ``fallback(a, b)`` when ``a`` is a number."""
+    return lambda a, b: a.plain_operation(symbol, b) if isinstance(a, Multivector) else fallback(a, b)
+
+
 def _binary(name: str, rname: str | None, fn, symbol: str | None = None):
     """The operator ``name`` and its reflection ``__r...__``: the plain result, followed (:func:`follow`) by
     ``fn(left, right)`` on the local blades.  ``symbol``: an operator the algebra's operation hook follows
@@ -287,13 +294,11 @@ def _binary(name: str, rname: str | None, fn, symbol: str | None = None):
     plain = getattr(Multivector, name)
     rplain, doc = getattr(Multivector, rname, None) if rname else None, plain.__doc__
     if symbol is not None:
-        number_fn = fn
 
         def plain(a, b):
             return a.plain_operation(symbol, b)
 
-        def fn(a, b):
-            return a.plain_operation(symbol, b) if isinstance(a, Multivector) else number_fn(a, b)
+        fn = unhooked(symbol, fn)
 
     def forward(self, other):
         Y = plain(view(self), view(other))

@@ -55,18 +55,13 @@ import numpy as np
 from cga_lessons.algebra import GeometryError, Multivector
 
 from .anchored import Anchored, pair_about_an_end
-from .anchored_ops import NoFrame, Pending, follow, operand_kinds, read_only
+from .anchored_ops import NoFrame, Pending, follow, operand_kinds, read_only, unhooked
 from .model import G41
 
 __all__ = ["framed_points"]
 
 
-def _local(symbol: str, fallback):
-    """The operator on local blades, without the hook (a local blade of a point is a point at the origin)."""
-    return lambda a, b: a.plain_operation(symbol, b) if isinstance(a, Multivector) else fallback(a, b)
-
-
-_LOCAL = {"+": _local("+", operator.add), "-": _local("-", operator.sub), "^": _local("^", operator.xor)}
+_LOCAL = {"+": unhooked("+", operator.add), "-": unhooked("-", operator.sub), "^": unhooked("^", operator.xor)}
 
 
 def framed_points(Y: Multivector, op: str, A: Multivector, B: Multivector) -> Multivector:

@@ -87,6 +87,7 @@ def merge_segments(
     v = S[:, 1] - S[:, 0]
     length = np.hypot(v[:, 0], v[:, 1])
     ang = np.mod(np.arctan2(v[:, 1], v[:, 0]), np.pi)
+    mids = S.mean(axis=1)
     free = np.ones(len(S), bool)
     out, count = [], []
     for i in np.argsort(-length, kind="stable"):
@@ -96,7 +97,7 @@ def merge_segments(
         n = np.array([-d[1], d[0]])
         c = n @ S[i, 0]
         dang = np.abs(np.mod(ang - ang[i] + np.pi / 2, np.pi) - np.pi / 2)
-        off = np.abs(S.mean(axis=1) @ n - c)  # the midpoints' offsets
+        off = np.abs(mids @ n - c)  # the midpoints' offsets
         cand = free & (dang < angle_tol) & (off < offset_tol)
         t = S @ d
         lo, hi = t.min(axis=1), t.max(axis=1)
@@ -113,8 +114,7 @@ def merge_segments(
         dm = np.angle(np.sum(w * np.exp(2j * (ang[members] - ang[i])))) / 2 + ang[i]
         d = np.array([np.cos(dm), np.sin(dm)])
         n = np.array([-d[1], d[0]])
-        mid = S[members].mean(axis=1)
-        c = np.sum(w * (mid @ n)) / w.sum()
+        c = np.sum(w * (mids[members] @ n)) / w.sum()
         t = np.sort(S[members] @ d, axis=1)
         out.append([c * n + robust_end(-t[:, 0], gap) * -d, c * n + robust_end(t[:, 1], gap) * d])
         count.append(int(sup[members].sum()))
