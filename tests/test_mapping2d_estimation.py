@@ -136,14 +136,11 @@ def aces():
     return read_carmen_log(data_path("carmen", "aces-corrected.log.gz"))
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="target not reached: fed ACES's first 160 corrected poses, build_map moves them 0.32 m RMS "
-    "(the target is 5 cm; benchmarks/bench_logs.py measures every log)",
-)
 def test_the_corrector_holds_a_logs_own_poses(aces):
     """Fed the log's corrected poses as odometry, the map builder leaves them in place (the fast subset of
-    benchmarks/bench_logs.py: one log, 160 scans, loop closure on)."""
+    benchmarks/bench_logs.py: one log, 160 scans, loop closure on).  Until the odometry's scale was learnt with a
+    heavy-tailed likelihood and a ratio test (issue 14) it moved them 0.32 m RMS; tests/test_mapping2d_held.py
+    holds three whole logs."""
     n = 160
     held = build_map(aces.scans[:n], aces.poses[:n], max_range=8.0)
     assert pose_errors(held.poses, aces.poses[:n])[0] < 0.05
@@ -153,7 +150,7 @@ def test_the_corrector_holds_a_logs_own_poses(aces):
 def test_the_corrector_holds_perfect_poses_in_a_simulated_building(n_beams):
     """No bias: fed the simulator's own poses as odometry, with scans as noisy as ACES's (3 cm) and SICK's beam
     spacings, the builder (loop closure and the final adjustment on) leaves them in place.  On the real logs the
-    same check is the xfail above: what moves their poses is not in a simulated scan (benchmarks/bench_logs.py)."""
+    same check is the test above (benchmarks/bench_logs.py measures every log)."""
     office = load_scene("office")
     truth = np.asarray(office.trajectory, float)[:200]
     rng = np.random.default_rng(0)

@@ -29,8 +29,8 @@ and whose measurements are
 * each sighting of a real edge: its position along the line (corridor walls
   alone say nothing along the corridor; their doors and ends do);
 * each odometry increment, with the covariance of its drift model scaled by
-  what the builder learnt of the odometry (:class:`~cga_lessons.mapping2d.noise.InnovationModel`'s
-  ``q``, per step: a log whose odometry is right is held by it).
+  what the builder learnt of the odometry over the whole run (:class:`~cga_lessons.mapping2d.noise.InnovationModel`'s
+  ``q``, :meth:`~cga_lessons.mapping2d.run.MapRun.odometry_scale`: a log whose odometry is right is held by it).
 
 The point-to-line cost of a segment's points about a line is, exactly, ``n``
 times its centroid's squared distance plus the scatter about the centroid

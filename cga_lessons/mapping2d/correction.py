@@ -87,7 +87,7 @@ class ScanCorrector:
         self.noise = 0.01  # range noise (m) until a scan says otherwise
         self.factor = 1.0  # running a posteriori variance factor of the corrections
         self.floors = NoiseFloors((correction.angle_floor, correction.offset_floor, correction.edge_sigma))
-        self.innovations = InnovationModel()  # how good the odometry and the registration really are
+        self.innovations = InnovationModel(level=correction.significance)  # how good the odometry and registration are
         self.registration_ref = np.diag([correction.registration_xy**2] * 2 + [correction.registration_theta**2])
 
     @property

@@ -134,12 +134,15 @@ class CorrectionParams:
         lines' estimate against the prediction, with both covariances) lies
         within this quantile of the chi-square law
         (:func:`~cga_lessons.mapping2d.estimation.estimate_correction`): 0.999
-        refuses a right correction once in a thousand scans.
+        refuses a right correction once in a thousand scans.  Also the level of
+        the likelihood-ratio test that lets the learnt odometry scale leave
+        "exact" (:class:`~cga_lessons.mapping2d.noise.InnovationModel`).
     estimate_odometry : bool
         Learn how good the odometry is, relative to its drift model, from the
         registration of each scan on the one before
-        (:class:`~cga_lessons.mapping2d.noise.InnovationModel`); False: the
-        model's covariance as stated.
+        (:class:`~cga_lessons.mapping2d.noise.InnovationModel`: a running
+        scale for the corrections, one for the whole run in the final
+        adjustment); False: the model's covariance as stated.
     robust_kernel : float
         Huber constant (in scaled standard deviations) of the robust least
         squares of each correction.
