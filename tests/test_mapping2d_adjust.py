@@ -7,6 +7,7 @@ from cga_lessons.algebra import InvalidInputError
 from cga_lessons.mapping2d import OdometryPriorParams, Segment, build_map, compose, map_errors, pose_errors, relative
 from cga_lessons.mapping2d.adjust import AdjustParams, adjust_map
 from cga_lessons.mapping2d.corrections import chain_covariance
+from cga_lessons.mapping2d.frame import turn_about
 from cga_lessons.mapping2d.geometry import SegmentSet
 from cga_lessons.mapping2d.laser import OdometryModel, load_scene, simulate_odometry, simulate_scans
 
@@ -95,6 +96,33 @@ def test_one_wrong_association_does_not_bend_the_map():
                      floors=(1e-6, 1e-4, 1e-4))  # fmt: skip
     assert np.abs(res.poses[:, :2] - truth[:, :2]).max() < 2e-3
     assert res.outliers >= 1
+
+
+def test_the_first_scans_lines_hold_the_turn_of_the_whole_map():
+    """Issue 14: the first pose is fixed, so only the first scan's lines (and the first odometry step) say how the
+    whole map is turned about it.  With the Intel log's learnt angle floor (0.92 degrees) on the first scan's two
+    lines, a first odometry step 2.67 degrees off, and a builder's map turned by as much, the adjustment left every
+    later heading 0.62 degrees off; without the floor on the first scan, 0.12 degrees."""
+    rng = np.random.default_rng(3)
+    T = 8
+    truth = np.column_stack([rng.uniform(1.5, 4.5, T), rng.uniform(1, 3, T), rng.uniform(-np.pi, np.pi, T)])
+    obs, scan, line = _observe(ROOM, truth, MOUNT, edges=False)
+    keep = np.flatnonzero((scan > 0) | (line < 2))  # the first scan sees two walls
+    obs, scan, line = obs.take(keep), scan[keep], line[keep]
+    inc = relative(truth[:-1], truth[1:])
+    turn = np.radians(2.67)
+    inc[0, 2] += turn  # the first odometry step turns too far
+    covs = np.tile(np.diag([1e-2, 1e-2, np.radians(1.27) ** 2]), (T - 1, 1, 1))
+    start = turn_about(truth, truth[0, :2], turn)  # the builder's poses and map: turned by the first step
+    start[0] = truth[0]
+    G = _map_lines(ROOM, rng, 0.0)
+    c, R = truth[0, :2], np.array([[np.cos(turn), -np.sin(turn)], [np.sin(turn), np.cos(turn)]])
+    G = SegmentSet((G.start - c) @ R.T + c, (G.end - c) @ R.T + c, G.sums, G.edge)
+    floors = (np.radians(0.92) ** 2, 0.0046**2, 9e-4)  # the Intel log's learnt floors
+    scan_cov = np.diag([0.0141**2, 0.0141**2, np.radians(0.29) ** 2])  # and registration error
+    res = adjust_map(start, inc, covs, obs, scan, line, G, mount=MOUNT, floors=floors, scan_cov=scan_cov)
+    assert np.degrees(np.abs(res.poses[2:, 2] - truth[2:, 2])).max() < 0.25
+    assert np.abs(res.poses[:, :2] - truth[:, :2]).max() < 0.01
 
 
 def test_chain_covariance_is_the_spread_of_composed_noisy_steps():
