@@ -218,8 +218,8 @@ class InnovationModel:
 
     def __init__(self, window=100, q_bounds=(1e-4, 1e2), c_bounds=(1e-3, 1e2), min_count=20, every=10,
                  initial=(1e-4, 1.0), level=0.999):  # fmt: skip
-        self.g, self.C, self.B, self.R, self.rank = (deque(maxlen=int(window)) for _ in range(5))
-        self.history = []  # every innovation, as the rows of the window: (g, C, B, R, rank)
+        self.window = int(window)
+        self.history = []  # every innovation, padded to 3: (g, C, B, R, rank); the window is its last rows
         self.q_bounds, self.c_bounds = np.log(q_bounds), np.log(c_bounds)
         self.min_count, self.every = int(min_count), int(every)
         self.q, self.c = (float(v) for v in initial)
@@ -240,26 +240,25 @@ class InnovationModel:
         True
         """
         r = len(innovation)
-        pad = [np.zeros(3), np.eye(3), np.zeros((3, 3)), np.zeros((3, 3))]
-        for store, full, val in zip((self.g, self.C, self.B, self.R), pad,
-                                    (innovation, known_cov, step_cov, registration_cov)):  # fmt: skip
-            full = full.copy()
-            if full.ndim == 1:
-                full[:r] = val
-            else:
-                full[:r, :r] = val
-            store.append(full)
-        self.rank.append(r)
-        self.history.append(tuple(store[-1] for store in (self.g, self.C, self.B, self.R)) + (r,))
+        row = [np.zeros(3), np.eye(3), np.zeros((3, 3)), np.zeros((3, 3))]
+        row[0][:r] = innovation
+        for full, val in zip(row[1:], (known_cov, step_cov, registration_cov)):
+            full[:r, :r] = val
+        self.history.append((*row, r))
         self._new += 1
         if self.learning or self._new >= self.every:
             self._new = 0
             self.q, self.c, self.ratio, self.ratio_model = self._estimate()
 
     @property
+    def g(self) -> list:
+        """The innovations (padded to 3) of the last ``window``."""
+        return [row[0] for row in self.history[-self.window :]]
+
+    @property
     def learning(self) -> bool:
         """Fewer than ``min_count`` innovations are in."""
-        return len(self.g) < self.min_count
+        return len(self.history) < self.min_count
 
     def overall(self):
         """``(q, c)`` from every innovation of the run (not the last ``window``), with the same test: the
@@ -270,10 +269,9 @@ class InnovationModel:
         Gaussian inflates by the wrong registrations (the Intel log fed its own poses: held within 4.8 cm RMS
         with the Gaussian's value, 2.7 cm with the t's).  ``(q, c)`` as they stand while fewer than
         ``min_count`` innovations are in."""
-        if len(self.history) < self.min_count:
+        if self.learning:
             return self.q, self.c
-        rows = [np.array(x) for x in zip(*self.history)]
-        q, c, _, _ = self._estimate(rows, robust_values=True)
+        q, c, _, _ = self._estimate(self.history, robust_values=True)
         return q, c
 
     @staticmethod
@@ -300,12 +298,13 @@ class InnovationModel:
         return out
 
     def _estimate(self, rows=None, robust_values=False):
-        """``(q, c, ratio, ratio_model)`` for the window's innovations (or ``rows``): ``(q_min, c)`` when the
+        """``(q, c, ratio, ratio_model)`` for the window's innovations (or the records ``rows``, as in
+        :attr:`history`): ``(q_min, c)`` when the
         ratio test (Student t likelihoods, profiled over ``c`` and ``nu``) establishes an odometry better than
         its model and not one worse than exact, else the maximum likelihood ``(q, c)`` on the grid (steps of
         10^(1/3) in ``q``, 10^(1/2) in ``c``) of the Gaussian (or, ``robust_values``, of the t); the two ratios
         are twice the log-likelihood ratios of the best ``q`` against ``q_min`` and against 1."""
-        rows = [np.array(x) for x in (self.g, self.C, self.B, self.R, self.rank)] if rows is None else rows
+        rows = [np.array(x) for x in zip(*(self.history[-self.window :] if rows is None else rows))]
         lq, lc = np.linspace(*self.q_bounds, 19), np.linspace(*self.c_bounds, 11)
         Q, Cg = np.meshgrid(lq, lc, indexing="ij")
         every = self._nll(rows, Q.ravel(), Cg.ravel())

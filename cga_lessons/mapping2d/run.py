@@ -75,9 +75,10 @@ class MapRun:
     corrected : ndarray of bool, shape (T,)
     cov : ndarray, shape (3, 3)
         The covariance of the last pose.
-    increments, step_covs : ndarray, shape (T - 1, 3) and (T - 1, 3, 3)
-        Each odometry step and its covariance as the step was corrected with (the running scale of the
-        odometry; the final adjustment reads the whole run's, :meth:`odometry_scale`).
+    increments, step_models : ndarray, shape (T - 1, 3) and (T - 1, 3, 3)
+        Each odometry step and its covariance under the stated drift model (each step was corrected with it
+        times the running scale of the odometry; the final adjustment reads the whole run's,
+        :meth:`odometry_scale`).
     """
 
     def __init__(self, scans, odometry, geometry, params, mount, max_range, ext):
@@ -91,7 +92,7 @@ class MapRun:
         self.corrected = np.zeros(T, bool)
         self.cov = np.zeros((3, 3))
         self.local = warm_up(self.builder.corrector, scans, odometry, ext)
-        self.increments, self.step_covs = np.zeros((max(T - 1, 0), 3)), np.zeros((max(T - 1, 0), 3, 3))
+        self.increments, self.step_models = np.zeros((max(T - 1, 0), 3)), np.zeros((max(T - 1, 0), 3, 3))
         self.previous = SegmentSet.empty()
         self.lag = params.correction.learn_lag
         self.recent = deque(self.local[-(self.lag + 1) :], maxlen=self.lag + 1)  # the last scans' segments
@@ -133,7 +134,7 @@ class MapRun:
         self.learn(k, L, inc, Q)
         if k > 0:
             self.cov = carried + corrector.odometry_scale * Q  # the step scaled by what the data say of the odometry
-            self.increments[k - 1], self.step_covs[k - 1] = inc, corrector.odometry_scale * Q
+            self.increments[k - 1], self.step_models[k - 1] = inc, Q
         pts = np.zeros((0, 2))
         if len(L):
             pts, _ = scan_points_unchecked(np.where(ranges < self.max_range, ranges, np.inf), angles)
@@ -163,9 +164,8 @@ class MapRun:
         self.builder.remove_duplicates()
         if self.params.cleanup.adjust and len(self.scans) > 1:
             q = self.odometry_scale()
-            model = np.array([odometry_covariance(inc, self.params.odometry_prior) for inc in self.increments])
-            self.poses = adjust_built_map(self.builder, self.poses, self.increments, q * model).poses
-            self.poses = self.untwist(self.poses, q * model[:, 2, 2])
+            self.poses = adjust_built_map(self.builder, self.poses, self.increments, q * self.step_models).poses
+            self.poses = self.untwist(self.poses, q)
         return self.poses
 
     def odometry_scale(self) -> float:
@@ -175,13 +175,12 @@ class MapRun:
             return 1.0
         return self.builder.corrector.innovations.overall()[0]
 
-    def untwist(self, poses, step_variances=None) -> np.ndarray:
+    def untwist(self, poses, scale=None) -> np.ndarray:
         """``poses`` and the map turned about the first position by minus the map's turn from the odometry's
         frame, as every odometry heading tells it (:func:`~cga_lessons.mapping2d.frame.map_turn`: the odometry's
-        drift model scaled by what the builder learnt of it, ``step_variances`` the heading variance of each
-        step, default the model's scaled by :meth:`odometry_scale`, and the registration error), when the
-        headings establish it: its square over its variance beyond the chi-square quantile of a correction's
-        test (``significance``, one degree of freedom).
+        drift model scaled by what the builder learnt of it, ``scale``, default :meth:`odometry_scale`, and the
+        registration error), when the headings establish it: its square over its variance beyond the chi-square
+        quantile of a correction's test (``significance``, one degree of freedom).
 
         Measured on the six bundled logs: fed their own poses, ACES's and Orebro's maps came out turned by 0.26
         and 0.42 degrees (4.5 and 5.1 standard deviations of the estimate), the other four's within 1.1; with
@@ -189,10 +188,8 @@ class MapRun:
         those out anyway, as the shrunk estimate would, made the 48 maps no better (median +0.06 cm, positions
         +0.15 cm).
         """
-        if step_variances is None:
-            model = np.array([odometry_covariance(inc, self.params.odometry_prior)[2, 2] for inc in self.increments])
-            step_variances = self.odometry_scale() * model
-        turn, var = map_turn(poses[:, 2], self.odometry[:, 2], step_variances,
+        scale = self.odometry_scale() if scale is None else scale
+        turn, var = map_turn(poses[:, 2], self.odometry[:, 2], scale * self.step_models[:, 2, 2],
                              self.builder.corrector.registration_cov[2, 2])  # fmt: skip
         if turn * turn <= stats.chi2.ppf(self.params.correction.significance, 1) * var:
             return poses
